@@ -1,0 +1,97 @@
+#pragma once
+/// A loaded, validated graph: node instances with their parameters and wiring.
+/// Editing goes through setParam(), which validates like loading does.
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "core/NodeDecl.h"
+#include "core/Param.h"
+
+namespace cg {
+
+class Registry;
+
+struct Connection {
+    std::string node;  ///< upstream node id
+    std::string port;  ///< upstream output port
+};
+
+struct GraphNode {
+    std::string id;
+    const NodeDecl* decl = nullptr;
+    ParamSet params;
+    std::map<std::string, Connection> inputs;  ///< by input port name
+    std::string pointer;                       ///< JSON pointer of the node, "/nodes/<id>"
+};
+
+struct FrameRange {
+    int start = 0;
+    int end = 0;  ///< inclusive
+};
+
+/// Limits applied while loading untrusted graphs.
+struct LoadOptions {
+    std::uint64_t allocationLimitBytes = 16ull << 30;  ///< most one node may allocate
+    int maxJsonDepth = 64;
+    std::size_t maxFileBytes = 64u << 20;
+};
+
+class Graph {
+public:
+    static constexpr int kFormatVersion = 1;
+
+    std::filesystem::path source;  ///< file it was loaded from, if any
+    FrameRange frames;             ///< the animation; simulations start at frames.start
+    double timeStep = 1.0;         ///< seconds per frame
+    std::uint64_t seed = 0;
+    LoadOptions limits;
+
+    const std::vector<GraphNode>& nodes() const { return mNodes; }
+    const GraphNode* find(const std::string& id) const;
+    std::size_t indexOf(const std::string& id) const;  ///< throws std::out_of_range
+    /// Node indices, every node after all of its inputs (ties broken by id).
+    const std::vector<std::size_t>& topologicalOrder() const { return mOrder; }
+    /// For each node, the indices of its upstream nodes (deduplicated, sorted).
+    const std::vector<std::vector<std::size_t>>& upstream() const { return mUpstream; }
+    /// Nodes that feed no other node.
+    std::vector<std::size_t> sinks() const;
+
+    /// Validates `value` against the parameter's declaration and the node's cross-checks,
+    /// then sets it. Throws InputError naming `where` (e.g. "--set a.b" or a JSON pointer).
+    void setParam(const std::string& nodeId, const std::string& param, const nlohmann::json& value,
+                  const std::string& where = "");
+
+    // Used by the loader.
+    void addNode(GraphNode node);
+    /// Checks wiring (ports exist, types match, required inputs present), rejects cycles,
+    /// and computes the topological order. Throws InputError with JSON pointers.
+    void finalize();
+    /// Runs every node's NodeDecl::validate. Throws InputError.
+    void validateNode(const GraphNode& node) const;
+
+private:
+    std::vector<GraphNode> mNodes;  ///< sorted by id after finalize()
+    std::vector<std::size_t> mOrder;
+    std::vector<std::vector<std::size_t>> mUpstream;
+};
+
+/// Loads and validates a graph file. Throws InputError naming the file and a JSON pointer
+/// or byte offset; nothing is cooked.
+Graph loadGraph(const std::filesystem::path& path, const Registry& registry,
+                const LoadOptions& options = {});
+/// Same, from text; `sourceName` is used in messages.
+Graph parseGraph(const std::string& text, const std::string& sourceName, const Registry& registry,
+                 const LoadOptions& options = {});
+/// Applies a command-line override "node.param=value"; the value is JSON, or a bare string.
+void applySetOverride(Graph& graph, const std::string& assignment);
+/// The graph back as JSON (format version, frames, nodes with every non-default parameter).
+nlohmann::json graphToJson(const Graph& graph);
+
+}  // namespace cg

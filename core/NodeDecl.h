@@ -1,0 +1,70 @@
+#pragma once
+/// A node type is declared once: ports, parameters, version, docs. JSON validation, the
+/// node reference and the default content key are all derived from this declaration.
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/Param.h"
+
+namespace cg {
+
+class Node;
+class Hasher;
+
+struct PortDecl {
+    std::string name;
+    std::string type;  ///< a registered data type name, e.g. "Float"
+    std::string doc;   ///< one line
+    bool optional = false;  ///< inputs only: may be left unconnected
+};
+
+/// What a node may do beyond reading its parameters and inputs.
+struct ParamChecker;
+
+struct NodeDecl {
+    std::string type;       ///< unique type name, e.g. "NoiseMap"
+    int version = 1;        ///< bump when the output for the same inputs changes
+    std::string category;   ///< for the reference: "atmosphere", "util", ...
+    std::string doc;        ///< a paragraph: what it computes, which equations
+    std::vector<PortDecl> inputs;
+    std::vector<PortDecl> outputs;
+    std::vector<ParamDecl> params;
+
+    /// The output changes with the frame even when the inputs do not.
+    bool frameDependent = false;
+    /// Frame N is stepped from this node's own output at frame N-1 (see CookContext::previous).
+    /// Implies frameDependent.
+    bool simulation = false;
+    /// The node writes files; it cooks on every run so outputs on disk are always complete.
+    bool writesFiles = false;
+    /// The node reads the evaluation context's time step or seed (hashed into its key).
+    bool readsTimeStep = false;
+    bool readsSeed = false;
+
+    std::function<std::unique_ptr<Node>()> create;
+    /// Extra checks across parameters (e.g. allocation sizes); throw through ParamChecker.
+    std::function<void(const ParamSet&, const ParamChecker&)> validate;
+    /// Extra key ingredients, e.g. the content hash of an input file.
+    std::function<void(const ParamSet&, Hasher&)> hashExtra;
+
+    const PortDecl* findInput(const std::string& name) const;
+    const PortDecl* findOutput(const std::string& name) const;
+    const ParamDecl* findParam(const std::string& name) const;
+};
+
+/// Passed to NodeDecl::validate: names the failing parameter with its JSON pointer.
+struct ParamChecker {
+    std::string nodePointer;              ///< e.g. /nodes/noise
+    std::uint64_t allocationLimitBytes;   ///< the most one node may allocate
+    [[noreturn]] void fail(const std::string& param, const std::string& message) const;
+    /// Throws unless count * bytesPerItem fits in the limit, with overflow-checked 64-bit
+    /// arithmetic. `counts` are the user-given sizes (e.g. nx, ny); negative counts fail.
+    void checkAllocation(const std::string& param, const std::vector<std::int64_t>& counts,
+                         std::uint64_t bytesPerItem) const;
+};
+
+}  // namespace cg

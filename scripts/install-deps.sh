@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs CloudGraph's build dependencies from Debian 12 packages, non-interactively.
+# Returns at once when everything is already installed.
+set -euo pipefail
+
+packages=(
+    build-essential cmake pkg-config
+    libopenvdb-dev libboost-iostreams-dev libtbb-dev
+    nlohmann-json3-dev libfftw3-dev libspdlog-dev libxxhash-dev
+    libgtest-dev libbenchmark-dev libpng-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+        missing+=("$p")
+    fi
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "install-deps: installing ${missing[*]}"
+sudo_cmd=()
+[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -q
+"${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
