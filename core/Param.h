@@ -16,7 +16,7 @@ class Hasher;
 
 using Vec3 = std::array<double, 3>;
 
-enum class ParamType { Float, Int, Bool, String, Vec3, FloatList, IntList };
+enum class ParamType { Float, Int, Bool, String, Vector3, FloatList, IntList };
 
 /// Index order matches ParamType.
 using ParamValue = std::variant<double, std::int64_t, bool, std::string, Vec3,
