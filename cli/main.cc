@@ -1,1 +1,58 @@
-int main() { return 0; }
+// cloudgraph: cook node graphs that grow cumulus clouds. See --help.
+
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "cli/Commands.h"
+#include "cli/Common.h"
+
+namespace {
+
+const char* kUsage = R"(cloudgraph - node-graph tool that animates the growth of cumulus clouds
+
+usage:
+  cloudgraph run GRAPH [options]     cook a graph for its frames
+      --frames A:B                   cook only frames A..B (inside the graph's range)
+      --set NODE.PARAM=VALUE         override a parameter (JSON value or bare string); repeatable
+      --out DIR                      where writers put files (default: out)
+      --cache DIR                    on-disk cache shared across runs and processes
+      --cache-memory-mb N            in-memory cache budget (default 4096)
+      --threads N                    worker threads (default: all cores)
+      --report FILE                  JSON report: per node and frame, cooked or cache hit, why, time
+      --plugin PATH                  load a plugin library; repeatable
+      --allow-outside-out            let output paths leave --out (absolute paths, ..)
+      -v / -q                        more / less logging
+  cloudgraph validate GRAPH [--set ...] [--plugin PATH]   check a graph without cooking
+  cloudgraph nodes [TYPE] [--markdown]                    the node reference
+  cloudgraph dot GRAPH                                    the graph as Graphviz
+  cloudgraph --help | --version
+
+Plugins are also loaded from the absolute directories in CLOUDGRAPH_PLUGIN_PATH (colon-separated).
+Exit codes: 0 ok, 2 bad input (graph, parameter, file), 1 internal failure.
+)";
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    using namespace cg::cli;
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+        std::fputs(kUsage, args.empty() ? stderr : stdout);
+        return args.empty() ? kExitBadInput : kExitOk;
+    }
+    if (args[0] == "--version") {
+        std::printf("cloudgraph %s\n", CLOUDGRAPH_VERSION);
+        return kExitOk;
+    }
+    const std::string command = args[0];
+    args.erase(args.begin());
+    if (command == "run") return runCommand(args);
+    if (command == "validate") return validateCommand(args);
+    if (command == "nodes") return nodesCommand(args);
+    if (command == "dot") return dotCommand(args);
+    std::fprintf(stderr, "error: unknown command '%s'\n\n%s", command.c_str(), kUsage);
+    return kExitBadInput;
+}

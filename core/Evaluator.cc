@@ -1,1 +1,423 @@
-// placeholder, filled in by its owner
+#include "core/Evaluator.h"
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <set>
+#include <stdexcept>
+#include <unordered_map>
+
+#include <spdlog/spdlog.h>
+#include <tbb/parallel_for.h>
+
+#include "core/Error.h"
+#include "core/Hash.h"
+
+namespace cg {
+
+namespace {
+
+constexpr int kAnyFrame = INT_MIN;  // memo slot of a node whose output ignores the frame
+
+double secondsSince(std::chrono::steady_clock::time_point t0)
+{
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+/// The state of one cookFrames() call: key memo, simulation states in flight, progress.
+class Evaluator::Session {
+public:
+    Session(Evaluator& ev, const Graph& graph) : mEv(ev), mGraph(graph)
+    {
+        const auto& nodes = graph.nodes();
+        const std::size_t n = nodes.size();
+        mKeys.resize(n);
+        mTimeVarying.assign(n, false);
+        mOrderIndex.assign(n, 0);
+        mHeld.resize(n);
+        mHeldMutex = std::vector<std::mutex>(n);
+        const auto& order = graph.topologicalOrder();
+        for (std::size_t i = 0; i < order.size(); ++i) {
+            const std::size_t idx = order[i];
+            mOrderIndex[idx] = i;
+            bool varying = nodes[idx].decl->frameDependent || nodes[idx].decl->simulation;
+            for (std::size_t up : graph.upstream()[idx]) varying = varying || mTimeVarying[up];
+            mTimeVarying[idx] = varying;
+        }
+        // Disk records are per graph file and node id, so two graphs don't explain each other.
+        Hasher h;
+        h.str(graph.source.empty() ? std::string("<memory>")
+                                   : std::filesystem::absolute(graph.source).lexically_normal().string());
+        mRecordPrefix = h.finish().hex().substr(0, 12) + "-";
+    }
+
+    Key keyOf(std::size_t idx, int frame)
+    {
+        const GraphNode& node = mGraph.nodes()[idx];
+        const NodeDecl& decl = *node.decl;
+        if (!mTimeVarying[idx]) frame = kAnyFrame;
+        {
+            std::lock_guard<std::mutex> lock(mKeyMutex);
+            auto it = mKeys[idx].find(frame);
+            if (it != mKeys[idx].end()) return it->second;
+        }
+        // A simulation's key chains through its history; walk it forward without recursion.
+        Key previous;
+        if (decl.simulation && frame > mGraph.frames.start) {
+            int f = frame - 1;
+            {
+                std::lock_guard<std::mutex> lock(mKeyMutex);
+                while (f > mGraph.frames.start && !mKeys[idx].count(f)) --f;
+            }
+            for (int g = f; g < frame; ++g) previous = keyOf(idx, g);
+        }
+        Hasher h;
+        h.str("cloudgraph-key-1").str(decl.type).i64(decl.version);
+        for (std::size_t i = 0; i < decl.params.size(); ++i) {
+            h.str(decl.params[i].name);
+            hashParam(h, node.params.valueAt(i));
+        }
+        if (decl.hashExtra) decl.hashExtra(node.params, h);
+        if (decl.readsTimeStep) h.str("timeStep").f64(mGraph.timeStep);
+        if (decl.readsSeed) h.str("seed").u64(mGraph.seed);
+        for (const PortDecl& port : decl.inputs) {
+            h.str(port.name);
+            auto it = node.inputs.find(port.name);
+            if (it == node.inputs.end()) {
+                h.str("<unconnected>");
+            } else {
+                h.str(it->second.port).key(keyOf(mGraph.indexOf(it->second.node), frame));
+            }
+        }
+        if (decl.frameDependent) h.str("frame").i64(frame);
+        if (decl.simulation) {
+            h.str("start").i64(mGraph.frames.start);
+            if (frame > mGraph.frames.start) h.key(previous);
+        }
+        const Key key = h.finish();
+        std::lock_guard<std::mutex> lock(mKeyMutex);
+        mKeys[idx][frame] = key;
+        return key;
+    }
+
+    /// Node indices `targets` need, in topological order.
+    std::vector<std::size_t> closure(const std::vector<std::size_t>& targets) const
+    {
+        std::vector<bool> need(mGraph.nodes().size(), false);
+        std::vector<std::size_t> stack(targets);
+        while (!stack.empty()) {
+            const std::size_t i = stack.back();
+            stack.pop_back();
+            if (need[i]) continue;
+            need[i] = true;
+            for (std::size_t up : mGraph.upstream()[i]) stack.push_back(up);
+        }
+        std::vector<std::size_t> out;
+        for (std::size_t i : mGraph.topologicalOrder())
+            if (need[i]) out.push_back(i);
+        return out;
+    }
+
+    /// Cooks (or fetches) `nodes` at `frame`, level by level, independent nodes in parallel.
+    FrameOutputs cookFrame(const std::vector<std::size_t>& nodes, int frame)
+    {
+        FrameOutputs results(mGraph.nodes().size());
+        std::vector<int> depth(mGraph.nodes().size(), 0);
+        int maxDepth = 0;
+        for (std::size_t i : nodes) {  // topological order: inputs first
+            for (std::size_t up : mGraph.upstream()[i]) depth[i] = std::max(depth[i], depth[up] + 1);
+            maxDepth = std::max(maxDepth, depth[i]);
+        }
+        for (int level = 0; level <= maxDepth; ++level) {
+            std::vector<std::size_t> batch;
+            for (std::size_t i : nodes)
+                if (depth[i] == level) batch.push_back(i);
+            tbb::parallel_for(std::size_t(0), batch.size(), [&](std::size_t b) {
+                results[batch[b]] = evaluate(batch[b], frame, results);
+            });
+        }
+        return results;
+    }
+
+    void addToTotal(std::size_t n) { mTotal += n; }
+
+private:
+    OutputsPtr evaluate(std::size_t idx, int frame, const FrameOutputs& results)
+    {
+        mEv.mOptions.cancel->throwIfCancelled();
+        const GraphNode& node = mGraph.nodes()[idx];
+        const NodeDecl& decl = *node.decl;
+        const Key key = keyOf(idx, frame);
+        const auto t0 = std::chrono::steady_clock::now();
+
+        CookRecord record;
+        record.node = node.id;
+        record.type = decl.type;
+        record.frame = frame;
+        record.order = mOrderIndex[idx];
+        record.key = key;
+
+        OutputsPtr outputs;
+        if (!decl.writesFiles) outputs = lookup(key, record.status);
+        if (!outputs) {
+            outputs = cook(idx, frame, key, results, record.reason);
+            record.status = CookStatus::Cooked;
+        }
+        if (decl.simulation) hold(idx, frame, outputs);
+        record.seconds = secondsSince(t0);
+        record.bytes = outputBytes(*outputs);
+        mEv.mReport.add(std::move(record));
+        if (mEv.mOptions.onProgress) {
+            Progress p;
+            p.done = ++mDone;
+            p.total = mTotal;
+            p.frame = frame;
+            mEv.mOptions.onProgress(p);
+        }
+        return outputs;
+    }
+
+    OutputsPtr lookup(const Key& key, CookStatus& status)
+    {
+        if (OutputsPtr hit = mEv.mMemory.find(key)) {
+            status = CookStatus::MemoryHit;
+            return hit;
+        }
+        if (mEv.mOptions.diskCache) {
+            if (auto stored = mEv.mOptions.diskCache->load(key, mEv.mRegistry)) {
+                auto hit = std::make_shared<const OutputMap>(std::move(*stored));
+                mEv.mMemory.insert(key, hit);
+                status = CookStatus::DiskHit;
+                return hit;
+            }
+        }
+        return nullptr;
+    }
+
+    OutputsPtr cook(std::size_t idx, int frame, const Key& key, const FrameOutputs& results,
+                    std::string& reason)
+    {
+        const GraphNode& node = mGraph.nodes()[idx];
+        const NodeDecl& decl = *node.decl;
+
+        OutputsPtr previous;
+        if (decl.simulation && frame > mGraph.frames.start) previous = previousState(idx, frame);
+
+        EvalContext eval;
+        eval.frame = frame;
+        eval.startFrame = mGraph.frames.start;
+        eval.timeStep = mGraph.timeStep;
+        eval.seed = mGraph.seed;
+        eval.cancel = mEv.mOptions.cancel;
+        CookContext ctx(decl, node.id, node.params, eval, mEv.mOptions.outDir);
+        nlohmann::json inputKeys = nlohmann::json::object();
+        for (const auto& [portName, conn] : node.inputs) {
+            const std::size_t up = mGraph.indexOf(conn.node);
+            const OutputsPtr& upOut = results[up];
+            if (!upOut) throw std::logic_error("input of '" + node.id + "' was not evaluated");
+            auto it = upOut->find(conn.port);
+            if (it == upOut->end()) throw std::logic_error("'" + conn.node + "' lacks output '" + conn.port + "'");
+            ctx.setInput(portName, it->second);
+            inputKeys[portName] = keyOf(up, frame).hex();
+        }
+        ctx.setPrevious(previous.get());
+
+        reason = mEv.explainAndRemember(mRecordPrefix + node.id,
+                                        ingredients(node, frame, inputKeys), decl.simulation);
+        if (decl.writesFiles) reason = "writes files (cooks on every run); " + reason;
+
+        OutputMap out;
+        try {
+            std::unique_ptr<Node> instance = decl.create();
+            instance->cook(ctx);
+            out = ctx.takeOutputs();
+            for (const PortDecl& p : decl.outputs)
+                if (!out.count(p.name)) throw std::logic_error("did not set output '" + p.name + "'");
+        } catch (const Cancelled&) {
+            throw;
+        } catch (const CookError&) {
+            throw;
+        } catch (const InputError& e) {
+            throw CookError(node.id, frame, e.what(), true);
+        } catch (const std::exception& e) {
+            throw CookError(node.id, frame, e.what(), false);
+        }
+        auto shared = std::make_shared<const OutputMap>(std::move(out));
+        mEv.mMemory.insert(key, shared);
+        if (mEv.mOptions.diskCache && !decl.writesFiles) mEv.mOptions.diskCache->store(key, *shared);
+        return shared;
+    }
+
+    nlohmann::json ingredients(const GraphNode& node, int frame, const nlohmann::json& inputKeys) const
+    {
+        nlohmann::json params = nlohmann::json::object();
+        for (std::size_t i = 0; i < node.decl->params.size(); ++i)
+            params[node.decl->params[i].name] = paramToString(node.params.valueAt(i));
+        nlohmann::json j = {{"type", node.decl->type},
+                            {"version", node.decl->version},
+                            {"params", params},
+                            {"inputs", inputKeys},
+                            {"frame", frame}};
+        if (node.decl->readsTimeStep) j["timeStep"] = mGraph.timeStep;
+        if (node.decl->readsSeed) j["seed"] = mGraph.seed;
+        return j;
+    }
+
+    void hold(std::size_t idx, int frame, const OutputsPtr& outputs)
+    {
+        std::lock_guard<std::mutex> lock(mHeldMutex[idx]);
+        mHeld[idx] = {frame, outputs};
+    }
+
+    /// The simulation's own output at frame-1: held from the last step, else from a cache,
+    /// else recomputed by stepping forward from the latest cached frame (or the start).
+    OutputsPtr previousState(std::size_t idx, int frame)
+    {
+        {
+            std::lock_guard<std::mutex> lock(mHeldMutex[idx]);
+            if (mHeld[idx].outputs && mHeld[idx].frame == frame - 1) return mHeld[idx].outputs;
+        }
+        CookStatus ignored;
+        int resume = frame - 1;
+        OutputsPtr state;
+        for (; resume >= mGraph.frames.start; --resume) {
+            if ((state = lookup(keyOf(idx, resume), ignored))) break;
+        }
+        if (state) hold(idx, resume, state);
+        // Step forward through the frames no cache holds; each step cooks the node's closure.
+        const std::vector<std::size_t> nodes = closure({idx});
+        for (int f = resume + 1; f < frame; ++f) {
+            addToTotal(nodes.size());
+            cookFrame(nodes, f);
+        }
+        std::lock_guard<std::mutex> lock(mHeldMutex[idx]);
+        return mHeld[idx].outputs;
+    }
+
+    struct Held {
+        int frame = 0;
+        OutputsPtr outputs;
+    };
+
+    Evaluator& mEv;
+    const Graph& mGraph;
+    std::mutex mKeyMutex;
+    std::vector<std::unordered_map<int, Key>> mKeys;
+    std::vector<bool> mTimeVarying;
+    std::vector<std::size_t> mOrderIndex;
+    std::vector<Held> mHeld;
+    std::vector<std::mutex> mHeldMutex;
+    std::string mRecordPrefix;
+    std::atomic<std::size_t> mDone{0};
+    std::atomic<std::size_t> mTotal{0};
+};
+
+Evaluator::Evaluator(const Registry& registry, EvaluatorOptions options)
+    : mRegistry(registry), mOptions(std::move(options)), mMemory(mOptions.memoryBudgetBytes)
+{
+    if (!mOptions.cancel) mOptions.cancel = std::make_shared<CancelToken>();
+}
+
+void Evaluator::cookFrames(const Graph& graph, int first, int last,
+                           const std::vector<std::string>& targets, const FrameCallback& onFrame)
+{
+    if (first > last) throw std::invalid_argument("frame range is empty");
+    if (first < graph.frames.start)
+        throw std::invalid_argument("frame " + std::to_string(first) + " is before the graph's start frame");
+    Session session(*this, graph);
+    std::vector<std::size_t> targetIdx;
+    if (targets.empty()) {
+        targetIdx = graph.sinks();
+    } else {
+        for (const std::string& id : targets) targetIdx.push_back(graph.indexOf(id));
+    }
+    const std::vector<std::size_t> nodes = session.closure(targetIdx);
+    session.addToTotal(nodes.size() * static_cast<std::size_t>(last - first + 1));
+    try {
+        for (int frame = first; frame <= last; ++frame) {
+            FrameOutputs results = session.cookFrame(nodes, frame);
+            if (onFrame) onFrame(frame, results);
+        }
+    } catch (...) {
+        flushRecords();
+        throw;
+    }
+    flushRecords();
+}
+
+OutputsPtr Evaluator::pull(const Graph& graph, const std::string& nodeId, int frame)
+{
+    const std::size_t idx = graph.indexOf(nodeId);
+    OutputsPtr out;
+    cookFrames(graph, frame, frame, {nodeId}, [&](int, const FrameOutputs& r) { out = r[idx]; });
+    return out;
+}
+
+Key Evaluator::key(const Graph& graph, const std::string& nodeId, int frame)
+{
+    Session session(*this, graph);
+    return session.keyOf(graph.indexOf(nodeId), frame);
+}
+
+std::string Evaluator::explainAndRemember(const std::string& recordName,
+                                          const nlohmann::json& now, bool simulation)
+{
+    std::lock_guard<std::mutex> lock(mIngredientsMutex);
+    auto it = mIngredients.find(recordName);
+    std::optional<nlohmann::json> before;
+    if (it != mIngredients.end()) {
+        before = it->second;
+    } else if (mOptions.diskCache) {
+        before = mOptions.diskCache->loadRecord(recordName);
+    }
+    mIngredients[recordName] = now;
+    mIngredientsDirty[recordName] = true;
+    if (!before || !before->is_object()) return "first cook";
+
+    const nlohmann::json& was = *before;
+    if (was.value("type", "") != now["type"] || was.value("version", -1) != now["version"])
+        return "node type or version changed";
+    std::vector<std::string> why;
+    const nlohmann::json wasParams = was.value("params", nlohmann::json::object());
+    for (const auto& [name, value] : now["params"].items()) {
+        auto w = wasParams.find(name);
+        if (w == wasParams.end()) {
+            why.push_back("parameter '" + name + "' is new");
+        } else if (*w != value) {
+            why.push_back("parameter '" + name + "' changed (" + w->get<std::string>() + " -> " +
+                          value.get<std::string>() + ")");
+        }
+    }
+    const nlohmann::json wasInputs = was.value("inputs", nlohmann::json::object());
+    for (const auto& [port, key] : now["inputs"].items()) {
+        auto w = wasInputs.find(port);
+        if (w == wasInputs.end() || *w != key) why.push_back("input '" + port + "' changed");
+    }
+    for (const char* ctx : {"timeStep", "seed"})
+        if (now.contains(ctx) && was.value(ctx, nlohmann::json()) != now[ctx])
+            why.push_back(std::string(ctx) + " changed");
+    if (!why.empty()) {
+        std::string out = why[0];
+        for (std::size_t i = 1; i < why.size(); ++i) out += "; " + why[i];
+        return out;
+    }
+    if (was.value("frame", INT_MIN) != now["frame"]) {
+        return simulation ? "simulation step to frame " + now["frame"].dump() : "new frame";
+    }
+    return "not in cache (evicted, damaged or never stored)";
+}
+
+void Evaluator::flushRecords()
+{
+    if (!mOptions.diskCache) return;
+    std::lock_guard<std::mutex> lock(mIngredientsMutex);
+    for (auto& [name, dirty] : mIngredientsDirty) {
+        if (!dirty) continue;
+        mOptions.diskCache->storeRecord(name, mIngredients[name]);
+        dirty = false;
+    }
+}
+
+}  // namespace cg

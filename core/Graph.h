@@ -29,6 +29,7 @@ struct GraphNode {
     ParamSet params;
     std::map<std::string, Connection> inputs;  ///< by input port name
     std::string pointer;                       ///< JSON pointer of the node, "/nodes/<id>"
+    std::string comment;                       ///< free text from the file, kept on save
 };
 
 struct FrameRange {
@@ -41,6 +42,8 @@ struct LoadOptions {
     std::uint64_t allocationLimitBytes = 16ull << 30;  ///< most one node may allocate
     int maxJsonDepth = 64;
     std::size_t maxFileBytes = 64u << 20;
+    /// Lets OutputPath parameters be absolute or climb out with "..".
+    bool allowPathsOutsideOut = false;
 };
 
 class Graph {
@@ -51,7 +54,12 @@ public:
     FrameRange frames;             ///< the animation; simulations start at frames.start
     double timeStep = 1.0;         ///< seconds per frame
     std::uint64_t seed = 0;
+    std::string description;
     LoadOptions limits;
+
+    /// Prefix of error locations ("graph.json"); errors read "graph.json:/nodes/a: ...".
+    const std::string& sourceName() const { return mSourceName; }
+    void setSourceName(std::string name) { mSourceName = std::move(name); }
 
     const std::vector<GraphNode>& nodes() const { return mNodes; }
     const GraphNode* find(const std::string& id) const;
@@ -77,10 +85,20 @@ public:
     void validateNode(const GraphNode& node) const;
 
 private:
+    /// `pointer` prefixed by the source name, as errors name places.
+    std::string locate(const std::string& pointer) const;
+
+    std::string mSourceName;
     std::vector<GraphNode> mNodes;  ///< sorted by id after finalize()
+    bool mSorted = true;            ///< mNodes is sorted by id (binary search works)
     std::vector<std::size_t> mOrder;
     std::vector<std::vector<std::size_t>> mUpstream;
 };
+
+/// Checks what paramFromJson cannot see: an OutputPath value must be a relative path with
+/// no ".." component unless options.allowPathsOutsideOut. Throws InputError naming `where`.
+void checkParamRole(const ParamDecl& decl, const ParamValue& value, const LoadOptions& options,
+                    const std::string& where);
 
 /// Loads and validates a graph file. Throws InputError naming the file and a JSON pointer
 /// or byte offset; nothing is cooked.

@@ -1,1 +1,79 @@
-// placeholder, filled in by its owner
+// WriteArray and WriteText: write a value per frame to a file under the output directory.
+
+#include <cstdio>
+#include <string>
+
+#include "core/AtomicFile.h"
+#include "core/CoreData.h"
+#include "core/Node.h"
+#include "core/Registry.h"
+#include "nodes/DeclHelpers.h"
+#include "nodes/util/UtilNodes.h"
+
+namespace cg {
+
+namespace {
+
+class WriteArrayNode final : public Node {
+public:
+    void cook(CookContext& ctx) override
+    {
+        const auto in = ctx.input<FloatArrayData>("values");
+        std::string text;
+        text.reserve(in->values.size() * 12);
+        char buf[32];
+        for (std::size_t i = 0; i < in->values.size(); ++i) {
+            if ((i & 0xffff) == 0) ctx.checkCancelled();
+            // %.9g round-trips every float exactly.
+            const int n = std::snprintf(buf, sizeof buf, "%.9g\n", static_cast<double>(in->values[i]));
+            text.append(buf, static_cast<std::size_t>(n));
+        }
+        const auto path = ctx.outputPath("file");
+        writeFileAtomically(path, text);
+        ctx.setOutput("files", std::make_shared<TextData>(path.string()));
+    }
+};
+
+class WriteTextNode final : public Node {
+public:
+    void cook(CookContext& ctx) override
+    {
+        const auto in = ctx.input<TextData>("text");
+        const auto path = ctx.outputPath("file");
+        writeFileAtomically(path, in->value);
+        ctx.setOutput("files", std::make_shared<TextData>(path.string()));
+    }
+};
+
+}  // namespace
+
+void registerWriterNodes(Registry& registry)
+{
+    NodeDecl array;
+    array.type = "WriteArray";
+    array.category = "io";
+    array.doc = "Writes an array as text, one value per line (%.9g, exact for float32), to a "
+                "file under the output directory; #### in the name becomes the frame number.";
+    array.writesFiles = true;
+    array.frameDependent = true;
+    array.inputs = {port("values", "FloatArray", "values to write")};
+    array.outputs = {port("files", "Text", "the path written")};
+    array.params = {outputPathParam("file", "values.####.txt", "file name, relative to --out")};
+    array.create = [] { return std::make_unique<WriteArrayNode>(); };
+    registry.addNode(std::move(array));
+
+    NodeDecl text;
+    text.type = "WriteText";
+    text.category = "io";
+    text.doc = "Writes text to a file under the output directory; #### in the name becomes "
+               "the frame number.";
+    text.writesFiles = true;
+    text.frameDependent = true;
+    text.inputs = {port("text", "Text", "text to write")};
+    text.outputs = {port("files", "Text", "the path written")};
+    text.params = {outputPathParam("file", "summary.####.txt", "file name, relative to --out")};
+    text.create = [] { return std::make_unique<WriteTextNode>(); };
+    registry.addNode(std::move(text));
+}
+
+}  // namespace cg

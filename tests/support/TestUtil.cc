@@ -1,1 +1,85 @@
-// placeholder, filled in by its owner
+#include "support/TestUtil.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+
+extern char** environ;
+
+namespace cg::test {
+
+TempDir::TempDir()
+{
+    static std::atomic<unsigned> counter{0};
+    std::random_device rd;
+    mPath = std::filesystem::temp_directory_path() /
+            ("cloudgraph-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) +
+             "-" + std::to_string(rd()));
+    std::filesystem::create_directories(mPath);
+}
+
+TempDir::~TempDir()
+{
+    std::error_code ec;
+    std::filesystem::remove_all(mPath, ec);
+}
+
+std::string readFile(const std::filesystem::path& p)
+{
+    std::ifstream f(p, std::ios::binary);
+    if (!f) throw std::runtime_error("cannot read " + p.string());
+    std::ostringstream s;
+    s << f.rdbuf();
+    return s.str();
+}
+
+void writeFile(const std::filesystem::path& p, const std::string& text)
+{
+    std::ofstream f(p, std::ios::binary | std::ios::trunc);
+    f << text;
+    if (!f) throw std::runtime_error("cannot write " + p.string());
+}
+
+CliResult runCli(const std::vector<std::string>& args)
+{
+    TempDir tmp;
+    const std::string outPath = (tmp / "stdout").string();
+    const std::string errPath = (tmp / "stderr").string();
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, outPath.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, errPath.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    std::vector<std::string> argvStrings = {CLOUDGRAPH_CLI};
+    argvStrings.insert(argvStrings.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& s : argvStrings) argv.push_back(s.data());
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    const int rc = posix_spawn(&pid, CLOUDGRAPH_CLI, &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (rc != 0) throw std::runtime_error("cannot start " + std::string(CLOUDGRAPH_CLI));
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0) {
+    }
+    CliResult r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1 - WTERMSIG(status);
+    r.output = readFile(outPath);
+    r.errors = readFile(errPath);
+    return r;
+}
+
+std::filesystem::path dataPath(const std::string& relative)
+{
+    return std::filesystem::path(CLOUDGRAPH_SOURCE_DIR) / "tests" / "data" / relative;
+}
+
+}  // namespace cg::test

@@ -1,0 +1,103 @@
+#include "cli/Common.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include "core/Error.h"
+#include "core/Plugin.h"
+#include "nodes/Builtin.h"
+
+namespace cg::cli {
+
+void OptionParser::parse()
+{
+    for (std::size_t i = 0; i < mArgs.size(); ++i) {
+        const std::string& a = mArgs[i];
+        if (a.size() < 2 || a[0] != '-' || a == "-") {
+            mPositionals.push_back(a);
+            continue;
+        }
+        std::string name = a;
+        std::optional<std::string> inlineValue;
+        if (const auto eq = a.find('='); eq != std::string::npos && a.rfind("--", 0) == 0) {
+            name = a.substr(0, eq);
+            inlineValue = a.substr(eq + 1);
+        }
+        if (std::find(mFlags.begin(), mFlags.end(), name) != mFlags.end() && !inlineValue) {
+            mSeen.emplace_back(name, "");
+        } else if (std::find(mValueOptions.begin(), mValueOptions.end(), name) != mValueOptions.end()) {
+            if (inlineValue) {
+                mSeen.emplace_back(name, *inlineValue);
+            } else if (i + 1 < mArgs.size()) {
+                mSeen.emplace_back(name, mArgs[++i]);
+            } else {
+                throw InputError("command line", "option " + name + " needs a value");
+            }
+        } else {
+            throw InputError("command line", "unknown option '" + a + "' (see --help)");
+        }
+    }
+}
+
+bool OptionParser::has(const std::string& name) const
+{
+    return std::any_of(mSeen.begin(), mSeen.end(), [&](const auto& s) { return s.first == name; });
+}
+
+std::optional<std::string> OptionParser::value(const std::string& name) const
+{
+    std::optional<std::string> out;
+    for (const auto& [n, v] : mSeen)
+        if (n == name) out = v;
+    return out;
+}
+
+std::vector<std::string> OptionParser::values(const std::string& name) const
+{
+    std::vector<std::string> out;
+    for (const auto& [n, v] : mSeen)
+        if (n == name) out.push_back(v);
+    return out;
+}
+
+void configureLogging(bool verbose, bool quiet)
+{
+    auto logger = spdlog::stderr_color_mt("cloudgraph");
+    logger->set_pattern("%^%l%$: %v");
+    spdlog::set_default_logger(logger);
+    spdlog::set_level(verbose ? spdlog::level::debug
+                              : quiet ? spdlog::level::err : spdlog::level::info);
+}
+
+void buildRegistry(Registry& registry, const std::vector<std::string>& pluginPaths)
+{
+    registerBuiltinNodes(registry);
+    if (const char* searchPath = std::getenv("CLOUDGRAPH_PLUGIN_PATH"))
+        for (const auto& p : pluginsFromSearchPath(searchPath)) loadPlugin(p, registry);
+    for (const auto& p : pluginPaths) loadPlugin(p, registry);
+}
+
+int guarded(const std::function<int()>& body)
+{
+    try {
+        return body();
+    } catch (const InputError& e) {
+        spdlog::error("{}", e.what());
+        return kExitBadInput;
+    } catch (const CookError& e) {
+        spdlog::error("{}", e.what());
+        return e.inputFault() ? kExitBadInput : kExitFailure;
+    } catch (const Cancelled&) {
+        spdlog::error("cancelled; nothing partial was cached or written");
+        return kExitFailure;
+    } catch (const std::exception& e) {
+        spdlog::error("internal error: {}", e.what());
+        return kExitFailure;
+    }
+}
+
+}  // namespace cg::cli

@@ -1,0 +1,50 @@
+#pragma once
+/// What the subcommands share: option parsing, the registry with plugins, error reporting.
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/Registry.h"
+
+namespace cg::cli {
+
+constexpr int kExitOk = 0;
+constexpr int kExitFailure = 1;
+constexpr int kExitBadInput = 2;
+
+/// A minimal option scanner: flags, options with a value (repeatable), and positionals.
+class OptionParser {
+public:
+    explicit OptionParser(const std::vector<std::string>& args) : mArgs(args) {}
+    /// Declares an option that takes a value (e.g. "--out").
+    void valueOption(const std::string& name) { mValueOptions.push_back(name); }
+    /// Declares a flag (e.g. "--markdown").
+    void flag(const std::string& name) { mFlags.push_back(name); }
+    /// Parses; throws InputError("command line", ...) on an unknown option or a missing value.
+    void parse();
+
+    bool has(const std::string& name) const;
+    std::optional<std::string> value(const std::string& name) const;  ///< the last one given
+    std::vector<std::string> values(const std::string& name) const;   ///< all, in order
+    const std::vector<std::string>& positionals() const { return mPositionals; }
+
+private:
+    const std::vector<std::string>& mArgs;
+    std::vector<std::string> mValueOptions;
+    std::vector<std::string> mFlags;
+    std::vector<std::pair<std::string, std::string>> mSeen;
+    std::vector<std::string> mPositionals;
+};
+
+/// Sets up spdlog on stderr; -v gives debug output, -q only errors.
+void configureLogging(bool verbose, bool quiet);
+
+/// The built-in nodes plus plugins from --plugin paths and CLOUDGRAPH_PLUGIN_PATH.
+void buildRegistry(Registry& registry, const std::vector<std::string>& pluginPaths);
+
+/// Runs `body`, turning exceptions into a message on stderr and an exit code.
+int guarded(const std::function<int()>& body);
+
+}  // namespace cg::cli

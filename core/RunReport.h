@@ -1,0 +1,48 @@
+#pragma once
+/// What happened in a run: for each node and frame, cooked or cache hit, why it cooked,
+/// wall time, output key and bytes; plus totals. Written by `cloudgraph run --report FILE`.
+
+#include <cstddef>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/Hash.h"
+
+namespace cg {
+
+enum class CookStatus { Cooked, MemoryHit, DiskHit };
+
+const char* cookStatusName(CookStatus s);
+
+struct CookRecord {
+    std::string node;
+    std::string type;
+    int frame = 0;
+    std::size_t order = 0;  ///< topological index, to list records in a stable order
+    CookStatus status = CookStatus::Cooked;
+    std::string reason;     ///< why it cooked; empty for hits
+    double seconds = 0.0;   ///< wall time of the cook or the lookup
+    Key key;
+    std::size_t bytes = 0;
+};
+
+/// Thread-safe collector of CookRecords.
+class RunReport {
+public:
+    void add(CookRecord record);
+    void clear();
+    /// Records sorted by frame, then topological order.
+    std::vector<CookRecord> records() const;
+    /// How many times `node` was cooked (not counting cache hits).
+    std::size_t cookCount(const std::string& node) const;
+    nlohmann::json toJson() const;
+
+private:
+    mutable std::mutex mMutex;
+    std::vector<CookRecord> mRecords;
+};
+
+}  // namespace cg

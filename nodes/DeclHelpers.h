@@ -1,0 +1,53 @@
+#pragma once
+/// Short constructors for parameter and port declarations, so a node file reads as a table.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "core/NodeDecl.h"
+
+namespace cg {
+
+inline ParamDecl floatParam(std::string name, double def, std::string units, std::string doc,
+                            std::optional<double> min = std::nullopt,
+                            std::optional<double> max = std::nullopt)
+{
+    ParamDecl p;
+    p.name = std::move(name);
+    p.type = ParamType::Float;
+    p.defaultValue = def;
+    p.units = std::move(units);
+    p.doc = std::move(doc);
+    p.min = min;
+    p.max = max;
+    return p;
+}
+
+inline ParamDecl intParam(std::string name, std::int64_t def, std::string units, std::string doc,
+                          std::optional<double> min = std::nullopt,
+                          std::optional<double> max = std::nullopt)
+{
+    ParamDecl p = floatParam(std::move(name), 0.0, std::move(units), std::move(doc), min, max);
+    p.type = ParamType::Int;
+    p.defaultValue = def;
+    return p;
+}
+
+inline ParamDecl outputPathParam(std::string name, std::string def, std::string doc)
+{
+    ParamDecl p;
+    p.name = std::move(name);
+    p.type = ParamType::String;
+    p.defaultValue = std::move(def);
+    p.doc = std::move(doc);
+    p.role = ParamRole::OutputPath;
+    return p;
+}
+
+inline PortDecl port(std::string name, std::string type, std::string doc, bool optional = false)
+{
+    return PortDecl{std::move(name), std::move(type), std::move(doc), optional};
+}
+
+}  // namespace cg

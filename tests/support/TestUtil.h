@@ -1,0 +1,39 @@
+#pragma once
+/// Helpers for tests: temporary directories, files, and running the cloudgraph CLI.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace cg::test {
+
+/// A fresh directory under the system temp dir, removed with its contents on destruction.
+class TempDir {
+public:
+    TempDir();
+    ~TempDir();
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    const std::filesystem::path& path() const { return mPath; }
+    std::filesystem::path operator/(const std::string& name) const { return mPath / name; }
+
+private:
+    std::filesystem::path mPath;
+};
+
+std::string readFile(const std::filesystem::path& p);
+void writeFile(const std::filesystem::path& p, const std::string& text);
+
+struct CliResult {
+    int exitCode = -1;     ///< the exit status; -1 - signal number when killed by a signal
+    std::string output;    ///< stdout
+    std::string errors;    ///< stderr
+};
+
+/// Runs the cloudgraph binary with `args` (no shell), waiting for it to finish.
+CliResult runCli(const std::vector<std::string>& args);
+
+/// Path of a file under the source tree's tests/data.
+std::filesystem::path dataPath(const std::string& relative);
+
+}  // namespace cg::test
