@@ -43,8 +43,9 @@ std::string Graph::locate(const std::string& pointer) const
 const GraphNode* Graph::find(const std::string& id) const
 {
     if (mSorted) {
-        auto it = std::lower_bound(mNodes.begin(), mNodes.end(), id,
-                                   [](const GraphNode& n, const std::string& k) { return n.id < k; });
+        auto it =
+            std::lower_bound(mNodes.begin(), mNodes.end(), id,
+                             [](const GraphNode& n, const std::string& k) { return n.id < k; });
         return it != mNodes.end() && it->id == id ? &*it : nullptr;
     }
     for (const GraphNode& n : mNodes)
@@ -111,8 +112,8 @@ void Graph::setParam(const std::string& nodeId, const std::string& param,
     if (!decl) {
         std::vector<std::string> names;
         for (const ParamDecl& p : node.decl->params) names.push_back(p.name);
-        throw InputError(place, "unknown parameter '" + param + "'" + didYouMean(param, names) +
-                                    inNode);
+        throw InputError(place,
+                         "unknown parameter '" + param + "'" + didYouMean(param, names) + inNode);
     }
     ParamValue v;
     try {
@@ -147,7 +148,8 @@ void Graph::finalize()
         const NodeDecl& decl = *node.decl;
         const std::string inNode = " of node '" + node.id + "'";
         for (const auto& [portName, conn] : node.inputs) {
-            const std::string where = locate(node.pointer + "/inputs/" + jsonPointerToken(portName));
+            const std::string where =
+                locate(node.pointer + "/inputs/" + jsonPointerToken(portName));
             const PortDecl* in = decl.findInput(portName);
             if (!in) {
                 std::vector<std::string> names;
@@ -158,8 +160,8 @@ void Graph::finalize()
             const GraphNode* up = find(conn.node);
             if (!up) {
                 throw InputError(where, "input '" + portName + "'" + inNode + " is wired to '" +
-                                            conn.node + "." + conn.port + "', but there is no node '" +
-                                            conn.node + "'");
+                                            conn.node + "." + conn.port +
+                                            "', but there is no node '" + conn.node + "'");
             }
             const PortDecl* out = up->decl->findOutput(conn.port);
             if (!out) {

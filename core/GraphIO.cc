@@ -33,10 +33,9 @@
 // concerned as "(node 'id')". Everything is checked before the graph is returned; nothing
 // is cooked.
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <limits>
-#include <set>
 #include <sstream>
 #include <system_error>
 
@@ -99,7 +98,9 @@ struct Reader {
 bool validId(const std::string& id)
 {
     if (id.empty() || id.size() > kMaxIdLength) return false;
-    auto alpha = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_'; };
+    auto alpha = [](char c) {
+        return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_';
+    };
     if (!alpha(id[0])) return false;
     for (char c : id)
         if (!alpha(c) && !(c >= '0' && c <= '9') && c != '-') return false;

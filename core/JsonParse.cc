@@ -4,7 +4,10 @@
 #include <cctype>
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "core/Error.h"
 
@@ -52,13 +55,18 @@ public:
     bool parse_error(std::size_t position, const std::string& lastToken,
                      const nlohmann::detail::exception& ex) override
     {
-        const std::string at = location(position);
+        const auto [line, column] = lineAndColumn(position);
+        const std::string lineText =
+            "line " + std::to_string(line) + ", column " + std::to_string(column);
+        const std::string byteText = "byte " + std::to_string(position);
         if (ex.id == 406) {
             // nlohmann refuses numbers that overflow a double; say where it was, by pointer.
-            throw InputError(mSource + ":" + pendingPointer(),
-                             "number " + lastToken + " is not finite (" + at + ")");
+            throw InputError(
+                mSource + ":" + pendingPointer(),
+                "number " + lastToken + " is not finite (" + lineText + ", " + byteText + ")");
         }
-        throw InputError(mSource + ":" + at, "invalid JSON: " + cleanMessage(ex.what()));
+        throw InputError(mSource + ":" + lineText + " (" + byteText + ")",
+                         "invalid JSON: " + cleanMessage(ex.what()));
     }
 
 private:
@@ -125,9 +133,8 @@ private:
         return true;
     }
 
-    /// "line L, column C (byte B)" for nlohmann's 1-based byte position of the last read
-    /// character.
-    std::string location(std::size_t position) const
+    /// 1-based line and column of nlohmann's 1-based byte position of the last read character.
+    std::pair<std::size_t, std::size_t> lineAndColumn(std::size_t position) const
     {
         const std::size_t i = std::min(position == 0 ? 0 : position - 1, mText.size());
         std::size_t line = 1;
@@ -138,8 +145,7 @@ private:
                 lineStart = k + 1;
             }
         }
-        return "line " + std::to_string(line) + ", column " + std::to_string(i - lineStart + 1) +
-               " (byte " + std::to_string(position) + ")";
+        return {line, i - lineStart + 1};
     }
     /// Drops nlohmann's "[json.exception...] parse error at line L, column C: " prefix.
     static std::string cleanMessage(std::string msg)

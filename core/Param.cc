@@ -30,6 +30,11 @@ std::string formatDouble(double v)
     if (std::isnan(v)) return "nan";
     if (std::isinf(v)) return v < 0 ? "-inf" : "inf";
     char buf[32];
+    // Whole numbers in full ("20", not "2e+01"), as long as they read back exactly.
+    if (std::fabs(v) < 1e17 && std::trunc(v) == v) {
+        std::snprintf(buf, sizeof(buf), "%.0f", v);
+        return buf;
+    }
     for (int precision = 1; precision <= 17; ++precision) {
         std::snprintf(buf, sizeof(buf), "%.*g", precision, v);
         if (std::strtod(buf, nullptr) == v) break;
@@ -48,12 +53,21 @@ std::string describe(const Json& j)
 {
     std::string text;
     switch (j.type()) {
-    case Json::value_t::object: return "an object";
-    case Json::value_t::array: return "an array of " + std::to_string(j.size());
-    case Json::value_t::null: return "null";
-    case Json::value_t::string: text = "string " + dumpLenient(j); break;
-    case Json::value_t::number_float: text = formatDouble(j.get<double>()); break;
-    default: text = dumpLenient(j); break;
+        case Json::value_t::object:
+            return "an object";
+        case Json::value_t::array:
+            return "an array of " + std::to_string(j.size());
+        case Json::value_t::null:
+            return "null";
+        case Json::value_t::string:
+            text = "string " + dumpLenient(j);
+            break;
+        case Json::value_t::number_float:
+            text = formatDouble(j.get<double>());
+            break;
+        default:
+            text = dumpLenient(j);
+            break;
     }
     if (text.size() > 60) text = text.substr(0, 57) + "...";
     return text;
@@ -91,7 +105,8 @@ std::int64_t readInt(const Json& j, const ParamDecl& decl, const std::string& po
     }
     if (!j.is_number_integer()) fail(pointer, "expected an integer, got " + describe(j));
     if (j.is_number_unsigned() &&
-        j.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+        j.get<std::uint64_t>() >
+            static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
         fail(pointer, "value " + j.dump() + " does not fit in a 64-bit signed integer");
     const auto v = j.get<std::int64_t>();
     checkRange(static_cast<double>(v), std::to_string(v), decl, pointer);
@@ -142,13 +157,20 @@ std::string joinList(const std::vector<T>& v)
 const char* paramTypeName(ParamType t)
 {
     switch (t) {
-    case ParamType::Float: return "float";
-    case ParamType::Int: return "int";
-    case ParamType::Bool: return "bool";
-    case ParamType::String: return "string";
-    case ParamType::Vector3: return "vec3";
-    case ParamType::FloatList: return "float list";
-    case ParamType::IntList: return "int list";
+        case ParamType::Float:
+            return "float";
+        case ParamType::Int:
+            return "int";
+        case ParamType::Bool:
+            return "bool";
+        case ParamType::String:
+            return "string";
+        case ParamType::Vector3:
+            return "vec3";
+        case ParamType::FloatList:
+            return "float list";
+        case ParamType::IntList:
+            return "int list";
     }
     return "unknown";
 }
@@ -158,50 +180,54 @@ ParamType paramTypeOf(const ParamValue& v) { return static_cast<ParamType>(v.ind
 ParamValue paramFromJson(const Json& j, const ParamDecl& decl, const std::string& pointer)
 {
     switch (decl.type) {
-    case ParamType::Float: return readFloat(j, decl, pointer);
-    case ParamType::Int: return readInt(j, decl, pointer);
-    case ParamType::Bool:
-        if (!j.is_boolean()) fail(pointer, "expected true or false, got " + describe(j));
-        return j.get<bool>();
-    case ParamType::String: {
-        if (!j.is_string()) fail(pointer, "expected a string, got " + describe(j));
-        std::string s = j.get<std::string>();
-        try {
-            // Strings from the command line may be any bytes; the graph file must stay JSON.
-            (void)j.dump();
-        } catch (const Json::type_error&) {
-            fail(pointer, "string is not valid UTF-8");
-        }
-        if (!decl.choices.empty()) {
-            bool found = false;
-            std::string list;
-            for (const std::string& c : decl.choices) {
-                found = found || c == s;
-                list += (list.empty() ? "'" : ", '") + c + "'";
+        case ParamType::Float:
+            return readFloat(j, decl, pointer);
+        case ParamType::Int:
+            return readInt(j, decl, pointer);
+        case ParamType::Bool:
+            if (!j.is_boolean()) fail(pointer, "expected true or false, got " + describe(j));
+            return j.get<bool>();
+        case ParamType::String: {
+            if (!j.is_string()) fail(pointer, "expected a string, got " + describe(j));
+            std::string s = j.get<std::string>();
+            try {
+                // Strings from the command line may be any bytes; the graph file must stay JSON.
+                (void)j.dump();
+            } catch (const Json::type_error&) {
+                fail(pointer, "string is not valid UTF-8");
             }
-            if (!found) fail(pointer, "value '" + s + "' is not one of " + list);
+            if (!decl.choices.empty()) {
+                bool found = false;
+                std::string list;
+                for (const std::string& c : decl.choices) {
+                    found = found || c == s;
+                    list += (list.empty() ? "'" : ", '") + c + "'";
+                }
+                if (!found) fail(pointer, "value '" + s + "' is not one of " + list);
+            }
+            return s;
         }
-        return s;
-    }
-    case ParamType::Vector3: {
-        if (!j.is_array() || j.size() != 3)
-            fail(pointer, "expected an array of 3 numbers, got " + describe(j));
-        Vec3 v{};
-        for (std::size_t i = 0; i < 3; ++i)
-            v[i] = readFloat(j[i], decl, pointer + "/" + std::to_string(i));
-        return v;
-    }
-    case ParamType::FloatList:
-        return readList<double>(j, decl, pointer, "an array of numbers", readFloat);
-    case ParamType::IntList:
-        return readList<std::int64_t>(j, decl, pointer, "an array of integers", readInt);
+        case ParamType::Vector3: {
+            if (!j.is_array() || j.size() != 3)
+                fail(pointer, "expected an array of 3 numbers, got " + describe(j));
+            Vec3 v{};
+            for (std::size_t i = 0; i < 3; ++i)
+                v[i] = readFloat(j[i], decl, pointer + "/" + std::to_string(i));
+            return v;
+        }
+        case ParamType::FloatList:
+            return readList<double>(j, decl, pointer, "an array of numbers", readFloat);
+        case ParamType::IntList:
+            return readList<std::int64_t>(j, decl, pointer, "an array of integers", readInt);
     }
     fail(pointer, "parameter has an unknown type");
 }
 
 Json paramToJson(const ParamValue& v)
 {
-    return std::visit(Overload{[](const Vec3& x) { return Json::array({x[0], x[1], x[2]}); },
+    return std::visit(Overload{[](const Vec3& x) {
+                                   return Json::array({x[0], x[1], x[2]});
+                               },
                                [](const auto& x) { return Json(x); }},
                       v);
 }
@@ -223,10 +249,8 @@ void hashParam(Hasher& h, const ParamValue& v)
 {
     // The type tag keeps int 1 and float 1.0 (and [] of either list type) apart.
     h.u64(v.index());
-    std::visit(Overload{[&](double x) { h.f64(x); },
-                        [&](std::int64_t x) { h.i64(x); },
-                        [&](bool x) { h.u64(x ? 1 : 0); },
-                        [&](const std::string& x) { h.str(x); },
+    std::visit(Overload{[&](double x) { h.f64(x); }, [&](std::int64_t x) { h.i64(x); },
+                        [&](bool x) { h.u64(x ? 1 : 0); }, [&](const std::string& x) { h.str(x); },
                         [&](const Vec3& x) {
                             for (double c : x) h.f64(c);
                         },

@@ -88,6 +88,7 @@ void loadPlugin(const std::filesystem::path& path, Registry& registry)
     // The handle stays open from here on, even on failure. The plugin's code has run and
     // may have left pointers into itself (statics, loggers); once registered, its code
     // backs the node factories and cooks.
+    bool failed = false;
     std::string failure;
     std::vector<std::string> added;
     {
@@ -98,12 +99,14 @@ void loadPlugin(const std::filesystem::path& path, Registry& registry)
             commit(scratch, registry);
             for (const NodeDecl* d : scratch.nodes()) added.push_back(d->type);
         } catch (const std::exception& e) {
+            failed = true;
             failure = e.what();
         } catch (...) {
+            failed = true;
             failure = "unknown exception";
         }
     }
-    if (!failure.empty())
+    if (failed)
         throw InputError(where, "plugin failed to register: " + failure);
 
     std::string list;

@@ -31,6 +31,11 @@ namespace cg {
 
 /// Loads one plugin and registers its nodes. Throws InputError naming the file when it
 /// cannot be opened, lacks an entry point, has another ABI version, or fails to register.
+/// Registration is all or nothing: the plugin registers into a scratch registry holding the
+/// current data types (but no node types), committed only if every addition fits, so a
+/// duplicate type leaves `registry` as it was. A plugin whose register function ran is never
+/// unloaded, as its code backs the registered nodes; loading the same file into several
+/// registries is fine.
 void loadPlugin(const std::filesystem::path& path, Registry& registry);
 
 /// Plugin files (*.so) in the directories of CLOUDGRAPH_PLUGIN_PATH (colon-separated).

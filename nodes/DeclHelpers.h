@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/NodeDecl.h"
 
@@ -31,6 +32,28 @@ inline ParamDecl intParam(std::string name, std::int64_t def, std::string units,
     ParamDecl p = floatParam(std::move(name), 0.0, std::move(units), std::move(doc), min, max);
     p.type = ParamType::Int;
     p.defaultValue = def;
+    return p;
+}
+
+inline ParamDecl boolParam(std::string name, bool def, std::string doc)
+{
+    ParamDecl p;
+    p.name = std::move(name);
+    p.type = ParamType::Bool;
+    p.defaultValue = def;
+    p.doc = std::move(doc);
+    return p;
+}
+
+inline ParamDecl stringParam(std::string name, std::string def, std::string doc,
+                             std::vector<std::string> choices = {})
+{
+    ParamDecl p;
+    p.name = std::move(name);
+    p.type = ParamType::String;
+    p.defaultValue = std::move(def);
+    p.doc = std::move(doc);
+    p.choices = std::move(choices);
     return p;
 }
 

@@ -32,7 +32,7 @@ std::string errorOf(const Json& j, const ParamDecl& d, const std::string& pointe
     try {
         paramFromJson(j, d, pointer);
     } catch (const InputError& e) {
-        EXPECT_EQ(e.where(), pointer.substr(0, e.where().size()));
+        EXPECT_EQ(e.where().substr(0, pointer.size()), pointer);
         return e.what();
     }
     return "";
@@ -121,7 +121,8 @@ TEST(Param, Vector3)
     ParamDecl d = decl(ParamType::Vector3, Vec3{0, 0, 0});
     d.max = 10;
     EXPECT_EQ(std::get<Vec3>(paramFromJson(Json::array({1, 2.5, 3}), d, "/p")), (Vec3{1, 2.5, 3}));
-    EXPECT_EQ(errorOf(Json::array({1, 2}), d), "/p: expected an array of 3 numbers, got an array of 2");
+    EXPECT_EQ(errorOf(Json::array({1, 2}), d),
+              "/p: expected an array of 3 numbers, got an array of 2");
     EXPECT_EQ(errorOf(Json::array({1, 2, "x"}), d), "/p/2: expected a number, got string \"x\"");
     EXPECT_EQ(errorOf(Json::array({1, 20, 3}), d), "/p/1: value 20 is above the maximum 10");
 }

@@ -94,8 +94,7 @@ void registerFixtureNodes(Registry& registry)
     fail.inputs = {port("values", "FloatArray", "input")};
     fail.outputs = {port("values", "FloatArray", "the input")};
     fail.params = {intParam("failAtFrame", -1, "", "frame at which to throw; -1 never", -1),
-                   {"badInput", ParamType::Bool, false, std::nullopt, std::nullopt, "",
-                    "throw an InputError instead of a runtime_error"}};
+                   boolParam("badInput", false, "throw an InputError instead of a runtime_error")};
     fail.create = counted([](CookContext& ctx) {
         if (ctx.frame() == ctx.params().getInt("failAtFrame")) {
             if (ctx.params().getBool("badInput")) throw InputError(ctx.nodeId(), "bad input on purpose");
@@ -128,8 +127,7 @@ void registerFixtureNodes(Registry& registry)
 
     NodeDecl textSource = decl("TestTextSource", "a Text");
     textSource.outputs = {port("value", "Text", "the value")};
-    textSource.params = {{"value", ParamType::String, std::string("hello"), std::nullopt,
-                          std::nullopt, "", "the text"}};
+    textSource.params = {stringParam("value", "hello", "the text")};
     textSource.create = counted([](CookContext& ctx) {
         ctx.setOutput("value", std::make_shared<TextData>(ctx.params().getString("value")));
     });

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <atomic>
 #include <fstream>
 #include <random>
@@ -47,11 +48,10 @@ void writeFile(const std::filesystem::path& p, const std::string& text)
     if (!f) throw std::runtime_error("cannot write " + p.string());
 }
 
-CliResult runCli(const std::vector<std::string>& args)
+CliProcess::CliProcess(const std::vector<std::string>& args)
 {
-    TempDir tmp;
-    const std::string outPath = (tmp / "stdout").string();
-    const std::string errPath = (tmp / "stderr").string();
+    const std::string outPath = (mDir / "stdout").string();
+    const std::string errPath = (mDir / "stderr").string();
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, outPath.c_str(),
@@ -67,15 +67,34 @@ CliResult runCli(const std::vector<std::string>& args)
     const int rc = posix_spawn(&pid, CLOUDGRAPH_CLI, &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
     if (rc != 0) throw std::runtime_error("cannot start " + std::string(CLOUDGRAPH_CLI));
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0) {
+    mPid = pid;
+}
+
+CliProcess::~CliProcess()
+{
+    if (!mWaited && mPid > 0) {
+        ::kill(mPid, SIGKILL);
+        int status = 0;
+        waitpid(mPid, &status, 0);
     }
+}
+
+void CliProcess::kill(int signal) { ::kill(mPid, signal); }
+
+CliResult CliProcess::wait()
+{
+    int status = 0;
+    while (waitpid(mPid, &status, 0) < 0) {
+    }
+    mWaited = true;
     CliResult r;
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1 - WTERMSIG(status);
-    r.output = readFile(outPath);
-    r.errors = readFile(errPath);
+    r.output = readFile(mDir / "stdout");
+    r.errors = readFile(mDir / "stderr");
     return r;
 }
+
+CliResult runCli(const std::vector<std::string>& args) { return CliProcess(args).wait(); }
 
 std::filesystem::path dataPath(const std::string& relative)
 {

@@ -30,6 +30,23 @@ struct CliResult {
     std::string errors;    ///< stderr
 };
 
+/// The cloudgraph binary running in the background (no shell), output captured to files.
+class CliProcess {
+public:
+    explicit CliProcess(const std::vector<std::string>& args);
+    ~CliProcess();
+    CliProcess(const CliProcess&) = delete;
+    CliProcess& operator=(const CliProcess&) = delete;
+    void kill(int signal);
+    /// Waits for the process to end and collects its output.
+    CliResult wait();
+
+private:
+    TempDir mDir;
+    int mPid = -1;
+    bool mWaited = false;
+};
+
 /// Runs the cloudgraph binary with `args` (no shell), waiting for it to finish.
 CliResult runCli(const std::vector<std::string>& args);
 

@@ -1,0 +1,261 @@
+// End-to-end tests of the cloudgraph command: exit codes, messages, caches across runs,
+// several processes sharing a cache, killed runs, plugins, the generated reference.
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <set>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "support/TestUtil.h"
+
+namespace cg {
+
+using test::dataPath;
+using test::readFile;
+using test::runCli;
+using test::TempDir;
+
+namespace {
+
+nlohmann::json readJson(const std::filesystem::path& p) { return nlohmann::json::parse(readFile(p)); }
+
+/// status of each (node, frame) in a run report, e.g. {"n3@0", "cooked"}.
+std::map<std::string, std::string> statuses(const nlohmann::json& report)
+{
+    std::map<std::string, std::string> out;
+    for (const auto& r : report["records"])
+        out[r["node"].get<std::string>() + "@" + std::to_string(r["frame"].get<int>())] = r["status"];
+    return out;
+}
+
+std::vector<std::filesystem::path> filesUnder(const std::filesystem::path& dir)
+{
+    std::vector<std::filesystem::path> out;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+        if (e.is_regular_file()) out.push_back(e.path());
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+}  // namespace
+
+TEST(Cli, HelpAndVersion)
+{
+    const auto help = runCli({"--help"});
+    EXPECT_EQ(help.exitCode, 0);
+    EXPECT_NE(help.output.find("cloudgraph run GRAPH"), std::string::npos);
+    const auto version = runCli({"--version"});
+    EXPECT_EQ(version.exitCode, 0);
+    EXPECT_EQ(version.output.rfind("cloudgraph ", 0), 0u);
+    EXPECT_EQ(runCli({"frobnicate"}).exitCode, 2);
+    EXPECT_EQ(runCli({"run", "--no-such-option", "x.json"}).exitCode, 2);
+}
+
+TEST(Cli, BadGraphCorpusIsRefusedWithExitCode2AndALocation)
+{
+    const auto expected = readJson(dataPath("bad/expected.json"));
+    std::size_t checked = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dataPath("bad"))) {
+        const std::string name = entry.path().filename().string();
+        if (name == "expected.json") continue;
+        ASSERT_TRUE(expected.contains(name)) << name << " has no expectation";
+        const auto r = runCli({"validate", entry.path().string()});
+        EXPECT_EQ(r.exitCode, 2) << name << ": " << r.errors;
+        for (const auto& s : expected[name]["contains"])
+            EXPECT_NE(r.errors.find(s.get<std::string>()), std::string::npos)
+                << name << ": message lacks '" << s.get<std::string>() << "': " << r.errors;
+        ++checked;
+    }
+    EXPECT_GE(checked, 18u);
+}
+
+TEST(Cli, ValidateAcceptsTheShippedGraphs)
+{
+    for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(CLOUDGRAPH_SOURCE_DIR) / "graphs")) {
+        const auto r = runCli({"validate", entry.path().string()});
+        EXPECT_EQ(r.exitCode, 0) << entry.path() << ": " << r.errors;
+    }
+}
+
+TEST(Cli, RunRefusesBadOptionsBeforeCooking)
+{
+    TempDir dir;
+    const std::string graph = dataPath("good/chain5.json").string();
+    const std::string out = (dir / "out").string();
+    for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+             {"run", graph, "--out", out, "--frames", "0:99"},
+             {"run", graph, "--out", out, "--frames", "x"},
+             {"run", graph, "--out", out, "--set", "n3.factr=2"},
+             {"run", graph, "--out", out, "--set", "nope.factor=2"},
+             {"run", graph, "--out", out, "--set", "n1.width=-5"},
+             {"run", graph, "--out", out, "--set", "n5.file=../escape.txt"},
+             {"run", graph, "--out", out, "--threads", "0"}}) {
+        const auto r = runCli(args);
+        EXPECT_EQ(r.exitCode, 2) << args[4] << " " << args[5] << ": " << r.errors;
+    }
+    EXPECT_FALSE(std::filesystem::exists(out)) << "a refused run wrote files";
+    const auto typo = runCli({"run", graph, "--out", out, "--set", "n3.factr=2"});
+    EXPECT_NE(typo.errors.find("n3"), std::string::npos) << typo.errors;
+    EXPECT_NE(typo.errors.find("factr"), std::string::npos) << typo.errors;
+}
+
+TEST(Cli, EditingNode3CooksExactly3To5AcrossRunsSharingACache)
+{
+    TempDir dir;
+    const std::string graph = dataPath("good/chain5.json").string();
+    const auto common = std::vector<std::string>{"run", graph, "--cache", (dir / "cache").string(),
+                                                 "--out", (dir / "out").string(), "--frames", "0:0"};
+    auto first = common;
+    first.insert(first.end(), {"--report", (dir / "r1.json").string()});
+    ASSERT_EQ(runCli(first).exitCode, 0);
+    for (const auto& [k, v] : statuses(readJson(dir / "r1.json"))) EXPECT_EQ(v, "cooked") << k;
+
+    auto second = common;
+    second.insert(second.end(), {"--report", (dir / "r2.json").string(), "--set", "n3.factor=5"});
+    const auto r = runCli(second);
+    ASSERT_EQ(r.exitCode, 0) << r.errors;
+    const auto report = readJson(dir / "r2.json");
+    const auto s = statuses(report);
+    EXPECT_EQ(s.at("n1@0"), "disk-hit");
+    EXPECT_EQ(s.at("n2@0"), "disk-hit");
+    EXPECT_EQ(s.at("n3@0"), "cooked");
+    EXPECT_EQ(s.at("n4@0"), "cooked");
+    EXPECT_EQ(s.at("n5@0"), "cooked");
+    EXPECT_EQ(report["totals"]["cooked"], 3);
+    for (const auto& rec : report["records"]) {
+        if (rec["node"] == "n3") {
+            EXPECT_EQ(rec["reason"], "parameter 'factor' changed (3 -> 5)");
+        }
+        if (rec["node"] == "n4") {
+            EXPECT_EQ(rec["reason"], "input 'rate' changed");
+        }
+    }
+}
+
+TEST(Cli, TwoProcessesSharingOneCacheBothSucceedWithIdenticalOutputs)
+{
+    TempDir dir;
+    const std::string graph = dataPath("good/big_field.json").string();
+    const std::string cache = (dir / "cache").string();
+    test::CliProcess a({"run", graph, "--cache", cache, "--out", (dir / "a").string(), "-q"});
+    test::CliProcess b({"run", graph, "--cache", cache, "--out", (dir / "b").string(), "-q"});
+    const auto ra = a.wait();
+    const auto rb = b.wait();
+    ASSERT_EQ(ra.exitCode, 0) << ra.errors;
+    ASSERT_EQ(rb.exitCode, 0) << rb.errors;
+    for (int f = 0; f <= 3; ++f) {
+        const std::string name = "stats.000" + std::to_string(f) + ".txt";
+        EXPECT_EQ(readFile(dir / "a" / name), readFile(dir / "b" / name)) << name;
+    }
+    // A third run is served from the cache and agrees too.
+    const auto rc = runCli({"run", graph, "--cache", cache, "--out", (dir / "c").string(),
+                            "--report", (dir / "r.json").string()});
+    ASSERT_EQ(rc.exitCode, 0) << rc.errors;
+    EXPECT_EQ(readFile(dir / "a" / "stats.0003.txt"), readFile(dir / "c" / "stats.0003.txt"));
+    const auto report = readJson(dir / "r.json");
+    EXPECT_EQ(report["totals"]["cooked"], 4);  // only the writer, once per frame
+}
+
+TEST(Cli, RunKilledWhileWritingLeavesNothingThatReadsAsValid)
+{
+    TempDir dir;
+    const std::string graph = dataPath("good/big_field.json").string();
+    const std::string cache = (dir / "cache").string();
+    ASSERT_EQ(runCli({"run", graph, "--out", (dir / "clean").string(), "-q"}).exitCode, 0);
+    for (int delayMs : {30, 120, 250, 400}) {
+        test::CliProcess p({"run", graph, "--cache", cache, "--out", (dir / "killed").string(), "-q"});
+        std::this_thread::sleep_for(std::chrono::milliseconds(delayMs));
+        p.kill(SIGKILL);
+        p.wait();
+    }
+    // Whatever the killed runs left, a new run either trusts complete entries or recooks.
+    const auto r = runCli({"run", graph, "--cache", cache, "--out", (dir / "after").string(), "-q"});
+    ASSERT_EQ(r.exitCode, 0) << r.errors;
+    for (int f = 0; f <= 3; ++f) {
+        const std::string name = "stats.000" + std::to_string(f) + ".txt";
+        EXPECT_EQ(readFile(dir / "clean" / name), readFile(dir / "after" / name)) << name;
+    }
+    // No half-written output file under a final name: every file present is complete.
+    if (std::filesystem::exists(dir / "killed")) {
+        for (const auto& f : filesUnder(dir / "killed")) {
+            if (f.filename().string()[0] != '.') {
+                EXPECT_EQ(readFile(f), readFile(dir / "clean" / f.filename())) << f;
+            }
+        }
+    }
+}
+
+TEST(Cli, FailedRunWritesNoPartialFiles)
+{
+    TempDir dir;
+    test::writeFile(dir / "g.json", R"({"cloudgraph": 1, "nodes": {
+        "a": {"type": "RandomField", "params": {"width": 3, "height": 1}},
+        "b": {"type": "RandomField", "params": {"width": 4, "height": 1}},
+        "sum": {"type": "Sum", "inputs": {"a": "a.values", "b": "b.values"}},
+        "w": {"type": "WriteArray", "params": {"file": "sum.txt"}, "inputs": {"values": "sum.values"}}}})");
+    const auto r = runCli({"run", (dir / "g.json").string(), "--out", (dir / "out").string()});
+    EXPECT_EQ(r.exitCode, 2) << r.errors;  // Sum's lengths differ: bad input, named
+    EXPECT_NE(r.errors.find("'sum'"), std::string::npos) << r.errors;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "sum.txt"));
+}
+
+TEST(Cli, PluginNodeCooksAndABadPluginIsRefused)
+{
+    TempDir dir;
+    const auto ok = runCli({"run", dataPath("good/plugin_gain.json").string(), "--plugin",
+                            CLOUDGRAPH_SAMPLE_PLUGIN, "--out", dir.path().string()});
+    ASSERT_EQ(ok.exitCode, 0) << ok.errors;
+    EXPECT_EQ(readFile(dir / "gain.txt"), readFile(dir / "plain.txt"));
+    EXPECT_FALSE(readFile(dir / "gain.txt").empty());
+
+    const auto without = runCli({"validate", dataPath("good/plugin_gain.json").string()});
+    EXPECT_EQ(without.exitCode, 2);
+    EXPECT_NE(without.errors.find("SampleGain"), std::string::npos) << without.errors;
+
+    const auto bad = runCli({"nodes", "--plugin", CLOUDGRAPH_BAD_ABI_PLUGIN});
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_NE(bad.errors.find("ABI version"), std::string::npos) << bad.errors;
+    const auto noEntry = runCli({"nodes", "--plugin", CLOUDGRAPH_NO_ENTRY_PLUGIN});
+    EXPECT_EQ(noEntry.exitCode, 2);
+    EXPECT_NE(noEntry.errors.find("entry point"), std::string::npos) << noEntry.errors;
+}
+
+TEST(Cli, NodeReferenceIsGeneratedAndDocsAreCurrent)
+{
+    const auto r = runCli({"nodes", "--markdown"});
+    ASSERT_EQ(r.exitCode, 0);
+    for (const char* type : {"Constant", "Integrate", "RandomField", "WriteText"})
+        EXPECT_NE(r.output.find(std::string("## ") + type + "\n"), std::string::npos) << type;
+    EXPECT_EQ(readFile(std::filesystem::path(CLOUDGRAPH_SOURCE_DIR) / "docs" / "nodes.md"), r.output)
+        << "docs/nodes.md is stale: regenerate it with `cloudgraph nodes --markdown > docs/nodes.md`";
+    EXPECT_EQ(runCli({"nodes", "Integrate"}).exitCode, 0);
+    EXPECT_EQ(runCli({"nodes", "NoSuchNode"}).exitCode, 2);
+}
+
+TEST(Cli, DotListsNodesAndEdges)
+{
+    const auto r = runCli({"dot", dataPath("good/chain5.json").string()});
+    ASSERT_EQ(r.exitCode, 0) << r.errors;
+    EXPECT_NE(r.output.find("digraph"), std::string::npos);
+    EXPECT_NE(r.output.find("\"n2\" -> \"n3\""), std::string::npos) << r.output;
+}
+
+TEST(Cli, DefaultSceneRunsAndIsIdenticalForOneAndTwoThreads)
+{
+    TempDir dir;
+    const std::string graph = std::string(CLOUDGRAPH_SOURCE_DIR) + "/graphs/default.json";
+    for (const char* threads : {"1", "2"}) {
+        const auto r = runCli({"run", graph, "--frames", "0:5", "--threads", threads, "--out",
+                               (dir / threads).string(), "-q"});
+        ASSERT_EQ(r.exitCode, 0) << r.errors;
+    }
+    const auto one = filesUnder(dir / "1");
+    ASSERT_EQ(one.size(), 6u);
+    for (const auto& f : one)
+        EXPECT_EQ(readFile(f), readFile(dir / "2" / std::filesystem::relative(f, dir / "1")));
+}
+
+}  // namespace cg
