@@ -224,8 +224,9 @@ private:
         }
         ctx.setPrevious(previous.get());
 
-        reason = mEv.explainAndRemember(mRecordPrefix + node.id,
-                                        ingredients(node, frame, inputKeys), decl.simulation);
+        reason = mEv.mHistory.explain(mRecordPrefix + node.id, identity(node),
+                                      mTimeVarying[idx] ? std::to_string(frame) : "all", inputKeys,
+                                      decl.simulation);
         if (decl.writesFiles) reason = "writes files (cooks on every run); " + reason;
 
         OutputMap out;
@@ -250,19 +251,19 @@ private:
         return shared;
     }
 
-    nlohmann::json ingredients(const GraphNode& node, int frame, const nlohmann::json& inputKeys) const
+    /// What a node reads that is the same for every frame, for CookHistory.
+    nlohmann::json identity(const GraphNode& node) const
     {
         nlohmann::json params = nlohmann::json::object();
         for (std::size_t i = 0; i < node.decl->params.size(); ++i)
             params[node.decl->params[i].name] = paramToString(node.params.valueAt(i));
-        nlohmann::json j = {{"type", node.decl->type},
-                            {"version", node.decl->version},
-                            {"params", params},
-                            {"inputs", inputKeys},
-                            {"frame", frame}};
-        if (node.decl->readsTimeStep) j["timeStep"] = mGraph.timeStep;
-        if (node.decl->readsSeed) j["seed"] = mGraph.seed;
-        return j;
+        nlohmann::json context = nlohmann::json::object();
+        if (node.decl->readsTimeStep) context["timeStep"] = mGraph.timeStep;
+        if (node.decl->readsSeed) context["seed"] = mGraph.seed;
+        return {{"type", node.decl->type},
+                {"version", node.decl->version},
+                {"params", params},
+                {"context", context}};
     }
 
     void hold(std::size_t idx, int frame, const OutputsPtr& outputs)
@@ -315,7 +316,8 @@ private:
 };
 
 Evaluator::Evaluator(const Registry& registry, EvaluatorOptions options)
-    : mRegistry(registry), mOptions(std::move(options)), mMemory(mOptions.memoryBudgetBytes)
+    : mRegistry(registry), mOptions(std::move(options)), mMemory(mOptions.memoryBudgetBytes),
+      mHistory(mOptions.diskCache)
 {
     if (!mOptions.cancel) mOptions.cancel = std::make_shared<CancelToken>();
 }
@@ -341,10 +343,10 @@ void Evaluator::cookFrames(const Graph& graph, int first, int last,
             if (onFrame) onFrame(frame, results);
         }
     } catch (...) {
-        flushRecords();
+        mHistory.commit();
         throw;
     }
-    flushRecords();
+    mHistory.commit();
 }
 
 OutputsPtr Evaluator::pull(const Graph& graph, const std::string& nodeId, int frame)
@@ -359,65 +361,6 @@ Key Evaluator::key(const Graph& graph, const std::string& nodeId, int frame)
 {
     Session session(*this, graph);
     return session.keyOf(graph.indexOf(nodeId), frame);
-}
-
-std::string Evaluator::explainAndRemember(const std::string& recordName,
-                                          const nlohmann::json& now, bool simulation)
-{
-    std::lock_guard<std::mutex> lock(mIngredientsMutex);
-    auto it = mIngredients.find(recordName);
-    std::optional<nlohmann::json> before;
-    if (it != mIngredients.end()) {
-        before = it->second;
-    } else if (mOptions.diskCache) {
-        before = mOptions.diskCache->loadRecord(recordName);
-    }
-    mIngredients[recordName] = now;
-    mIngredientsDirty[recordName] = true;
-    if (!before || !before->is_object()) return "first cook";
-
-    const nlohmann::json& was = *before;
-    if (was.value("type", "") != now["type"] || was.value("version", -1) != now["version"])
-        return "node type or version changed";
-    std::vector<std::string> why;
-    const nlohmann::json wasParams = was.value("params", nlohmann::json::object());
-    for (const auto& [name, value] : now["params"].items()) {
-        auto w = wasParams.find(name);
-        if (w == wasParams.end()) {
-            why.push_back("parameter '" + name + "' is new");
-        } else if (*w != value) {
-            why.push_back("parameter '" + name + "' changed (" + w->get<std::string>() + " -> " +
-                          value.get<std::string>() + ")");
-        }
-    }
-    const nlohmann::json wasInputs = was.value("inputs", nlohmann::json::object());
-    for (const auto& [port, key] : now["inputs"].items()) {
-        auto w = wasInputs.find(port);
-        if (w == wasInputs.end() || *w != key) why.push_back("input '" + port + "' changed");
-    }
-    for (const char* ctx : {"timeStep", "seed"})
-        if (now.contains(ctx) && was.value(ctx, nlohmann::json()) != now[ctx])
-            why.push_back(std::string(ctx) + " changed");
-    if (!why.empty()) {
-        std::string out = why[0];
-        for (std::size_t i = 1; i < why.size(); ++i) out += "; " + why[i];
-        return out;
-    }
-    if (was.value("frame", INT_MIN) != now["frame"]) {
-        return simulation ? "simulation step to frame " + now["frame"].dump() : "new frame";
-    }
-    return "not in cache (evicted, damaged or never stored)";
-}
-
-void Evaluator::flushRecords()
-{
-    if (!mOptions.diskCache) return;
-    std::lock_guard<std::mutex> lock(mIngredientsMutex);
-    for (auto& [name, dirty] : mIngredientsDirty) {
-        if (!dirty) continue;
-        mOptions.diskCache->storeRecord(name, mIngredients[name]);
-        dirty = false;
-    }
 }
 
 }  // namespace cg

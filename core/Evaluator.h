@@ -18,6 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/CookHistory.h"
 #include "core/DiskCache.h"
 #include "core/EvalContext.h"
 #include "core/Graph.h"
@@ -63,24 +64,16 @@ public:
     RunReport& report() { return mReport; }
     MemoryCache& memoryCache() { return mMemory; }
     const EvaluatorOptions& options() const { return mOptions; }
-    /// Writes the "why it cooked" records to the disk cache, for the next run's report.
-    void flushRecords();
 
 private:
     class Session;
     friend class Session;
 
-    /// The last key ingredients of each node id, to explain why a node cooked.
-    std::string explainAndRemember(const std::string& recordName, const nlohmann::json& ingredients,
-                                   bool simulation);
-
     const Registry& mRegistry;
     EvaluatorOptions mOptions;
     MemoryCache mMemory;
     RunReport mReport;
-    std::mutex mIngredientsMutex;
-    std::map<std::string, nlohmann::json> mIngredients;
-    std::map<std::string, bool> mIngredientsDirty;
+    CookHistory mHistory;
 };
 
 }  // namespace cg

@@ -254,21 +254,46 @@ TEST_F(EvaluatorTest, ResultsAreIdenticalForOneAndTwoThreads)
     EXPECT_EQ(results[0], results[1]);
 }
 
-TEST_F(EvaluatorTest, ReportExplainsFirstCookAndFrames)
+TEST_F(EvaluatorTest, ReportExplainsWhyEachNodeCooked)
+{
+    Graph g = parse(R"({"cloudgraph": 1, "frames": {"start": 0, "end": 9}, "nodes": {
+        "src": {"type": "TestSource"},
+        "sim": {"type": "TestSim", "inputs": {"values": "src.values"}}}})");
+    Evaluator ev(registry, {});
+    auto simReasons = [&] {
+        std::vector<std::string> out;
+        for (const CookRecord& r : ev.report().records())
+            if (r.node == "sim" && r.status == CookStatus::Cooked) out.push_back(r.reason);
+        ev.report().clear();
+        return out;
+    };
+    ev.cookFrames(g, 0, 1);
+    EXPECT_EQ(simReasons(), (std::vector<std::string>{"first cook", "first cook"}));
+    ev.cookFrames(g, 0, 3);
+    EXPECT_EQ(simReasons(), (std::vector<std::string>{"simulation step to frame 2",
+                                                       "simulation step to frame 3"}));
+    g.setParam("src", "value", 2.0);
+    ev.cookFrames(g, 0, 0);
+    EXPECT_EQ(simReasons(), (std::vector<std::string>{"input 'values' changed"}));
+    for (const CookRecord& r : ev.report().records()) {
+        if (r.node == "src") {
+            EXPECT_EQ(r.reason, "parameter 'value' changed (1 -> 2)");
+        }
+    }
+}
+
+TEST_F(EvaluatorTest, ReportTotalsCountCooksAndHits)
 {
     Graph g = parse(R"({"cloudgraph": 1, "frames": {"start": 0, "end": 2}, "nodes": {
         "src": {"type": "TestSource"},
         "sim": {"type": "TestSim", "inputs": {"values": "src.values"}}}})");
     Evaluator ev(registry, {});
     ev.cookFrames(g, 0, 2);
-    std::vector<std::string> simReasons;
-    for (const CookRecord& r : ev.report().records())
-        if (r.node == "sim") simReasons.push_back(r.reason);
-    EXPECT_EQ(simReasons, (std::vector<std::string>{"first cook", "simulation step to frame 1",
-                                                     "simulation step to frame 2"}));
     const auto j = ev.report().toJson();
     EXPECT_EQ(j["totals"]["cooked"], 4);
     EXPECT_EQ(j["totals"]["memoryHits"], 2);  // src at frames 1 and 2
+    EXPECT_EQ(j["records"].size(), 6u);
+    EXPECT_EQ(j["nodes"]["sim"]["cooked"], 3);
 }
 
 TEST_F(EvaluatorTest, MemoryBudgetEvictsButResultsStayCorrect)
