@@ -27,6 +27,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
+#include <chrono>
 #include <cstring>
 #include <functional>
 #include <stdexcept>
@@ -191,6 +192,20 @@ DiskCache::DiskCache(fs::path root) : mRoot(std::move(root))
     if (::access((mRoot / "tmp").c_str(), W_OK | X_OK) != 0)
         throw InputError(mRoot.string(),
                          std::string("cannot write cache directory: ") + std::strerror(errno));
+    removeStaleTempFiles();
+}
+
+void DiskCache::removeStaleTempFiles() const
+{
+    // Writers killed mid-write leave temp files; none is ever read, but they take space.
+    // A live writer finishes within seconds, so a day-old temp file is an orphan.
+    const auto cutoff = fs::file_time_type::clock::now() - std::chrono::hours(24);
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(mRoot / "tmp", ec)) {
+        std::error_code statError;
+        const auto written = entry.last_write_time(statError);
+        if (!statError && written < cutoff) fs::remove(entry.path(), statError);
+    }
 }
 
 fs::path DiskCache::entryPath(const Key& key) const

@@ -59,6 +59,8 @@ public:
                                  const Registry& registry);
 
 private:
+    /// Removes temp files older than a day: orphans of writers that were killed.
+    void removeStaleTempFiles() const;
     /// Writes bytes to tmp/ then renames onto `target`.
     bool writeAtomically(const std::filesystem::path& target, const void* data,
                          std::size_t size) const;

@@ -63,7 +63,9 @@ std::string describe(const Json& j)
             text = "string " + dumpLenient(j);
             break;
         case Json::value_t::number_float:
+            // "2.0", so "expected an integer, got 2.0" does not read as a contradiction.
             text = formatDouble(j.get<double>());
+            if (text.find_first_of(".en") == std::string::npos) text += ".0";
             break;
         default:
             text = dumpLenient(j);

@@ -95,7 +95,7 @@ TEST(Param, IntRefusesFloatsAndHugeValues)
     const ParamDecl d = decl(ParamType::Int, std::int64_t(0));
     EXPECT_EQ(std::get<std::int64_t>(paramFromJson(Json(-3), d, "/p")), -3);
     EXPECT_EQ(errorOf(Json(2.5), d), "/p: expected an integer, got 2.5");
-    EXPECT_EQ(errorOf(Json(2.0), d), "/p: expected an integer, got 2");
+    EXPECT_EQ(errorOf(Json(2.0), d), "/p: expected an integer, got 2.0");
     EXPECT_EQ(errorOf(Json("3"), d), "/p: expected an integer, got string \"3\"");
     EXPECT_EQ(errorOf(Json(std::uint64_t(1) << 63), d),
               "/p: value 9223372036854775808 does not fit in a 64-bit signed integer");
