@@ -22,6 +22,13 @@ namespace {
 
 std::shared_ptr<CancelToken> gCancel;
 
+void writeReport(const std::string& path, const nlohmann::json& report)
+{
+    const std::filesystem::path p(path);
+    if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+    writeFileAtomically(p, report.dump(2));
+}
+
 extern "C" void onInterrupt(int) { if (gCancel) gCancel->cancel(); }
 
 FrameRange parseFrames(const std::string& text, const FrameRange& graphRange)
@@ -116,7 +123,7 @@ int runCommand(const Args& args)
             if (auto r = opts.value("--report")) {
                 nlohmann::json j = evaluator.report().toJson();
                 j["failed"] = true;
-                writeFileAtomically(*r, j.dump(2));
+                writeReport(*r, j);
             }
             throw;
         }
@@ -127,7 +134,7 @@ int runCommand(const Args& args)
         report["frames"] = {frames.start, frames.end};
         report["wallSeconds"] = wall;
         report["failed"] = false;
-        if (auto r = opts.value("--report")) writeFileAtomically(*r, report.dump(2));
+        if (auto r = opts.value("--report")) writeReport(*r, report);
         const auto& totals = report["totals"];
         spdlog::info("cooked frames {}..{} in {:.2f} s: {} cooks, {} memory hits, {} disk hits",
                      frames.start, frames.end, wall, totals["cooked"].get<std::size_t>(),
