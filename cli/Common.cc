@@ -41,6 +41,8 @@ void OptionParser::parse()
             throw InputError("command line", "unknown option '" + a + "' (see --help)");
         }
     }
+    if (has("-v")) spdlog::set_level(spdlog::level::debug);
+    if (has("-q")) spdlog::set_level(spdlog::level::err);
 }
 
 bool OptionParser::has(const std::string& name) const
@@ -64,13 +66,12 @@ std::vector<std::string> OptionParser::values(const std::string& name) const
     return out;
 }
 
-void configureLogging(bool verbose, bool quiet)
+void configureLogging()
 {
     auto logger = spdlog::stderr_color_mt("cloudgraph");
     logger->set_pattern("%^%l%$: %v");
     spdlog::set_default_logger(logger);
-    spdlog::set_level(verbose ? spdlog::level::debug
-                              : quiet ? spdlog::level::err : spdlog::level::info);
+    spdlog::set_level(spdlog::level::info);
 }
 
 void buildRegistry(Registry& registry, const std::vector<std::string>& pluginPaths)

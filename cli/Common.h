@@ -15,14 +15,16 @@ constexpr int kExitFailure = 1;
 constexpr int kExitBadInput = 2;
 
 /// A minimal option scanner: flags, options with a value (repeatable), and positionals.
+/// Every command takes -v (debug logging) and -q (errors only).
 class OptionParser {
 public:
-    explicit OptionParser(const std::vector<std::string>& args) : mArgs(args) {}
+    explicit OptionParser(const std::vector<std::string>& args) : mArgs(args), mFlags{"-v", "-q"} {}
     /// Declares an option that takes a value (e.g. "--out").
     void valueOption(const std::string& name) { mValueOptions.push_back(name); }
     /// Declares a flag (e.g. "--markdown").
     void flag(const std::string& name) { mFlags.push_back(name); }
-    /// Parses; throws InputError("command line", ...) on an unknown option or a missing value.
+    /// Parses and applies -v/-q; throws InputError("command line", ...) on an unknown option
+    /// or a missing value.
     void parse();
 
     bool has(const std::string& name) const;
@@ -38,8 +40,8 @@ private:
     std::vector<std::string> mPositionals;
 };
 
-/// Sets up spdlog on stderr; -v gives debug output, -q only errors.
-void configureLogging(bool verbose, bool quiet);
+/// Sets up spdlog on stderr at info level (OptionParser::parse applies -v/-q).
+void configureLogging();
 
 /// The built-in nodes plus plugins from --plugin paths and CLOUDGRAPH_PLUGIN_PATH.
 void buildRegistry(Registry& registry, const std::vector<std::string>& pluginPaths);

@@ -13,7 +13,6 @@ int dotCommand(const Args& args)
 {
     OptionParser opts(args);
     opts.valueOption("--plugin");
-    configureLogging(false, false);
     return guarded([&] {
         opts.parse();
         if (opts.positionals().size() != 1)

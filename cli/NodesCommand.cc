@@ -94,7 +94,6 @@ int nodesCommand(const Args& args)
     OptionParser opts(args);
     opts.flag("--markdown");
     opts.valueOption("--plugin");
-    configureLogging(false, false);
     return guarded([&] {
         opts.parse();
         Registry registry;

@@ -75,12 +75,9 @@ int runCommand(const Args& args)
     for (const char* o : {"--frames", "--set", "--cache", "--out", "--threads", "--report",
                           "--plugin", "--cache-memory-mb"})
         opts.valueOption(o);
-    for (const char* f : {"-v", "-q", "--allow-outside-out"}) opts.flag(f);
-    configureLogging(false, false);
+    opts.flag("--allow-outside-out");
     return guarded([&] {
         opts.parse();
-        spdlog::set_level(opts.has("-v") ? spdlog::level::debug
-                          : opts.has("-q") ? spdlog::level::err : spdlog::level::info);
         if (opts.positionals().size() != 1)
             throw InputError("command line", "run needs exactly one graph file");
 

@@ -15,7 +15,6 @@ int validateCommand(const Args& args)
     opts.valueOption("--set");
     opts.valueOption("--plugin");
     opts.flag("--allow-outside-out");
-    configureLogging(false, false);
     return guarded([&] {
         opts.parse();
         if (opts.positionals().size() != 1)

@@ -28,6 +28,7 @@ usage:
   cloudgraph nodes [TYPE] [--markdown]                    the node reference
   cloudgraph dot GRAPH                                    the graph as Graphviz
   cloudgraph --help | --version
+Every command takes -v (debug logging) and -q (errors only).
 
 Plugins are also loaded from the absolute directories in CLOUDGRAPH_PLUGIN_PATH (colon-separated).
 Exit codes: 0 ok, 2 bad input (graph, parameter, file), 1 internal failure.
@@ -47,6 +48,7 @@ int main(int argc, char** argv)
         std::printf("cloudgraph %s\n", CLOUDGRAPH_VERSION);
         return kExitOk;
     }
+    configureLogging();
     const std::string command = args[0];
     args.erase(args.begin());
     if (command == "run") return runCommand(args);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <cstdlib>
 #include <set>
 #include <thread>
 
@@ -221,6 +222,34 @@ TEST(Cli, PluginNodeCooksAndABadPluginIsRefused)
     const auto noEntry = runCli({"nodes", "--plugin", CLOUDGRAPH_NO_ENTRY_PLUGIN});
     EXPECT_EQ(noEntry.exitCode, 2);
     EXPECT_NE(noEntry.errors.find("entry point"), std::string::npos) << noEntry.errors;
+}
+
+TEST(Cli, PluginsLoadFromAbsoluteSearchPathDirectoriesOnly)
+{
+    TempDir dir;
+    std::filesystem::create_directories(dir / "plugins");
+    std::filesystem::copy_file(CLOUDGRAPH_SAMPLE_PLUGIN, dir / "plugins" / "libsample.so");
+    const char* saved = std::getenv("CLOUDGRAPH_PLUGIN_PATH");
+    const std::string savedValue = saved ? saved : "";
+    const auto cwd = std::filesystem::current_path();
+
+    ::setenv("CLOUDGRAPH_PLUGIN_PATH", (dir / "plugins").c_str(), 1);
+    const auto found = runCli({"nodes", "SampleGain"});
+    // A relative entry, even one that names the right directory from here, is ignored.
+    std::filesystem::current_path(dir.path());
+    ::setenv("CLOUDGRAPH_PLUGIN_PATH", "plugins", 1);
+    const auto relative = runCli({"nodes", "SampleGain"});
+    std::filesystem::current_path(cwd);
+    if (saved) {
+        ::setenv("CLOUDGRAPH_PLUGIN_PATH", savedValue.c_str(), 1);
+    } else {
+        ::unsetenv("CLOUDGRAPH_PLUGIN_PATH");
+    }
+
+    EXPECT_EQ(found.exitCode, 0) << found.errors;
+    EXPECT_NE(found.output.find("SampleGain"), std::string::npos);
+    EXPECT_EQ(relative.exitCode, 2);
+    EXPECT_NE(relative.errors.find("not absolute"), std::string::npos) << relative.errors;
 }
 
 TEST(Cli, NodeReferenceIsGeneratedAndDocsAreCurrent)
