@@ -82,6 +82,25 @@ void buildRegistry(Registry& registry, const std::vector<std::string>& pluginPat
     for (const auto& p : pluginPaths) loadPlugin(p, registry);
 }
 
+void declareGraphOptions(OptionParser& opts)
+{
+    opts.valueOption("--set");
+    opts.valueOption("--plugin");
+    opts.flag("--allow-outside-out");
+}
+
+Graph loadGraphFromOptions(const OptionParser& opts, Registry& registry, const char* command)
+{
+    if (opts.positionals().size() != 1)
+        throw InputError("command line", std::string(command) + " needs exactly one graph file");
+    buildRegistry(registry, opts.values("--plugin"));
+    LoadOptions loadOptions;
+    loadOptions.allowPathsOutsideOut = opts.has("--allow-outside-out");
+    Graph graph = loadGraph(opts.positionals()[0], registry, loadOptions);
+    for (const std::string& s : opts.values("--set")) applySetOverride(graph, s);
+    return graph;
+}
+
 int guarded(const std::function<int()>& body)
 {
     try {

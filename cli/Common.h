@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/Graph.h"
 #include "core/Registry.h"
 
 namespace cg::cli {
@@ -45,6 +46,12 @@ void configureLogging();
 
 /// The built-in nodes plus plugins from --plugin paths and CLOUDGRAPH_PLUGIN_PATH.
 void buildRegistry(Registry& registry, const std::vector<std::string>& pluginPaths);
+
+/// Declares the options that choose and edit a graph: --set, --plugin, --allow-outside-out.
+void declareGraphOptions(OptionParser& opts);
+/// Builds the registry (with --plugin), loads the one positional graph file and applies
+/// every --set. Throws InputError on any bad input.
+Graph loadGraphFromOptions(const OptionParser& opts, Registry& registry, const char* command);
 
 /// Runs `body`, turning exceptions into a message on stderr and an exit code.
 int guarded(const std::function<int()>& body);

@@ -72,25 +72,17 @@ int parseThreads(const std::string& text)
 int runCommand(const Args& args)
 {
     OptionParser opts(args);
-    for (const char* o : {"--frames", "--set", "--cache", "--out", "--threads", "--report",
-                          "--plugin", "--cache-memory-mb"})
+    declareGraphOptions(opts);
+    for (const char* o : {"--frames", "--cache", "--out", "--threads", "--report", "--cache-memory-mb"})
         opts.valueOption(o);
-    opts.flag("--allow-outside-out");
     return guarded([&] {
         opts.parse();
-        if (opts.positionals().size() != 1)
-            throw InputError("command line", "run needs exactly one graph file");
-
         std::optional<tbb::global_control> threadLimit;
         if (auto t = opts.value("--threads"))
             threadLimit.emplace(tbb::global_control::max_allowed_parallelism, parseThreads(*t));
 
         Registry registry;
-        buildRegistry(registry, opts.values("--plugin"));
-        LoadOptions loadOptions;
-        loadOptions.allowPathsOutsideOut = opts.has("--allow-outside-out");
-        Graph graph = loadGraph(opts.positionals()[0], registry, loadOptions);
-        for (const std::string& s : opts.values("--set")) applySetOverride(graph, s);
+        const Graph graph = loadGraphFromOptions(opts, registry, "run");
         const FrameRange frames =
             opts.value("--frames") ? parseFrames(*opts.value("--frames"), graph.frames) : graph.frames;
 

@@ -73,4 +73,20 @@ inline PortDecl port(std::string name, std::string type, std::string doc, bool o
     return PortDecl{std::move(name), std::move(type), std::move(doc), optional};
 }
 
+/// A writer: one input, one OutputPath parameter "file", a Text output "files" with the path
+/// written; cooks on every run and per frame (#### in the name becomes the frame).
+inline NodeDecl writerDecl(std::string type, std::string doc, PortDecl input, std::string defaultFile)
+{
+    NodeDecl d;
+    d.type = std::move(type);
+    d.category = "io";
+    d.doc = std::move(doc);
+    d.writesFiles = true;
+    d.frameDependent = true;
+    d.inputs = {std::move(input)};
+    d.outputs = {port("files", "Text", "the path written")};
+    d.params = {outputPathParam("file", std::move(defaultFile), "file name, relative to --out")};
+    return d;
+}
+
 }  // namespace cg

@@ -49,29 +49,18 @@ public:
 
 void registerWriterNodes(Registry& registry)
 {
-    NodeDecl array;
-    array.type = "WriteArray";
-    array.category = "io";
-    array.doc = "Writes an array as text, one value per line (%.9g, exact for float32), to a "
-                "file under the output directory; #### in the name becomes the frame number.";
-    array.writesFiles = true;
-    array.frameDependent = true;
-    array.inputs = {port("values", "FloatArray", "values to write")};
-    array.outputs = {port("files", "Text", "the path written")};
-    array.params = {outputPathParam("file", "values.####.txt", "file name, relative to --out")};
+    NodeDecl array = writerDecl(
+        "WriteArray",
+        "Writes an array as text, one value per line (%.9g, exact for float32), to a file "
+        "under the output directory; #### in the name becomes the frame number.",
+        port("values", "FloatArray", "values to write"), "values.####.txt");
     array.create = [] { return std::make_unique<WriteArrayNode>(); };
     registry.addNode(std::move(array));
 
-    NodeDecl text;
-    text.type = "WriteText";
-    text.category = "io";
-    text.doc = "Writes text to a file under the output directory; #### in the name becomes "
-               "the frame number.";
-    text.writesFiles = true;
-    text.frameDependent = true;
-    text.inputs = {port("text", "Text", "text to write")};
-    text.outputs = {port("files", "Text", "the path written")};
-    text.params = {outputPathParam("file", "summary.####.txt", "file name, relative to --out")};
+    NodeDecl text = writerDecl("WriteText",
+                               "Writes text to a file under the output directory; #### in the "
+                               "name becomes the frame number.",
+                               port("text", "Text", "text to write"), "summary.####.txt");
     text.create = [] { return std::make_unique<WriteTextNode>(); };
     registry.addNode(std::move(text));
 }
