@@ -1,6 +1,7 @@
 #include "nodes/Builtin.h"
 
 #include "core/Registry.h"
+#include "nodes/data/DataTypes.h"
 #include "nodes/util/UtilNodes.h"
 
 namespace cg {
@@ -8,6 +9,7 @@ namespace cg {
 void registerBuiltinNodes(Registry& registry)
 {
     registerCoreDataTypes(registry);
+    registerNodeDataTypes(registry);
 
     // util/
     registerSourceNodes(registry);

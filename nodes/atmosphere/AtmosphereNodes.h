@@ -1,0 +1,15 @@
+#pragma once
+/// The stochastic atmosphere of Sec. 5.1: environment, density map, vapour emission,
+/// thermal rise and condensation.
+
+namespace cg {
+
+class Registry;
+
+void registerAtmosphereNode(Registry& registry);          // Atmosphere
+void registerNoiseMapNode(Registry& registry);            // NoiseMap
+void registerVapourEmitterNode(Registry& registry);       // VapourEmitter
+void registerThermalIntegratorNode(Registry& registry);   // ThermalIntegrator
+void registerCondensationNode(Registry& registry);        // Condensation
+
+}  // namespace cg

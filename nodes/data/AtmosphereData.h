@@ -1,0 +1,35 @@
+#pragma once
+/// The environment of Sec. 5.1 (Eq. 8-9), in SI units: one source of truth for the thermal
+/// integrator and for condensation.
+
+#include "core/Data.h"
+
+namespace cg {
+
+class Registry;
+
+struct Atmosphere {
+    double groundTemperature = 20.0;      ///< T_sl_max of Eq. 9, degrees C
+    double environmentLapse = 6.4e-3;     ///< C_e of Eq. 9, degrees C per metre
+    double dewPoint = 16.0;               ///< T_dp of Eq. 8, degrees C
+    double dryLapse = 10.0e-3;            ///< C of Eq. 8 while T_v >= T_dp, degrees C per metre
+    double moistLapse = 6.0e-3;           ///< C of Eq. 8 once T_v < T_dp, degrees C per metre
+    double gravity = 9.81;                ///< g of Eq. 6, m/s^2
+
+    /// Eq. 9: T_e = T_sl_max - C_e * z.
+    double environmentTemperature(double z) const { return groundTemperature - environmentLapse * z; }
+};
+
+class AtmosphereData final : public Data {
+public:
+    explicit AtmosphereData(const Atmosphere& a) : atmosphere(a) {}
+    const Atmosphere atmosphere;
+
+    std::string typeName() const override { return "Atmosphere"; }
+    std::size_t byteSize() const override { return sizeof(*this); }
+    bool serialize(ByteWriter& out) const override;
+};
+
+void registerAtmosphereType(Registry& registry);
+
+}  // namespace cg

@@ -1,0 +1,69 @@
+#pragma once
+/// Water vapour particles of the stochastic simulation (Sec. 5.1), as structure-of-arrays.
+/// What never changes after emission (id, home cell, x, y) is shared by every frame's state,
+/// so a simulation step writes only the arrays that move: height, vertical velocity and
+/// temperature.
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/Data.h"
+
+namespace cg {
+
+class Registry;
+
+/// Fixed at emission. Particle i has stable id[i] (ids are 0..N-1 in emission order).
+struct VapourStatics {
+    std::vector<std::uint32_t> id;
+    std::vector<std::uint32_t> homeCell;  ///< map cell index iy * nx + ix (Eq. 16 reads it)
+    std::vector<float> x;                 ///< metres; wind is ignored, so x, y never change
+    std::vector<float> y;                 ///< metres
+
+    std::size_t size() const { return id.size(); }
+};
+
+/// Particle state at one frame: P_vz, U_vz, T_v of Eq. 6-9.
+class VapourParticlesData final : public Data {
+public:
+    VapourParticlesData(std::shared_ptr<const VapourStatics> statics, std::vector<float> z,
+                        std::vector<float> vz, std::vector<float> temperature);
+
+    const std::shared_ptr<const VapourStatics> statics;
+    const std::vector<float> z;            ///< height P_vz, metres
+    const std::vector<float> vz;           ///< vertical velocity U_vz, m/s
+    const std::vector<float> temperature;  ///< T_v, degrees Celsius
+
+    std::size_t size() const { return z.size(); }
+
+    std::string typeName() const override { return "VapourParticles"; }
+    std::size_t byteSize() const override;
+    bool serialize(ByteWriter& out) const override;
+    static std::shared_ptr<const VapourParticlesData> deserialize(ByteReader& in);
+};
+
+/// Which particles have become condensation particles (pseudocode lines 9-14).
+class CondensationData final : public Data {
+public:
+    CondensationData(std::shared_ptr<const VapourParticlesData> particles,
+                     std::vector<std::int32_t> condensedFrame, std::int32_t firstFrame);
+
+    /// The particles at this frame.
+    const std::shared_ptr<const VapourParticlesData> particles;
+    /// Frame at which particle i first had T_v < T_dp; -1 while it is still vapour.
+    const std::vector<std::int32_t> condensedFrame;
+    /// Frame at which the first condensation particle appeared (t_s[1]); -1 if none yet.
+    const std::int32_t firstFrame;
+
+    bool condensed(std::size_t i) const { return condensedFrame[i] >= 0; }
+    std::size_t condensedCount() const;
+
+    std::string typeName() const override { return "Condensation"; }
+    std::size_t byteSize() const override;
+    bool serialize(ByteWriter& out) const override;
+};
+
+void registerVapourParticleTypes(Registry& registry);
+
+}  // namespace cg
