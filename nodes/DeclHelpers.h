@@ -73,8 +73,9 @@ inline PortDecl port(std::string name, std::string type, std::string doc, bool o
     return PortDecl{std::move(name), std::move(type), std::move(doc), optional};
 }
 
-/// A writer: one input, one OutputPath parameter "file", a Text output "files" with the path
-/// written; cooks on every run and per frame (#### in the name becomes the frame).
+/// A writer: one input, an OutputPath parameter "file", an int parameter "every" (write on
+/// every Nth frame from the start frame; see writesThisFrame), a Text output "files" with the
+/// paths written; cooks on every run and per frame (#### in the name becomes the frame).
 inline NodeDecl writerDecl(std::string type, std::string doc, PortDecl input, std::string defaultFile)
 {
     NodeDecl d;
@@ -85,7 +86,9 @@ inline NodeDecl writerDecl(std::string type, std::string doc, PortDecl input, st
     d.frameDependent = true;
     d.inputs = {std::move(input)};
     d.outputs = {port("files", "Text", "the path written")};
-    d.params = {outputPathParam("file", std::move(defaultFile), "file name, relative to --out")};
+    d.params = {outputPathParam("file", std::move(defaultFile), "file name, relative to --out"),
+                intParam("every", 1, "frames",
+                         "write frames start, start + every, start + 2 every, ...; skip the rest", 1)};
     return d;
 }
 

@@ -8,6 +8,7 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
+#include "nodes/io/WriterSupport.h"
 #include "nodes/util/UtilNodes.h"
 
 namespace cg {
@@ -18,6 +19,7 @@ class WriteArrayNode final : public Node {
 public:
     void cook(CookContext& ctx) override
     {
+        if (!writesThisFrame(ctx)) return;
         const auto in = ctx.input<FloatArrayData>("values");
         std::string text;
         text.reserve(in->values.size() * 12);
@@ -38,6 +40,7 @@ class WriteTextNode final : public Node {
 public:
     void cook(CookContext& ctx) override
     {
+        if (!writesThisFrame(ctx)) return;
         const auto in = ctx.input<TextData>("text");
         const auto path = ctx.outputPath("file");
         writeFileAtomically(path, in->value);

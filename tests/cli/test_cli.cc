@@ -264,6 +264,18 @@ TEST(Cli, NodeReferenceIsGeneratedAndDocsAreCurrent)
     EXPECT_EQ(runCli({"nodes", "NoSuchNode"}).exitCode, 2);
 }
 
+TEST(Cli, WritersWriteEveryNthFrameFromTheStart)
+{
+    TempDir dir;
+    const auto r = runCli({"run", std::string(CLOUDGRAPH_SOURCE_DIR) + "/graphs/default.json",
+                           "--frames", "2:9", "--set", "write.every=3", "--set",
+                           "write.file=s.####.txt", "--out", dir.path().string(), "-q"});
+    ASSERT_EQ(r.exitCode, 0) << r.errors;
+    std::vector<std::string> names;
+    for (const auto& f : filesUnder(dir.path())) names.push_back(f.filename().string());
+    EXPECT_EQ(names, (std::vector<std::string>{"s.0003.txt", "s.0006.txt", "s.0009.txt"}));
+}
+
 TEST(Cli, DotListsNodesAndEdges)
 {
     const auto r = runCli({"dot", dataPath("good/chain5.json").string()});

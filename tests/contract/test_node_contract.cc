@@ -26,19 +26,30 @@ Registry& builtinRegistry()
     return *registry;
 }
 
-/// A graph with one node of `type` at id "node", every input wired to a default source.
-std::string graphFor(const NodeDecl& decl)
+/// Adds a node of `decl` at `id`, wiring each input to a default source node "<id>_<port>"
+/// (recursively, for sources that have inputs of their own).
+nlohmann::json& addWithSources(const NodeDecl& decl, const std::string& id, nlohmann::json& nodes)
 {
-    nlohmann::json nodes = nlohmann::json::object();
     nlohmann::json inputs = nlohmann::json::object();
     for (const PortDecl& in : decl.inputs) {
         std::string port;
         const std::string source = sourceNodeFor(in.type, port);
         if (source.empty()) throw std::runtime_error("no test source for port type " + in.type);
-        nodes["src_" + in.name] = {{"type", source}};
-        inputs[in.name] = "src_" + in.name + "." + port;
+        const NodeDecl* sourceDecl = builtinRegistry().findNode(source);
+        if (!sourceDecl) throw std::runtime_error("test source " + source + " is not registered");
+        const std::string sourceId = id + "_" + in.name;
+        addWithSources(*sourceDecl, sourceId, nodes);
+        inputs[in.name] = sourceId + "." + port;
     }
-    nodes["node"] = {{"type", decl.type}, {"inputs", inputs}};
+    nodes[id] = {{"type", decl.type}, {"inputs", inputs}};
+    return nodes[id];
+}
+
+/// A graph with one node of `decl` at id "node", every input wired to default sources.
+std::string graphFor(const NodeDecl& decl)
+{
+    nlohmann::json nodes = nlohmann::json::object();
+    addWithSources(decl, "node", nodes);
     return nlohmann::json{{"cloudgraph", 1}, {"nodes", nodes}}.dump();
 }
 
@@ -118,8 +129,12 @@ TEST_P(NodeContract, EveryInputChangesTheKey)
     Evaluator ev(builtinRegistry(), {});
     const Key base = ev.key(g, "node", 0);
     for (const PortDecl& in : decl->inputs) {
-        const GraphNode* src = g.find("src_" + in.name);
-        ASSERT_FALSE(src->decl->params.empty());
+        // Edit the first parameter found upstream of this input.
+        const std::string prefix = "node_" + in.name;
+        const GraphNode* src = nullptr;
+        for (const GraphNode& n : g.nodes())
+            if (n.id.rfind(prefix, 0) == 0 && !n.decl->params.empty() && !src) src = &n;
+        ASSERT_NE(src, nullptr) << "nothing upstream of " << in.name << " has a parameter";
         const ParamDecl& p = src->decl->params[0];
         g.setParam(src->id, p.name, otherValue(p));
         EXPECT_NE(ev.key(g, "node", 0), base) << "input " << in.name << " is not in the key";

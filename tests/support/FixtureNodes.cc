@@ -162,6 +162,10 @@ std::string sourceNodeFor(const std::string& dataType, std::string& outputPort)
         {"Int", {"TestIntSource", "value"}},
         {"FloatArray", {"TestSource", "values"}},
         {"Text", {"TestTextSource", "value"}},
+        {"Map2D", {"NoiseMap", "map"}},
+        {"Atmosphere", {"Atmosphere", "atmosphere"}},
+        {"VapourParticles", {"VapourEmitter", "particles"}},
+        {"Condensation", {"Condensation", "condensation"}},
     };
     auto it = sources.find(dataType);
     if (it == sources.end()) return "";

@@ -1,0 +1,140 @@
+// VapourEmitter: the initial water vapour particles of Sec. 5.1 (Eq. 3-5) from a density map.
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "core/Error.h"
+#include "core/Node.h"
+#include "core/Registry.h"
+#include "nodes/DeclHelpers.h"
+#include "nodes/algo/VapourEmission.h"
+#include "nodes/atmosphere/AtmosphereNodes.h"
+#include "nodes/data/Map2D.h"
+#include "nodes/data/VapourParticles.h"
+
+namespace cg {
+
+namespace {
+
+/// The most one emission may hold: the engine's default per-node allocation limit (16 GiB),
+/// about 613 million particles, which also keeps every id within a PLY int.
+constexpr std::uint64_t kMaxEmissionBytes = std::uint64_t(16) << 30;
+constexpr std::uint64_t kMaxParticles = kMaxEmissionBytes / algo::kVapourParticleBytes;
+
+algo::VapourEmissionSettings settingsFrom(const ParamSet& p)
+{
+    algo::VapourEmissionSettings s;
+    s.minParticlesPerCell = p.getFloat("minParticlesPerCell");
+    s.maxParticlesPerCell = p.getFloat("maxParticlesPerCell");
+    s.minHeight = p.getFloat("minHeight");
+    s.maxHeight = p.getFloat("maxHeight");
+    s.minTemperature = p.getFloat("minTemperature");
+    s.maxTemperature = p.getFloat("maxTemperature");
+    s.seed = static_cast<std::uint64_t>(p.getInt("seed"));
+    return s;
+}
+
+class VapourEmitterNode final : public Node {
+public:
+    void cook(CookContext& ctx) override
+    {
+        const auto map = ctx.input<Map2DData>("map");
+        const algo::VapourEmissionSettings s = settingsFrom(ctx.params());
+
+        // Refuse before allocating: the count depends on the map, so load time cannot know it.
+        const std::uint64_t count = algo::emissionCount(map->values, s);
+        if (count > kMaxParticles) {
+            throw InputError(ctx.nodeId(),
+                             "parameter 'maxParticlesPerCell' makes " + std::to_string(count) +
+                                 " particles over the " + std::to_string(map->nx) + " x " +
+                                 std::to_string(map->ny) + " map, over the limit of " +
+                                 std::to_string(kMaxParticles) + " (" +
+                                 std::to_string(kMaxEmissionBytes >> 30) + " GiB)");
+        }
+
+        algo::VapourEmission e;
+        try {
+            e = algo::emitVapour(map->nx, map->ny, map->cellSize, map->values, s,
+                                 [&ctx] { ctx.checkCancelled(); });
+        } catch (const std::invalid_argument& err) {
+            throw InputError(ctx.nodeId(), std::string("input 'map': ") + err.what());
+        }
+
+        auto statics = std::make_shared<VapourStatics>();
+        statics->id = std::move(e.id);
+        statics->homeCell = std::move(e.homeCell);
+        statics->x = std::move(e.x);
+        statics->y = std::move(e.y);
+        ctx.setOutput("particles", std::make_shared<VapourParticlesData>(
+                                       std::move(statics), std::move(e.z), std::move(e.vz),
+                                       std::move(e.temperature)));
+    }
+};
+
+}  // namespace
+
+void registerVapourEmitterNode(Registry& registry)
+{
+    NodeDecl d;
+    d.type = "VapourEmitter";
+    d.version = 1;
+    d.category = "atmosphere";
+    d.doc =
+        "Initial water vapour particles of the stochastic simulation (Sec. 5.1) at time t0. "
+        "Map cell (ix, iy) with density fNoise in [0, 1] emits floor(W_p + 0.5) particles "
+        "(Eq. 3, rounded half up), W_p = W_p_min + (W_p_max - W_p_min) fNoise; each starts at "
+        "rest at height P_vz = P_vz_min + (P_vz_max - P_vz_min) fNoise (Eq. 4) with "
+        "temperature T_v = T_v_max - (T_v_max - T_v_min) (P_vz - P_vz_min) / (P_vz_max - "
+        "P_vz_min) (Eq. 5; T_v_max when the heights are equal), at a uniform random x, y "
+        "inside the cell keyed by (seed, cell, particle), so the result is the same for any "
+        "thread count. Ids are 0..N-1 in row-major cell order. The defaults make (T_v_max - "
+        "T_v_min) / (P_vz_max - P_vz_min) equal the dry lapse rate of 10 degC/km with which "
+        "vapour cools as it rises (Eq. 8), so every particle reaches the dew point at the same "
+        "altitude and the cloud base is flat. The emission does not change with the frame: "
+        "ThermalIntegrator takes it as its start state. A map density outside [0, 1], or more "
+        "than 16 GiB of particles (about 613 million), is refused.";
+    d.inputs = {
+        port("map", "Map2D", "the 1/f^beta density map fNoise(ix, iy) of Eq. 3-5, in [0, 1]")};
+    d.outputs = {port("particles", "VapourParticles",
+                      "the vapour particles at t0: position, U_vz = 0 and T_v")};
+    d.params = {
+        floatParam("minParticlesPerCell", 0.0, "particles",
+                   "W_p_min of Eq. 3: particles of a cell with density 0 (value ours)", 0.0, 1e6),
+        floatParam("maxParticlesPerCell", 6.0, "particles",
+                   "W_p_max of Eq. 3: particles of a cell with density 1 (value ours)", 0.0, 1e6),
+        floatParam("minHeight", 0.0, "m",
+                   "P_vz_min of Eq. 4: initial height at density 0 (value ours)", 0.0, 1e5),
+        floatParam("maxHeight", 100.0, "m",
+                   "P_vz_max of Eq. 4: initial height at density 1 (value ours)", 0.0, 1e5),
+        floatParam("minTemperature", 29.0, "degC",
+                   "T_v_min of Eq. 5: initial temperature at maxHeight (value ours)", -100.0,
+                   100.0),
+        floatParam("maxTemperature", 30.0, "degC",
+                   "T_v_max of Eq. 5: initial temperature at minHeight (value ours)", -100.0,
+                   100.0),
+        intParam("seed", 0, "", "keys the random x, y inside each cell (value ours)", 0.0,
+                 9007199254740992.0)};
+    d.validate = [](const ParamSet& p, const ParamChecker& check) {
+        // Each pair must be an ordered range, or Eq. 3-5 run backwards.
+        if (p.getFloat("maxParticlesPerCell") < p.getFloat("minParticlesPerCell"))
+            check.fail("maxParticlesPerCell",
+                       "maxParticlesPerCell (" + std::to_string(p.getFloat("maxParticlesPerCell")) +
+                           ") is below minParticlesPerCell (" +
+                           std::to_string(p.getFloat("minParticlesPerCell")) + ")");
+        if (p.getFloat("maxHeight") < p.getFloat("minHeight"))
+            check.fail("maxHeight", "maxHeight (" + std::to_string(p.getFloat("maxHeight")) +
+                                        " m) is below minHeight (" +
+                                        std::to_string(p.getFloat("minHeight")) + " m)");
+        if (p.getFloat("maxTemperature") < p.getFloat("minTemperature"))
+            check.fail("maxTemperature",
+                       "maxTemperature (" + std::to_string(p.getFloat("maxTemperature")) +
+                           " degC) is below minTemperature (" +
+                           std::to_string(p.getFloat("minTemperature")) + " degC)");
+    };
+    d.create = [] { return std::make_unique<VapourEmitterNode>(); };
+    registry.addNode(std::move(d));
+}
+
+}  // namespace cg
