@@ -1,15 +1,21 @@
 #include "nodes/algo/Thermal.h"
 
+#include <algorithm>
+#include <limits>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 namespace cg::algo {
 
-void thermalStep(const ThermalSettings& s, const ThermalArrays& in, const ThermalOutputArrays& out,
-                 std::size_t begin, std::size_t end)
+namespace {
+
+/// Eq. 6-9 in single precision, on restrict-qualified arrays so the compiler vectorises the
+/// loop (the state is float anyway). The branches are selects: every lane does the same work.
+void stepKernel(const float* __restrict zIn, const float* __restrict vzIn,
+                const float* __restrict tIn, float* __restrict zOut, float* __restrict vzOut,
+                float* __restrict tOut, std::size_t begin, std::size_t end, const ThermalSettings& s)
 {
-    // Single precision and restrict-qualified arrays let the compiler vectorise the loop;
-    // the state is float anyway. The branches are selects, so every lane does the same work.
     const float dt = static_cast<float>(s.timeStep);
     const float accelerationPerDegree = static_cast<float>(s.buoyancyCoefficient / s.mass);
     const float gravity = static_cast<float>(s.gravity);
@@ -18,13 +24,8 @@ void thermalStep(const ThermalSettings& s, const ThermalArrays& in, const Therma
     const float dewPoint = static_cast<float>(s.dewPoint);
     const float dryLapse = static_cast<float>(s.dryLapse);
     const float moistLapse = static_cast<float>(s.moistLapse);
-    const bool groundStops = s.groundStops;
-    const float* __restrict zIn = in.z;
-    const float* __restrict vzIn = in.vz;
-    const float* __restrict tIn = in.temperature;
-    float* __restrict zOut = out.z;
-    float* __restrict vzOut = out.vz;
-    float* __restrict tOut = out.temperature;
+    // Without a ground, no height is below the floor.
+    const float floorHeight = s.groundStops ? 0.0f : -std::numeric_limits<float>::infinity();
     for (std::size_t i = begin; i < end; ++i) {
         const float z = zIn[i];
         const float u = vzIn[i];
@@ -34,14 +35,22 @@ void thermalStep(const ThermalSettings& s, const ThermalArrays& in, const Therma
         const float acceleration = accelerationPerDegree * (t - environment) - gravity;
         float uNext = u + dt * acceleration;                                        // Eq. 7
         float zNext = z + dt * u;                                                   // Eq. 7
-        const bool belowGround = groundStops && zNext < 0.0f;
-        zNext = belowGround ? 0.0f : zNext;
-        uNext = belowGround && uNext < 0.0f ? 0.0f : uNext;
+        const bool belowGround = zNext < floorHeight;
+        zNext = belowGround ? floorHeight : zNext;
+        uNext = belowGround ? std::max(uNext, 0.0f) : uNext;
         const float lapse = t >= dewPoint ? dryLapse : moistLapse;                  // Eq. 8
         zOut[i] = zNext;
         vzOut[i] = uNext;
         tOut[i] = t - lapse * (zNext - z);
     }
+}
+
+}  // namespace
+
+void thermalStep(const ThermalSettings& s, const ThermalArrays& in, const ThermalOutputArrays& out,
+                 std::size_t begin, std::size_t end)
+{
+    stepKernel(in.z, in.vz, in.temperature, out.z, out.vz, out.temperature, begin, end, s);
 }
 
 void thermalStepParallel(const ThermalSettings& s, const ThermalArrays& in,
