@@ -1,7 +1,11 @@
 #include "nodes/data/DataTypes.h"
 
 #include "nodes/data/AtmosphereData.h"
+#include "nodes/data/CloudParticles.h"
+#include "nodes/data/FogVolume.h"
+#include "nodes/data/Image.h"
 #include "nodes/data/Map2D.h"
+#include "nodes/data/PrimitiveSet.h"
 #include "nodes/data/VapourParticles.h"
 
 namespace cg {
@@ -9,7 +13,11 @@ namespace cg {
 void registerNodeDataTypes(Registry& registry)
 {
     registerAtmosphereType(registry);
+    registerCloudParticlesType(registry);
+    registerFogVolumeType(registry);
+    registerImageType(registry);
     registerMap2DType(registry);
+    registerPrimitiveSetType(registry);
     registerVapourParticleTypes(registry);
 }
 

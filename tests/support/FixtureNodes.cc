@@ -1,5 +1,6 @@
 #include "support/FixtureNodes.h"
 
+#include <cmath>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -10,6 +11,10 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
+#include "nodes/data/CloudParticles.h"
+#include "nodes/data/FogVolume.h"
+#include "nodes/data/Image.h"
+#include "nodes/data/PrimitiveSet.h"
 
 namespace cg {
 
@@ -132,6 +137,90 @@ void registerFixtureNodes(Registry& registry)
         ctx.setOutput("value", std::make_shared<TextData>(ctx.params().getString("value")));
     });
     registry.addNode(textSource);
+
+    // Cheap sources of the domain types, so the contract test never cooks a heavy simulation.
+    NodeDecl primitive = decl("TestPrimitiveSource", "a small synthetic primitive set: a growing ball");
+    primitive.outputs = {port("primitive", "PrimitiveSet", "the primitive set")};
+    primitive.params = {intParam("frames", 8, "", "frames", 1, 1000),
+                        floatParam("radius", 10.0, "m", "final radius", 0)};
+    primitive.create = counted([](CookContext& ctx) {
+        const auto frames = static_cast<int>(ctx.params().getInt("frames"));
+        const double radius = ctx.params().getFloat("radius");
+        std::vector<std::uint32_t> counts;
+        std::vector<float> positions;
+        for (int s = 0; s < frames; ++s) {
+            const std::uint32_t n = 8u * static_cast<std::uint32_t>(s + 1);
+            counts.push_back(n);
+            const double r = radius * (s + 1) / frames;
+            for (std::uint32_t i = 0; i < n; ++i) {
+                const double a = 2.399963 * i;  // golden-angle spiral on a sphere of radius r
+                const double z = 1.0 - 2.0 * (i + 0.5) / n;
+                const double rho = std::sqrt(1.0 - z * z);
+                positions.insert(positions.end(), {static_cast<float>(r * rho * std::cos(a)),
+                                                   static_cast<float>(r * rho * std::sin(a)),
+                                                   static_cast<float>(r * z + r)});
+            }
+        }
+        ctx.setOutput("primitive", std::make_shared<PrimitiveSetData>(1.0, std::move(counts), std::move(positions)));
+    });
+    registry.addNode(primitive);
+
+    NodeDecl cloud = decl("TestCloudSource", "cloud particles on a lattice filling a ball");
+    cloud.outputs = {port("particles", "CloudParticles", "the particles")};
+    cloud.params = {floatParam("radius", 20.0, "m", "ball radius", 1, 1000),
+                    floatParam("spacing", 4.0, "m", "lattice spacing", 0.5, 100)};
+    cloud.create = counted([](CookContext& ctx) {
+        const double r = ctx.params().getFloat("radius");
+        const double h = ctx.params().getFloat("spacing");
+        std::vector<float> positions;
+        for (double x = -r; x <= r; x += h)
+            for (double y = -r; y <= r; y += h)
+                for (double z = -r; z <= r; z += h)
+                    if (x * x + y * y + z * z <= r * r)
+                        positions.insert(positions.end(), {static_cast<float>(x), static_cast<float>(y),
+                                                           static_cast<float>(z + r)});
+        const std::size_t n = positions.size() / 3;
+        ctx.setOutput("particles", std::make_shared<CloudParticlesData>(
+                                       std::move(positions), std::vector<std::uint8_t>(n, 1),
+                                       std::vector<std::uint32_t>(n, 0)));
+    });
+    registry.addNode(cloud);
+
+    NodeDecl fog = decl("TestFogSource", "a fog volume: a ball of constant density");
+    fog.outputs = {port("volume", "FogVolume", "the volume")};
+    fog.params = {floatParam("radius", 8.0, "voxels", "ball radius", 1, 100),
+                  floatParam("density", 1.0, "", "density inside", 0, 1)};
+    fog.create = counted([](CookContext& ctx) {
+        const double r = ctx.params().getFloat("radius");
+        auto grid = openvdb::FloatGrid::create(0.0f);
+        grid->setName("density");
+        grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+        auto acc = grid->getAccessor();
+        const int n = static_cast<int>(std::ceil(r));
+        for (int i = -n; i <= n; ++i)
+            for (int j = -n; j <= n; ++j)
+                for (int k = -n; k <= n; ++k)
+                    if (i * i + j * j + k * k <= r * r)
+                        acc.setValue({i, j, k}, static_cast<float>(ctx.params().getFloat("density")));
+        ctx.setOutput("volume", std::make_shared<FogVolumeData>(grid));
+    });
+    registry.addNode(fog);
+
+    NodeDecl image = decl("TestImageSource", "a horizontal grey ramp");
+    image.outputs = {port("image", "Image", "the image")};
+    image.params = {intParam("width", 16, "px", "width", 1, 4096), intParam("height", 8, "px", "height", 1, 4096)};
+    image.create = counted([](CookContext& ctx) {
+        const auto w = static_cast<int>(ctx.params().getInt("width"));
+        const auto h = static_cast<int>(ctx.params().getInt("height"));
+        std::vector<float> rgba;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const float v = static_cast<float>(x) / static_cast<float>(w);
+                rgba.insert(rgba.end(), {v, v, v, 1.0f});
+            }
+        ctx.setOutput("image", std::make_shared<ImageData>(w, h, std::move(rgba)));
+    });
+    registry.addNode(image);
 }
 
 std::size_t cookCount(const std::string& nodeId)
@@ -166,6 +255,10 @@ std::string sourceNodeFor(const std::string& dataType, std::string& outputPort)
         {"Atmosphere", {"Atmosphere", "atmosphere"}},
         {"VapourParticles", {"VapourEmitter", "particles"}},
         {"Condensation", {"Condensation", "condensation"}},
+        {"PrimitiveSet", {"TestPrimitiveSource", "primitive"}},
+        {"CloudParticles", {"TestCloudSource", "particles"}},
+        {"FogVolume", {"TestFogSource", "volume"}},
+        {"Image", {"TestImageSource", "image"}},
     };
     auto it = sources.find(dataType);
     if (it == sources.end()) return "";

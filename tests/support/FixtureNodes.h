@@ -9,7 +9,9 @@ namespace cg {
 
 class Registry;
 
-/// Registers TestSource, TestAdd, TestSim, TestFail, TestWait, TestIntSource, TestTextSource.
+/// Registers TestSource, TestAdd, TestSim, TestFail, TestWait, TestIntSource, TestTextSource,
+/// and cheap sources of the domain types (TestPrimitiveSource, TestCloudSource,
+/// TestFogSource, TestImageSource).
 void registerFixtureNodes(Registry& registry);
 
 std::size_t cookCount(const std::string& nodeId);

@@ -1,0 +1,33 @@
+#pragma once
+/// Cloud particles of one frame (Sec. 5.2): positions with their recursive level and the id of
+/// the source record that made them (provenance, per-level rendering). Produced by the
+/// mapper on demand for each frame, consumed by the voxelizer and the writers.
+
+#include <cstdint>
+#include <vector>
+
+#include "core/Data.h"
+
+namespace cg {
+
+class Registry;
+
+class CloudParticlesData final : public Data {
+public:
+    CloudParticlesData(std::vector<float> positions, std::vector<std::uint8_t> levels,
+                       std::vector<std::uint32_t> sources);
+
+    const std::vector<float> positions;          ///< x, y, z per particle, metres
+    const std::vector<std::uint8_t> levels;      ///< recursive level L (1..L_max); 0 for other points
+    const std::vector<std::uint32_t> sources;    ///< id of the source record that made it
+
+    std::size_t size() const { return levels.size(); }
+
+    std::string typeName() const override { return "CloudParticles"; }
+    std::size_t byteSize() const override;
+    bool serialize(ByteWriter& out) const override;
+};
+
+void registerCloudParticlesType(Registry& registry);
+
+}  // namespace cg

@@ -1,0 +1,28 @@
+#pragma once
+/// A fog volume: an OpenVDB FloatGrid of class fog volume named "density", values in [0, 1],
+/// whose transform carries the voxel size in metres. Shared read-only between nodes.
+
+#include <openvdb/openvdb.h>
+
+#include "core/Data.h"
+
+namespace cg {
+
+class Registry;
+
+class FogVolumeData final : public Data {
+public:
+    explicit FogVolumeData(openvdb::FloatGrid::ConstPtr grid);
+
+    const openvdb::FloatGrid::ConstPtr grid;
+
+    std::string typeName() const override { return "FogVolume"; }
+    std::size_t byteSize() const override;
+    /// Through OpenVDB's own stream format (io::Stream), so a stored entry is a valid VDB.
+    bool serialize(ByteWriter& out) const override;
+};
+
+/// Registers the type and initialises OpenVDB (idempotent).
+void registerFogVolumeType(Registry& registry);
+
+}  // namespace cg

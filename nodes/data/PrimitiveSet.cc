@@ -1,0 +1,52 @@
+#include "nodes/data/PrimitiveSet.h"
+
+#include <stdexcept>
+
+#include "core/Registry.h"
+
+namespace cg {
+
+PrimitiveSetData::PrimitiveSetData(double frameTime_, std::vector<std::uint32_t> counts_,
+                                   std::vector<float> positions_)
+    : frameTime(frameTime_), counts(std::move(counts_)), positions(std::move(positions_))
+{
+    if (!(frameTime > 0.0)) throw std::invalid_argument("PrimitiveSet: frame time must be positive");
+    mOffsets.reserve(counts.size());
+    std::uint64_t total = 0;
+    for (std::size_t s = 0; s < counts.size(); ++s) {
+        if (s > 0 && counts[s] < counts[s - 1])
+            throw std::invalid_argument("PrimitiveSet: N_f(s) decreases at frame " + std::to_string(s));
+        mOffsets.push_back(total);
+        total += counts[s];
+    }
+    if (positions.size() != 3 * total)
+        throw std::invalid_argument("PrimitiveSet: positions do not match the counts");
+}
+
+std::size_t PrimitiveSetData::byteSize() const
+{
+    return sizeof(*this) + positions.size() * sizeof(float) + counts.size() * 12;
+}
+
+bool PrimitiveSetData::serialize(ByteWriter& out) const
+{
+    out.f64(frameTime);
+    out.podVector(counts);
+    out.podVector(positions);
+    return true;
+}
+
+void registerPrimitiveSetType(Registry& registry)
+{
+    registry.addDataType({"PrimitiveSet",
+                          "the 3D cloud primitive set: condensed fluid particle positions per frame",
+                          [](ByteReader& in) -> DataPtr {
+                              const double frameTime = in.f64();
+                              auto counts = in.podVector<std::uint32_t>();
+                              auto positions = in.podVector<float>();
+                              return std::make_shared<PrimitiveSetData>(frameTime, std::move(counts),
+                                                                        std::move(positions));
+                          }});
+}
+
+}  // namespace cg

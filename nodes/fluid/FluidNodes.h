@@ -1,0 +1,12 @@
+#pragma once
+/// The physical half of the hybrid method (Sec. 4): the particle-based fluid simulation that
+/// makes the 3D cloud primitive set, and loading a stored one.
+
+namespace cg {
+
+class Registry;
+
+void registerPrimitiveSimNode(Registry& registry);   // PrimitiveSim
+void registerPrimitiveLoadNode(Registry& registry);  // PrimitiveLoad
+
+}  // namespace cg
