@@ -13,5 +13,6 @@ int runCommand(const Args& args);
 int validateCommand(const Args& args);
 int nodesCommand(const Args& args);
 int dotCommand(const Args& args);
+int infoCommand(const Args& args);
 
 }  // namespace cg::cli

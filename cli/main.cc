@@ -27,6 +27,7 @@ usage:
   cloudgraph validate GRAPH [--set ...] [--plugin PATH]   check a graph without cooking
   cloudgraph nodes [TYPE] [--markdown]                    the node reference
   cloudgraph dot GRAPH                                    the graph as Graphviz
+  cloudgraph info FILE                                    summary of a primitive-set file (.cgp)
   cloudgraph --help | --version
 Every command takes -v (debug logging) and -q (errors only).
 
@@ -55,6 +56,7 @@ int main(int argc, char** argv)
     if (command == "validate") return validateCommand(args);
     if (command == "nodes") return nodesCommand(args);
     if (command == "dot") return dotCommand(args);
+    if (command == "info") return infoCommand(args);
     std::fprintf(stderr, "error: unknown command '%s'\n\n%s", command.c_str(), kUsage);
     return kExitBadInput;
 }

@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
 
+#include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Hash.h"
 
@@ -22,6 +23,24 @@ constexpr int kAnyFrame = INT_MIN;  // memo slot of a node whose output ignores 
 double secondsSince(std::chrono::steady_clock::time_point t0)
 {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// Numbers and short texts among a node's outputs, for the run report.
+nlohmann::json smallValues(const OutputMap& outputs)
+{
+    constexpr std::size_t kShortText = 256;
+    nlohmann::json values = nlohmann::json::object();
+    for (const auto& [port, value] : outputs) {
+        if (const auto* f = dynamic_cast<const FloatData*>(value.get())) {
+            values[port] = f->value;
+        } else if (const auto* i = dynamic_cast<const IntData*>(value.get())) {
+            values[port] = i->value;
+        } else if (const auto* t = dynamic_cast<const TextData*>(value.get());
+                   t && !t->value.empty() && t->value.size() <= kShortText) {
+            values[port] = t->value;
+        }
+    }
+    return values;
 }
 
 }  // namespace
@@ -168,6 +187,7 @@ private:
         if (decl.simulation) hold(idx, frame, outputs);
         record.seconds = secondsSince(t0);
         record.bytes = outputBytes(*outputs);
+        record.values = smallValues(*outputs);
         mEv.mReport.add(std::move(record));
         if (mEv.mOptions.onProgress) {
             Progress p;

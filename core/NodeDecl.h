@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -50,6 +51,10 @@ struct NodeDecl {
     std::function<void(const ParamSet&, const ParamChecker&)> validate;
     /// Extra key ingredients, e.g. the content hash of an input file.
     std::function<void(const ParamSet&, Hasher&)> hashExtra;
+    /// JSON parameter values that make a quick cook, for tests (the contract test applies them
+    /// with Graph::setParam before cooking). The key "__skipCook" (any value) marks a node the
+    /// contract test cannot cook on its own (e.g. one that needs a file); its own tests cover it.
+    std::map<std::string, std::string> quickParams;
 
     const PortDecl* findInput(const std::string& name) const;
     const PortDecl* findOutput(const std::string& name) const;

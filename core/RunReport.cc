@@ -60,6 +60,7 @@ nlohmann::json RunReport::toJson() const
                             {"seconds", r.seconds}, {"key", r.key.hex()},
                             {"bytes", r.bytes}};
         if (r.status == CookStatus::Cooked) e["reason"] = r.reason;
+        if (!r.values.empty()) e["values"] = r.values;
         entries.push_back(std::move(e));
 
         nlohmann::json& n = perNode[r.node];

@@ -27,6 +27,8 @@ struct CookRecord {
     double seconds = 0.0;   ///< wall time of the cook or the lookup
     Key key;
     std::size_t bytes = 0;
+    /// Small values among the outputs (numbers, short text), so a report shows e.g. counts.
+    nlohmann::json values = nlohmann::json::object();
 };
 
 /// Thread-safe collector of CookRecords.

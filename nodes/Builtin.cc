@@ -3,8 +3,12 @@
 #include "core/Registry.h"
 #include "nodes/atmosphere/AtmosphereNodes.h"
 #include "nodes/data/DataTypes.h"
+#include "nodes/fluid/FluidNodes.h"
 #include "nodes/io/IoNodes.h"
+#include "nodes/render/RenderNodes.h"
+#include "nodes/mapping/MappingNodes.h"
 #include "nodes/util/UtilNodes.h"
+#include "nodes/volume/VolumeNodes.h"
 
 namespace cg {
 
@@ -27,9 +31,28 @@ void registerBuiltinNodes(Registry& registry)
     registerThermalIntegratorNode(registry);
     registerCondensationNode(registry);
 
+    // fluid/
+    registerPrimitiveSimNode(registry);
+    registerPrimitiveLoadNode(registry);
+    registerWritePrimitiveNodes(registry);
+
     // io/
     registerWriteMapNode(registry);
     registerWriteParticlesNode(registry);
+
+    // volume/
+    registerVoxelizerNode(registry);
+    registerWriteVdbNode(registry);
+
+    // mapping/
+    registerPrimitiveMapperNode(registry);
+    registerGenerateCloudNode(registry);
+    registerWriteCloudParticlesNode(registry);
+
+    // render/
+    registerSyntheticCumulusNode(registry);
+    registerRendererNode(registry);
+    registerWriteImageNode(registry);
 }
 
 }  // namespace cg

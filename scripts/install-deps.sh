@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
     build-essential cmake pkg-config
-    libopenvdb-dev libboost-iostreams-dev libtbb-dev
+    libopenvdb-dev libopenvdb-tools libboost-iostreams-dev libtbb-dev
     nlohmann-json3-dev libfftw3-dev libspdlog-dev libxxhash-dev
     libgtest-dev libbenchmark-dev libpng-dev
 )

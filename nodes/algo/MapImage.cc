@@ -1,19 +1,18 @@
 #include "nodes/algo/MapImage.h"
 
-#include <png.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <limits>
 #include <stdexcept>
+
+#include "nodes/algo/PngFile.h"
 
 namespace cg::algo {
 
@@ -33,73 +32,6 @@ void checkSize(const char* what, int nx, int ny, const std::vector<float>& value
 {
     throw std::runtime_error(path + ": not a valid greyscale PFM: " + why);
 }
-
-// ---------------------------------------------------------------------------------------
-// libpng reports errors by longjmp. Each function that calls libpng sets its own jump
-// target and holds no C++ object whose destructor a jump could skip; errors are copied into
-// PngError and thrown as exceptions by the C++ caller.
-
-struct PngError {
-    char message[256] = "";
-};
-
-void pngErrorFn(png_structp png, png_const_charp msg)
-{
-    auto* err = static_cast<PngError*>(png_get_error_ptr(png));
-    std::snprintf(err->message, sizeof err->message, "%s", msg ? msg : "libpng error");
-    png_longjmp(png, 1);
-}
-
-void pngWarningFn(png_structp, png_const_charp) {}  // warnings are not failures
-
-bool pngWrite(png_structp png, png_infop info, std::FILE* file, int nx, int ny, png_bytepp rows)
-{
-    if (setjmp(png_jmpbuf(png))) return false;
-    png_init_io(png, file);
-    png_set_IHDR(png, info, static_cast<png_uint_32>(nx), static_cast<png_uint_32>(ny), 16,
-                 PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-                 PNG_FILTER_TYPE_DEFAULT);
-    png_write_info(png, info);
-    png_write_image(png, rows);  // samples are already big-endian, as PNG stores them
-    png_write_end(png, nullptr);
-    return true;
-}
-
-struct PngHeader {
-    png_uint_32 width = 0;
-    png_uint_32 height = 0;
-    int bitDepth = 0;
-    int colorType = 0;
-};
-
-bool pngReadHeader(png_structp png, png_infop info, std::FILE* file, PngHeader* h)
-{
-    if (setjmp(png_jmpbuf(png))) return false;
-    png_init_io(png, file);
-    png_set_user_limits(png, 1u << 20, 1u << 20);
-    png_read_info(png, info);
-    h->width = png_get_image_width(png, info);
-    h->height = png_get_image_height(png, info);
-    h->bitDepth = png_get_bit_depth(png, info);
-    h->colorType = png_get_color_type(png, info);
-    return true;
-}
-
-bool pngReadRows(png_structp png, png_infop info, png_bytepp rows)
-{
-    if (setjmp(png_jmpbuf(png))) return false;
-    png_read_image(png, rows);
-    png_read_end(png, info);
-    return true;
-}
-
-struct File {
-    std::FILE* f = nullptr;
-    ~File()
-    {
-        if (f) std::fclose(f);
-    }
-};
 
 }  // namespace
 
@@ -201,88 +133,38 @@ void writePng16(const std::string& path, int nx, int ny, const std::vector<float
     checkSize("writePng16", nx, ny, values);
     const auto w = static_cast<std::size_t>(nx);
     const auto h = static_cast<std::size_t>(ny);
-    std::vector<png_byte> pixels(w * h * 2);
-    std::vector<png_bytep> rows(h);
+    std::vector<unsigned char> pixels(w * h * 2);
+    std::vector<const unsigned char*> rows(h);
     for (std::size_t r = 0; r < h; ++r) {
         // PNG rows run top to bottom; the top row is our iy = ny - 1.
         const std::size_t iy = h - 1 - r;
-        rows[r] = pixels.data() + r * w * 2;
+        unsigned char* row = pixels.data() + r * w * 2;
+        rows[r] = row;
         for (std::size_t ix = 0; ix < w; ++ix) {
             const float v = values[iy * w + ix];
             const float c = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
             const auto q = static_cast<std::uint16_t>(std::lround(double(c) * 65535.0));
-            rows[r][ix * 2] = static_cast<png_byte>(q >> 8);
-            rows[r][ix * 2 + 1] = static_cast<png_byte>(q & 0xff);
+            row[ix * 2] = static_cast<unsigned char>(q >> 8);  // PNG samples are big-endian
+            row[ix * 2 + 1] = static_cast<unsigned char>(q & 0xff);
         }
     }
-
-    File file;
-    file.f = std::fopen(path.c_str(), "wb");
-    if (!file.f) throw std::runtime_error(path + ": cannot open for writing");
-    PngError err;
-    png_structp png =
-        png_create_write_struct(PNG_LIBPNG_VER_STRING, &err, pngErrorFn, pngWarningFn);
-    if (!png) throw std::runtime_error(path + ": libpng could not start");
-    png_infop info = png_create_info_struct(png);
-    if (!info) {
-        png_destroy_write_struct(&png, nullptr);
-        throw std::runtime_error(path + ": libpng could not start");
-    }
-    const bool ok = pngWrite(png, info, file.f, nx, ny, rows.data());
-    png_destroy_write_struct(&png, &info);
-    if (!ok) throw std::runtime_error(path + ": PNG write failed: " + err.message);
-    const bool flushed = std::fflush(file.f) == 0 && !std::ferror(file.f);
-    const bool closed = std::fclose(file.f) == 0;
-    file.f = nullptr;
-    if (!flushed || !closed) throw std::runtime_error(path + ": write failed");
+    writePng(path, nx, ny, 1, 16, rows, /*srgb=*/false);
 }
 
 MapImage readPng16(const std::string& path)
 {
-    File file;
-    file.f = std::fopen(path.c_str(), "rb");
-    if (!file.f) throw std::runtime_error(path + ": cannot open for reading");
-    png_byte sig[8];
-    if (std::fread(sig, 1, 8, file.f) != 8 || png_sig_cmp(sig, 0, 8) != 0)
-        throw std::runtime_error(path + ": not a PNG file");
-    std::rewind(file.f);
-
-    PngError err;
-    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &err, pngErrorFn, pngWarningFn);
-    if (!png) throw std::runtime_error(path + ": libpng could not start");
-    png_infop info = png_create_info_struct(png);
-    if (!info) {
-        png_destroy_read_struct(&png, nullptr, nullptr);
-        throw std::runtime_error(path + ": libpng could not start");
-    }
-    struct ReadGuard {
-        png_structp* png;
-        png_infop* info;
-        ~ReadGuard() { png_destroy_read_struct(png, info, nullptr); }
-    } guard{&png, &info};
-
-    PngHeader hdr;
-    if (!pngReadHeader(png, info, file.f, &hdr))
-        throw std::runtime_error(path + ": PNG read failed: " + err.message);
-    if (hdr.bitDepth != 16 || hdr.colorType != PNG_COLOR_TYPE_GRAY)
-        throw std::runtime_error(path + ": not a 16-bit greyscale PNG");
-
-    const std::size_t w = hdr.width;
-    const std::size_t h = hdr.height;
-    std::vector<png_byte> pixels(w * h * 2);
-    std::vector<png_bytep> rows(h);
-    for (std::size_t r = 0; r < h; ++r) rows[r] = pixels.data() + r * w * 2;
-    if (!pngReadRows(png, info, rows.data()))
-        throw std::runtime_error(path + ": PNG read failed: " + err.message);
-
+    const PngPixels px = readPng(path, 1, 16, 1u << 20);
+    const auto w = static_cast<std::size_t>(px.width);
+    const auto h = static_cast<std::size_t>(px.height);
     MapImage img;
-    img.nx = static_cast<int>(w);
-    img.ny = static_cast<int>(h);
+    img.nx = px.width;
+    img.ny = px.height;
     img.values.resize(w * h);
     for (std::size_t r = 0; r < h; ++r) {
+        const unsigned char* row = px.bytes.data() + r * w * 2;
         const std::size_t iy = h - 1 - r;
         for (std::size_t ix = 0; ix < w; ++ix) {
-            const unsigned q = (unsigned(rows[r][ix * 2]) << 8) | rows[r][ix * 2 + 1];
+            const unsigned q = (unsigned(row[ix * 2]) << 8) | row[ix * 2 + 1];
             img.values[iy * w + ix] = static_cast<float>(q / 65535.0);
         }
     }

@@ -2,6 +2,7 @@
 
 #include "nodes/data/AtmosphereData.h"
 #include "nodes/data/CloudParticles.h"
+#include "nodes/data/CloudSources.h"
 #include "nodes/data/FogVolume.h"
 #include "nodes/data/Image.h"
 #include "nodes/data/Map2D.h"
@@ -14,6 +15,7 @@ void registerNodeDataTypes(Registry& registry)
 {
     registerAtmosphereType(registry);
     registerCloudParticlesType(registry);
+    registerCloudSourcesType(registry);
     registerFogVolumeType(registry);
     registerImageType(registry);
     registerMap2DType(registry);

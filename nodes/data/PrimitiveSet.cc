@@ -23,6 +23,25 @@ PrimitiveSetData::PrimitiveSetData(double frameTime_, std::vector<std::uint32_t>
         throw std::invalid_argument("PrimitiveSet: positions do not match the counts");
 }
 
+bool PrimitiveSetData::positionAt(double s, std::uint32_t id, float xyz[3]) const
+{
+    if (counts.empty()) return false;
+    const double last = static_cast<double>(counts.size() - 1);
+    if (!(s > 0.0)) s = 0.0;  // also catches NaN
+    if (s > last) s = last;
+    const auto s0 = static_cast<int>(s);
+    if (id >= count(s0)) return false;
+    const float* a = frame(s0) + 3 * std::size_t{id};
+    if (s0 + 1 >= frames()) {
+        for (int k = 0; k < 3; ++k) xyz[k] = a[k];
+        return true;
+    }
+    const float* b = frame(s0 + 1) + 3 * std::size_t{id};  // N_f never decreases: id is there
+    const auto f = static_cast<float>(s - s0);
+    for (int k = 0; k < 3; ++k) xyz[k] = a[k] + f * (b[k] - a[k]);
+    return true;
+}
+
 std::size_t PrimitiveSetData::byteSize() const
 {
     return sizeof(*this) + positions.size() * sizeof(float) + counts.size() * 12;

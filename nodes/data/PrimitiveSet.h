@@ -28,6 +28,11 @@ public:
     /// Pointer to frame s's first xyz triple.
     const float* frame(int s) const { return positions.data() + 3 * mOffsets[static_cast<std::size_t>(s)]; }
 
+    /// Particle `id` at fractional frame s (Eq. 11 gives s = A (t - t0)), linearly interpolated
+    /// between frames floor(s) and floor(s) + 1; s is clamped to [0, frames() - 1]. Returns
+    /// false (and leaves xyz alone) when the particle has not appeared by frame floor(s).
+    bool positionAt(double s, std::uint32_t id, float xyz[3]) const;
+
     std::string typeName() const override { return "PrimitiveSet"; }
     std::size_t byteSize() const override;
     bool serialize(ByteWriter& out) const override;

@@ -8,5 +8,6 @@ class Registry;
 
 void registerPrimitiveSimNode(Registry& registry);   // PrimitiveSim
 void registerPrimitiveLoadNode(Registry& registry);  // PrimitiveLoad
+void registerWritePrimitiveNodes(Registry& registry); // WritePrimitive, WritePrimitivePly
 
 }  // namespace cg

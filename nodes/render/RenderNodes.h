@@ -1,11 +1,12 @@
 #pragma once
-/// Volume rendering of fog volumes, and image writers.
+/// Volume rendering of fog volumes, image writers, and a synthetic test cloud.
 
 namespace cg {
 
 class Registry;
 
-void registerRendererNode(Registry& registry);     // Renderer
-void registerWriteImageNode(Registry& registry);   // WriteImage
+void registerRendererNode(Registry& registry);          // Renderer
+void registerWriteImageNode(Registry& registry);        // WriteImage
+void registerSyntheticCumulusNode(Registry& registry);  // SyntheticCumulus
 
 }  // namespace cg

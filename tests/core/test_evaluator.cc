@@ -296,6 +296,23 @@ TEST_F(EvaluatorTest, ReportTotalsCountCooksAndHits)
     EXPECT_EQ(j["nodes"]["sim"]["cooked"], 3);
 }
 
+TEST_F(EvaluatorTest, ReportShowsSmallOutputValues)
+{
+    Graph g = parse(R"({"cloudgraph": 1, "nodes": {
+        "field": {"type": "TestSource", "params": {"value": 2, "count": 5}},
+        "stats": {"type": "Statistics", "inputs": {"values": "field.values"}}}})");
+    Evaluator ev(registry, {});
+    ev.pull(g, "stats", 0);
+    ev.pull(g, "stats", 0);  // a cache hit shows the values too
+    const auto report = ev.report().toJson();
+    for (const auto& r : report["records"]) {
+        if (r["node"] != "stats") continue;
+        EXPECT_EQ(r["values"]["count"], 5);
+        EXPECT_EQ(r["values"]["mean"], 2.0);
+        EXPECT_EQ(r["values"]["summary"], "frame 0: count 5 mean 2 min 2 max 2\n");
+    }
+}
+
 TEST_F(EvaluatorTest, MemoryBudgetEvictsButResultsStayCorrect)
 {
     Graph g = parse(R"({"cloudgraph": 1, "frames": {"start": 0, "end": 30}, "nodes": {

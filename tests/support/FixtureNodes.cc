@@ -257,6 +257,7 @@ std::string sourceNodeFor(const std::string& dataType, std::string& outputPort)
         {"Condensation", {"Condensation", "condensation"}},
         {"PrimitiveSet", {"TestPrimitiveSource", "primitive"}},
         {"CloudParticles", {"TestCloudSource", "particles"}},
+        {"CloudSources", {"PrimitiveMapper", "sources"}},
         {"FogVolume", {"TestFogSource", "volume"}},
         {"Image", {"TestImageSource", "image"}},
     };

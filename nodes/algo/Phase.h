@@ -1,0 +1,32 @@
+#pragma once
+/// Phase functions for scattering in clouds. Normalisation: a phase function p(cos θ) is a
+/// probability density over directions, so ∫ p dω = 1 over the unit sphere (units 1/sr);
+/// the isotropic phase function is the constant 1 / (4π).
+///
+/// θ is the angle between the direction light travels before scattering and the direction
+/// it travels after; cos θ = 1 is straight on (forward scattering).
+
+#include <cmath>
+
+namespace cg::algo {
+
+inline constexpr double kInvFourPi = 0.07957747154594767;  // 1 / (4π)
+
+/// Henyey-Greenstein: p(cos θ) = (1 − g²) / (4π (1 + g² − 2 g cos θ)^(3/2)), in 1/sr.
+/// g in (−1, 1) is the mean cosine: > 0 forward, 0 isotropic, < 0 backward.
+inline double henyeyGreenstein(double cosTheta, double g)
+{
+    const double gg = g * g;
+    const double denom = 1.0 + gg - 2.0 * g * cosTheta;
+    return kInvFourPi * (1.0 - gg) / (denom * std::sqrt(denom));
+}
+
+/// Two HG lobes blended: (1 − w) HG(g1) + w HG(g2); still integrates to 1 for w in [0, 1].
+/// Clouds: a strong forward lobe (g1 ≈ 0.8) and a weak backward one (g2 ≈ −0.3, w ≈ 0.2).
+inline double twoLobeHenyeyGreenstein(double cosTheta, double g1, double g2, double w)
+{
+    const double p1 = henyeyGreenstein(cosTheta, g1);
+    return w > 0.0 ? (1.0 - w) * p1 + w * henyeyGreenstein(cosTheta, g2) : p1;
+}
+
+}  // namespace cg::algo

@@ -1,0 +1,52 @@
+#include "nodes/algo/PrimitivePly.h"
+
+#include <cstdio>
+
+#include "nodes/algo/PlyWriter.h"
+
+namespace cg::algo {
+
+void writePrimitiveFramePly(const std::filesystem::path& path, const float* positions,
+                            std::uint32_t count, int frame, const std::function<void()>& poll)
+{
+    std::vector<float> x(count), y(count), z(count), zero(count, 0.0f);
+    std::vector<std::uint32_t> id(count), home(count, 0u);
+    std::vector<std::int32_t> state(count, 1);
+    for (std::uint32_t i = 0; i < count; ++i) {
+        x[i] = positions[3 * std::size_t{i}];
+        y[i] = positions[3 * std::size_t{i} + 1];
+        z[i] = positions[3 * std::size_t{i} + 2];
+        id[i] = i;
+    }
+    PlyParticleView view;
+    view.count = count;
+    view.x = x.data();
+    view.y = y.data();
+    view.z = z.data();
+    view.vz = zero.data();
+    view.temperature = zero.data();
+    view.id = id.data();
+    view.state = state.data();
+    view.homeCell = home.data();
+    writeParticlesPly(path, view, "primitive set frame " + std::to_string(frame), poll);
+}
+
+std::filesystem::path primitiveFramePath(const std::filesystem::path& pattern, int frame)
+{
+    std::string name = pattern.filename().string();
+    const auto first = name.find('#');
+    if (first == std::string::npos) {
+        char digits[32];
+        std::snprintf(digits, sizeof digits, "%04d", frame);
+        const std::string stem = pattern.stem().string(), ext = pattern.extension().string();
+        return pattern.parent_path() / (stem + "." + digits + ext);
+    }
+    auto last = name.find_first_not_of('#', first);
+    if (last == std::string::npos) last = name.size();
+    std::string digits = std::to_string(frame);
+    if (digits.size() < last - first) digits.insert(0, last - first - digits.size(), '0');
+    name.replace(first, last - first, digits);
+    return pattern.parent_path() / name;
+}
+
+}  // namespace cg::algo

@@ -1,0 +1,80 @@
+#include "nodes/algo/PrimitiveScene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace cg::algo {
+
+PrimitiveSettings defaultPrimitiveSettings()
+{
+    PrimitiveSettings s;
+    s.sph.source.enabled = true;
+    s.sph.source.radius = 100.0;
+    s.sph.source.excessTemperature = 4.0;
+    s.sph.source.humidity = 0.95;
+    s.sph.source.relaxTime = 10.0;
+    return s;
+}
+
+std::int64_t primitiveParticleCount(const PrimitiveSettings& s)
+{
+    const double dx = s.sph.spacing;
+    if (!(dx > 0.0)) return -1;
+    const double nxy = std::round(s.width / dx), nz = std::round(s.height / dx);
+    if (!(nxy >= 1.0 && nz >= 1.0) || nxy > 4096.0 || nz > 4096.0) return -1;
+    return static_cast<std::int64_t>(nxy * nxy * nz);
+}
+
+PrimitiveResult simulatePrimitive(const PrimitiveSettings& s, const std::function<void()>& poll,
+                                  const std::function<void(int)>& progress)
+{
+    const std::int64_t n = primitiveParticleCount(s);
+    if (n < 1 || n > s.maxParticles)
+        throw std::invalid_argument("PrimitiveSim: the box needs " + std::to_string(n) +
+                                    " particles (allowed 1.." + std::to_string(s.maxParticles) +
+                                    ")");
+    if (s.frames < 1) throw std::invalid_argument("PrimitiveSim: frames must be >= 1");
+    if (!(s.frameTime > 0.0))
+        throw std::invalid_argument("PrimitiveSim: frame time must be positive");
+
+    SphSettings sph = s.sph;
+    const double lo[3] = {-0.5 * s.width, -0.5 * s.width, 0.0};
+    const double hi[3] = {0.5 * s.width, 0.5 * s.width, s.height};
+    sph.source.centre[0] = 0.0;
+    sph.source.centre[1] = 0.0;
+    sph.source.centre[2] = s.sourceHeight;
+    SphSolver solver(sph, lo, hi);
+
+    PrimitiveResult out;
+    out.frameTime = s.frameTime;
+    out.fluidParticles = solver.size();
+    std::vector<std::uint32_t> cloud;  // fluid index of each cloud id
+    std::vector<unsigned char> inCloud(solver.size(), 0);
+    const double* src = sph.source.centre;
+    for (int f = 0; f < s.frames; ++f) {
+        if (f > 0) {
+            out.subSteps += solver.advance(s.frameTime, poll);
+            out.maxDensityError = std::max(out.maxDensityError, solver.lastStats().maxDensityError);
+            out.meanDensityError =
+                std::max(out.meanDensityError, solver.lastStats().meanDensityError);
+        }
+        // New cloud particles join in index order, so ids do not depend on threads.
+        const std::vector<double>& qc = solver.condensed();
+        for (std::size_t i = 0; i < solver.size(); ++i)
+            if (!inCloud[i] && qc[i] > s.cloudThreshold) {
+                inCloud[i] = 1;
+                cloud.push_back(static_cast<std::uint32_t>(i));
+            }
+        out.counts.push_back(static_cast<std::uint32_t>(cloud.size()));
+        const std::vector<double>& x = solver.positions();
+        for (std::uint32_t i : cloud)
+            for (int a = 0; a < 3; ++a)
+                out.positions.push_back(static_cast<float>(x[3 * std::size_t{i} + a] - src[a]));
+        if (progress) progress(f);
+    }
+    return out;
+}
+
+}  // namespace cg::algo

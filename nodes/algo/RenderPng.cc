@@ -1,0 +1,61 @@
+#include "nodes/algo/RenderPng.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "nodes/algo/CounterRandom.h"
+#include "nodes/algo/PngFile.h"
+
+namespace cg::algo {
+
+std::vector<std::uint8_t> displayRgb8(const std::vector<float>& rgba, int width, int height,
+                                      const DisplaySettings& s)
+{
+    if (width < 1 || height < 1 ||
+        rgba.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4)
+        throw std::invalid_argument("displayRgb8: " + std::to_string(rgba.size()) +
+                                    " floats do not make a " + std::to_string(width) + " x " +
+                                    std::to_string(height) + " RGBA image");
+    const double scale = std::exp2(s.exposure);
+    const std::size_t n = rgba.size() / 4;
+    std::vector<std::uint8_t> out(n * 3);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t c = 0; c < 3; ++c) {
+            const double v = 255.0 * srgbEncode(toneMap(scale * rgba[i * 4 + c], s.curve));
+            double d = 0.0;
+            if (s.dither) {  // triangular PDF on (−1, 1) code values
+                const std::uint64_t k = i * 3 + c;
+                d = counterUniform(s.seed, 2 * k, 0x44495448ull) -
+                    counterUniform(s.seed, 2 * k + 1, 0x44495448ull);
+            }
+            out[i * 3 + c] = static_cast<std::uint8_t>(std::lround(std::clamp(v + d, 0.0, 255.0)));
+        }
+    }
+    return out;
+}
+
+void writePngRgb8(const std::string& path, int width, int height,
+                  const std::vector<std::uint8_t>& rgb)
+{
+    if (width < 1 || height < 1 ||
+        rgb.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3)
+        throw std::invalid_argument("writePngRgb8: bad image size");
+    const auto w = static_cast<std::size_t>(width);
+    std::vector<const unsigned char*> rows(static_cast<std::size_t>(height));
+    for (std::size_t r = 0; r < rows.size(); ++r) rows[r] = rgb.data() + r * w * 3;
+    writePng(path, width, height, 3, 8, rows, /*srgb=*/true);
+}
+
+Rgb8Image readPngRgb8(const std::string& path)
+{
+    PngPixels px = readPng(path, 3, 8, 1u << 16);
+    Rgb8Image img;
+    img.width = px.width;
+    img.height = px.height;
+    img.rgb = std::move(px.bytes);
+    return img;
+}
+
+}  // namespace cg::algo

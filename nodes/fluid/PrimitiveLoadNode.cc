@@ -1,0 +1,60 @@
+// PrimitiveLoad: a stored primitive-set file (format in nodes/algo/PrimitiveFile.h).
+
+#include "core/Error.h"
+#include "core/Hash.h"
+#include "core/Node.h"
+#include "core/Registry.h"
+#include "nodes/DeclHelpers.h"
+#include "nodes/algo/PrimitiveFile.h"
+#include "nodes/data/PrimitiveSet.h"
+#include "nodes/fluid/FluidNodes.h"
+
+namespace cg {
+
+namespace {
+
+class PrimitiveLoadNode final : public Node {
+public:
+    void cook(CookContext& ctx) override
+    {
+        const std::string& file = ctx.params().getString("file");
+        if (file.empty())
+            throw InputError(ctx.nodeId(), "PrimitiveLoad: parameter 'file' is empty");
+        algo::PrimitiveFileReader reader(file);
+        std::vector<float> positions = reader.readAll();
+        ctx.setOutput("primitive", std::make_shared<PrimitiveSetData>(
+                                       reader.frameTime(), reader.counts(), std::move(positions)));
+    }
+};
+
+}  // namespace
+
+void registerPrimitiveLoadNode(Registry& registry)
+{
+    NodeDecl d;
+    d.type = "PrimitiveLoad";
+    d.category = "fluid";
+    d.doc =
+        "Reads a primitive-set file (.cgp, written by WritePrimitive; format in "
+        "docs/primitive.md). Everything is validated: a truncated, altered or foreign file is "
+        "refused with the file name and byte offset. The key holds the file's content hash "
+        "(XXH3-64 of its bytes), not its path or time stamp.";
+    d.outputs = {port("primitive", "PrimitiveSet", "the stored primitive set")};
+    d.params = {
+        stringParam("file", "", "path of the .cgp file (relative to the working directory)")};
+    d.hashExtra = [](const ParamSet& p, Hasher& h) {
+        const std::string& file = p.getString("file");
+        std::uint64_t content = 0;  // an unreadable file fails at cook time, with its reason
+        try {
+            if (!file.empty()) content = algo::primitiveFileContentHash(file);
+        } catch (const InputError&) {
+        }
+        h.u64(content);
+    };
+    d.create = [] { return std::make_unique<PrimitiveLoadNode>(); };
+    // The contract test has no file to give it; tests/nodes/test_primitive_nodes.cc covers it.
+    d.quickParams = {{"__skipCook", "true"}};
+    registry.addNode(std::move(d));
+}
+
+}  // namespace cg

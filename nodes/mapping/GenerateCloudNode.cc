@@ -1,0 +1,68 @@
+// GenerateCloud: the cloud particles of one frame, made on demand from the source table
+// (Eq. 10-12).
+
+#include "core/Error.h"
+#include "core/Node.h"
+#include "core/Registry.h"
+#include "nodes/DeclHelpers.h"
+#include "nodes/data/CloudParticles.h"
+#include "nodes/data/CloudSources.h"
+#include "nodes/mapping/MappingNodes.h"
+#include "nodes/mapping/MappingViews.h"
+
+namespace cg {
+
+namespace {
+
+class GenerateCloudNode final : public Node {
+public:
+    void cook(CookContext& ctx) override
+    {
+        const auto sources = ctx.input<CloudSourcesData>("sources");
+        const auto condensation = ctx.input<CondensationData>("condensation");
+        const auto primitive = ctx.input<PrimitiveSetData>("primitive");
+        const PrimitiveViewHolder prim(*primitive);
+        std::uint64_t total = 0;
+        for (auto c : algo::cloudCounts(sources->table, ctx.frame(), prim.view, sources->settings)) total += c;
+        const auto limit = static_cast<std::uint64_t>(ctx.params().getInt("maxCloudParticles"));
+        if (total > limit) {
+            throw InputError(ctx.nodeId(), "frame " + std::to_string(ctx.frame()) + " has " +
+                                               std::to_string(total) +
+                                               " cloud particles, over parameter maxCloudParticles = " +
+                                               std::to_string(limit));
+        }
+        auto arrays = algo::generateCloudParticles(sources->table, ctx.frame(),
+                                                   condensationView(*condensation), prim.view,
+                                                   sources->settings, [&ctx] { ctx.checkCancelled(); });
+        ctx.setOutput("particles", std::make_shared<CloudParticlesData>(std::move(arrays.positions),
+                                                                        std::move(arrays.levels),
+                                                                        std::move(arrays.sources)));
+    }
+};
+
+}  // namespace
+
+void registerGenerateCloudNode(Registry& registry)
+{
+    NodeDecl d;
+    d.type = "GenerateCloud";
+    d.category = "mapping";
+    d.doc = "The cloud particles of this frame, generated from PrimitiveMapper's source table: "
+            "particle (L, j, i) is at P_s[L, j](t) + scale R[L, j] P_f[i](s), s = A[L, j] "
+            "(t - t0[L, j]) dt / ds (Eq. 10-11), with P_s the condensation particle (L = 1) or "
+            "the parent cloud particle (L >= 2, Eq. 12). P_f at a fractional s is interpolated "
+            "between primitive frames; past the last frame the last frame holds. Particles are "
+            "in source-table order, with their level and source index; the result does not "
+            "depend on the thread count. Nothing is kept between frames.";
+    d.inputs = {port("sources", "CloudSources", "the source table at this frame"),
+                port("condensation", "Condensation", "the condensation particles at this frame"),
+                port("primitive", "PrimitiveSet", "the 3D cloud primitive set")};
+    d.outputs = {port("particles", "CloudParticles", "the cloud particles of this frame")};
+    d.params = {intParam("maxCloudParticles", 100000000, "particles",
+                         "refuse a frame with more cloud particles than this, before allocating "
+                         "(17 bytes each; value ours)", 1, 4e9)};
+    d.create = [] { return std::make_unique<GenerateCloudNode>(); };
+    registry.addNode(std::move(d));
+}
+
+}  // namespace cg

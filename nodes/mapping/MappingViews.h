@@ -1,0 +1,46 @@
+#pragma once
+/// Borrowed views of node data for the node-free mapping algorithm.
+
+#include <vector>
+
+#include "nodes/algo/Mapping.h"
+#include "nodes/data/Map2D.h"
+#include "nodes/data/PrimitiveSet.h"
+#include "nodes/data/VapourParticles.h"
+
+namespace cg {
+
+inline algo::CondensationView condensationView(const CondensationData& c)
+{
+    algo::CondensationView v;
+    v.x = c.particles->statics->x.data();
+    v.y = c.particles->statics->y.data();
+    v.z = c.particles->z.data();
+    v.condensedFrame = c.condensedFrame.data();
+    v.count = c.particles->size();
+    return v;
+}
+
+inline algo::MapView mapView(const Map2DData& m)
+{
+    return {m.values.data(), m.nx, m.ny, m.cellSize};
+}
+
+/// Keeps the per-frame pointer table alive with the view.
+struct PrimitiveViewHolder {
+    explicit PrimitiveViewHolder(const PrimitiveSetData& p)
+    {
+        for (int s = 0; s < p.frames(); ++s) frames.push_back(p.frame(s));
+        view.counts = p.counts.data();
+        view.frames = frames.data();
+        view.frameCount = p.frames();
+        view.frameTime = p.frameTime;
+    }
+    PrimitiveViewHolder(const PrimitiveViewHolder&) = delete;
+    PrimitiveViewHolder& operator=(const PrimitiveViewHolder&) = delete;
+
+    std::vector<const float*> frames;
+    algo::PrimitiveView view;
+};
+
+}  // namespace cg

@@ -1,0 +1,132 @@
+// PrimitiveMapper: selects source particles level by level (Sec. 5.2, Eq. 12-16) and keeps
+// the growing table of source records; cloud particles come from GenerateCloud.
+
+#include <cmath>
+
+#include "core/CoreData.h"
+#include "core/Node.h"
+#include "core/Registry.h"
+#include "nodes/DeclHelpers.h"
+#include "nodes/data/CloudSources.h"
+#include "nodes/mapping/MappingNodes.h"
+#include "nodes/mapping/MappingViews.h"
+
+namespace cg {
+
+namespace {
+
+algo::MappingSettings settingsFrom(const CookContext& ctx)
+{
+    const ParamSet& p = ctx.params();
+    algo::MappingSettings s;
+    s.maxLevel = static_cast<int>(p.getInt("maxLevel"));
+    s.selectionRatio = p.getFloatList("selectionRatio");
+    s.firstStart = static_cast<int>(p.getInt("firstStart"));
+    s.levelDelay = static_cast<int>(p.getInt("levelDelay"));
+    for (std::int64_t w : p.getIntList("windowLength")) s.windowLength.push_back(static_cast<int>(w));
+    s.scaleCoefficient = p.getFloat("scaleCoefficient");
+    s.speedCoefficient = p.getFloat("speedCoefficient");
+    s.metresPerPrimitiveMetre = p.getFloat("metresPerPrimitiveMetre");
+    s.timeStep = ctx.timeStep();
+    s.seed = static_cast<std::uint64_t>(p.getInt("seed"));
+    s.maxSources = static_cast<std::uint64_t>(p.getInt("maxSources"));
+    return s;
+}
+
+class PrimitiveMapperNode final : public Node {
+public:
+    void cook(CookContext& ctx) override
+    {
+        const auto condensation = ctx.input<CondensationData>("condensation");
+        const auto map = ctx.input<Map2DData>("map");
+        const auto primitive = ctx.input<PrimitiveSetData>("primitive");
+        const auto previous = ctx.previous<CloudSourcesData>("sources");
+        const algo::MappingSettings settings = settingsFrom(ctx);
+        const PrimitiveViewHolder prim(*primitive);
+        algo::SourceTable table = algo::stepSources(
+            previous ? previous->table : algo::SourceTable{}, ctx.frame(), condensation->firstFrame,
+            condensationView(*condensation), mapView(*map), prim.view, settings);
+
+        const auto counts = algo::cloudCounts(table, ctx.frame(), prim.view, settings);
+        std::vector<std::int64_t> perLevel(counts.begin(), counts.end());
+        std::int64_t total = 0;
+        for (auto c : perLevel) total += c;
+        ctx.setOutput("cloudCount", std::make_shared<IntData>(total));
+        std::string text = "frame " + std::to_string(ctx.frame()) + ":";
+        for (std::size_t l = 0; l < perLevel.size(); ++l)
+            text += " L" + std::to_string(l + 1) + "=" + std::to_string(perLevel[l]);
+        text += " total=" + std::to_string(total) + " sources=" + std::to_string(table.sources.size()) +
+                " Lmax=" + std::to_string(table.topLevel) + "\n";
+        ctx.setOutput("summary", std::make_shared<TextData>(text));
+        ctx.setOutput("sources", std::make_shared<CloudSourcesData>(std::move(table), settings));
+    }
+};
+
+}  // namespace
+
+void registerPrimitiveMapperNode(Registry& registry)
+{
+    NodeDecl d;
+    d.type = "PrimitiveMapper";
+    d.category = "mapping";
+    d.doc =
+        "The recursive mapping of Sec. 5.2 (pseudocode lines 15-28). Each frame t, every active "
+        "level L <= L_max whose window [t_s[L], t_e[L]] holds t selects new source particles so "
+        "that G[L](t) = floor(M[L] x candidates) (Eq. 14): condensation particles for L = 1, "
+        "cloud particles of level L-1 for L >= 2 (Eq. 12, 15), uniformly at random from a "
+        "counter-based generator keyed by (seed, level, frame, index), without replacement: a "
+        "candidate becomes a source at most once (a repeated draw probes forward to the next "
+        "free candidate). Each source records its parent, t0 = t, A = 1 + A0 fNoise and "
+        "R = R0 fNoise with fNoise read under the source (Eq. 16). t_s[1] is the first "
+        "condensation frame unless firstStart is set; t_s[L] = t_s[L-1] + chi; t_e[L] = t_s[L] "
+        "+ windowLength[L]. L_max starts at 1 and grows by one once the top level has cloud "
+        "particles (lines 26-27), up to maxLevel. Only this table is kept: GenerateCloud makes "
+        "the cloud particles of a frame on demand. A simulation: each frame extends the "
+        "previous frame's table.";
+    d.simulation = true;
+    d.readsTimeStep = true;
+    d.inputs = {port("condensation", "Condensation", "the condensation particles at this frame (N_v(t), P_v)"),
+                port("map", "Map2D", "the density map fNoise of Eq. 16 (the same map as Eq. 3-4)"),
+                port("primitive", "PrimitiveSet", "the 3D cloud primitive set (N_f(s), P_f(s))")};
+    d.outputs = {port("sources", "CloudSources", "the table of source records at this frame"),
+                 port("cloudCount", "Int", "cloud particles of all levels at this frame (Eq. 13)"),
+                 port("summary", "Text", "\"frame t: L1=N_c[1] ... total= sources= Lmax=\"")};
+    ParamDecl ratios;
+    ratios.name = "selectionRatio";
+    ratios.type = ParamType::FloatList;
+    ratios.defaultValue = std::vector<double>{0.2};
+    ratios.min = 0.0;
+    ratios.max = 1.0;
+    ratios.minSize = 1;
+    ratios.maxSize = 32;
+    ratios.doc = "M[L] of Eq. 14, per level; the last value repeats (paper: 0.2 in Fig. 6)";
+    ParamDecl windows;
+    windows.name = "windowLength";
+    windows.type = ParamType::IntList;
+    windows.defaultValue = std::vector<std::int64_t>{100, 60};
+    windows.min = 0.0;
+    windows.max = 1e6;
+    windows.minSize = 1;
+    windows.maxSize = 32;
+    windows.units = "frames";
+    windows.doc = "t_e[L] - t_s[L], per level; the last value repeats (paper, Fig. 6: 100 for "
+                  "L = 1, 60 after)";
+    d.params = {
+        intParam("maxLevel", 5, "", "cap on L_max, the highest recursive level (paper: 4 and 5)", 1, 32),
+        ratios,
+        intParam("firstStart", -1, "frame", "t_s[1]; -1 takes the first condensation frame", -1, 1e6),
+        intParam("levelDelay", 50, "frames", "chi: t_s[L] = t_s[L-1] + chi (paper, Fig. 6: 50)", 0, 1e6),
+        windows,
+        floatParam("scaleCoefficient", 1.5, "", "R0 of Eq. 16: R = R0 fNoise (paper: 1.5)", 0, 1e3),
+        floatParam("speedCoefficient", 2.0, "", "A0 of Eq. 16: A = 1 + A0 fNoise (paper: 2.0)", 0, 1e3),
+        floatParam("metresPerPrimitiveMetre", 1.0, "m/m",
+                   "global scale of every mapped primitive copy (value ours)", 1e-6, 1e6),
+        intParam("seed", 0, "", "keys the random selection", 0),
+        intParam("maxSources", 1 << 24, "sources",
+                 "selection stops at this many sources, a memory guard (value ours)", 1, 1e9),
+    };
+    d.create = [] { return std::make_unique<PrimitiveMapperNode>(); };
+    registry.addNode(std::move(d));
+}
+
+}  // namespace cg

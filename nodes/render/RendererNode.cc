@@ -1,0 +1,189 @@
+// Renderer: a fog volume to a linear-radiance image (sun, sky, ground, multiple scattering).
+
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "core/Error.h"
+#include "core/Node.h"
+#include "core/Registry.h"
+#include "nodes/DeclHelpers.h"
+#include "nodes/algo/RenderVolume.h"
+#include "nodes/data/FogVolume.h"
+#include "nodes/data/Image.h"
+#include "nodes/render/RenderNodes.h"
+
+namespace cg {
+
+namespace {
+
+/// A vec3 parameter; min and max, when given, bound each component.
+ParamDecl vec3Param(std::string name, Vec3 def, std::string units, std::string doc,
+                    std::optional<double> min = std::nullopt,
+                    std::optional<double> max = std::nullopt)
+{
+    ParamDecl p = floatParam(std::move(name), 0.0, std::move(units), std::move(doc), min, max);
+    p.type = ParamType::Vector3;
+    p.defaultValue = def;
+    return p;
+}
+
+algo::RenderVec3 vec(const ParamSet& p, const char* name)
+{
+    const Vec3 v = p.getVec3(name);
+    return {v[0], v[1], v[2]};
+}
+
+algo::RenderSettings settingsFrom(const ParamSet& p)
+{
+    algo::RenderSettings s;
+    s.camera.position = vec(p, "cameraPosition");
+    s.camera.lookAt = vec(p, "cameraLookAt");
+    s.camera.up = vec(p, "cameraUp");
+    s.camera.fovDegrees = p.getFloat("fov");
+    s.camera.width = static_cast<int>(p.getInt("width"));
+    s.camera.height = static_cast<int>(p.getInt("height"));
+    s.sun.direction = vec(p, "sunDirection");
+    s.sun.colour = vec(p, "sunColour");
+    s.sun.intensity = p.getFloat("sunIntensity");
+    s.sky.zenith = vec(p, "skyZenith");
+    s.sky.horizon = vec(p, "skyHorizon");
+    s.sky.ambient = p.getFloat("ambient");
+    s.sky.occlusion = p.getFloat("skyOcclusion");
+    s.ground.enabled = p.getBool("ground");
+    s.ground.albedo = vec(p, "groundAlbedo");
+    s.ground.hazeDistance = p.getFloat("hazeDistance");
+    s.medium.extinction = p.getFloat("extinction");
+    s.medium.albedo = p.getFloat("albedo");
+    s.medium.g = p.getFloat("g");
+    s.medium.g2 = p.getFloat("g2");
+    s.medium.lobeBlend = p.getFloat("lobeBlend");
+    s.multiScatter.octaves = static_cast<int>(p.getInt("octaves"));
+    s.multiScatter.attenuation = p.getFloat("msAttenuation");
+    s.multiScatter.contribution = p.getFloat("msContribution");
+    s.multiScatter.eccentricity = p.getFloat("msEccentricity");
+    s.march.step = p.getFloat("step");
+    s.march.lightTexel = p.getFloat("lightTexel");
+    s.march.lightStep = p.getFloat("lightStep");
+    s.march.jitter = p.getBool("jitter");
+    s.march.seed = static_cast<std::uint64_t>(p.getInt("jitterSeed"));
+    return s;
+}
+
+class RendererNode final : public Node {
+public:
+    void cook(CookContext& ctx) override
+    {
+        const auto volume = ctx.input<FogVolumeData>("volume");
+        const algo::RenderSettings settings = settingsFrom(ctx.params());
+        algo::RenderedImage img;
+        try {
+            img = algo::renderFogVolume(*volume->grid, settings,
+                                        [&ctx] { return ctx.cancelToken().cancelled(); });
+        } catch (const std::invalid_argument& e) {
+            throw InputError(ctx.nodeId(), e.what());
+        }
+        ctx.checkCancelled();
+        ctx.setOutput("image",
+                      std::make_shared<ImageData>(img.width, img.height, std::move(img.rgba)));
+    }
+};
+
+}  // namespace
+
+void registerRendererNode(Registry& registry)
+{
+    const algo::RenderSettings def;
+    const auto v3 = [](const algo::RenderVec3& v) { return Vec3{v.x(), v.y(), v.z()}; };
+    NodeDecl d;
+    d.type = "Renderer";
+    d.version = 1;
+    d.category = "render";
+    d.doc =
+        "Ray-marches a fog volume (sigma_t = extinction x density, sigma_s = albedo x sigma_t) "
+        "with empty-space skipping over the VDB leaves. Each sample scatters sun light "
+        "(two-lobe Henyey-Greenstein phase; optical depth toward the sun from a light map "
+        "precomputed per frame) with multiple scattering approximated by octaves (Wrenninge et "
+        "al. 2013: octave i has weight b^i, optical depth x a^i, asymmetry x c^i), plus sky light "
+        "occluded by the optical depth straight up. Behind the volume: the ground z = 0 (lit, "
+        "with the cloud's shadow, hazed with distance) or a zenith/horizon sky gradient. Output: "
+        "linear radiance RGBA, top row first, before exposure and tone map (WriteImage applies "
+        "them); alpha is the volume's opacity 1 - T. Independent of the thread count. See "
+        "docs/rendering.md.";
+    d.inputs = {port("volume", "FogVolume", "the cloud density (fog volume, metres)")};
+    d.outputs = {port("image", "Image", "linear radiance RGBA, alpha = volume opacity")};
+    d.params = {
+        intParam("width", def.camera.width, "px", "image width", 1, 16384),
+        intParam("height", def.camera.height, "px", "image height", 1, 16384),
+        floatParam("fov", def.camera.fovDegrees, "deg", "vertical field of view", 1, 170),
+        vec3Param("cameraPosition", v3(def.camera.position), "m", "camera position (z up)"),
+        vec3Param("cameraLookAt", v3(def.camera.lookAt), "m", "point at the image centre"),
+        vec3Param("cameraUp", v3(def.camera.up), "", "up direction (any length, not along the view)"),
+        vec3Param("sunDirection", v3(def.sun.direction), "",
+                  "direction toward the sun (normalised; z > 0 above the horizon)"),
+        vec3Param("sunColour", v3(def.sun.colour), "", "sun colour, linear RGB", 0, 100),
+        floatParam("sunIntensity", def.sun.intensity, "",
+                   "sun irradiance scale: a white surface facing the sun has radiance "
+                   "colour x intensity / pi (our choice)", 0, 1e6),
+        vec3Param("skyZenith", v3(def.sky.zenith), "", "sky radiance straight up, linear RGB",
+                  0, 1e6),
+        vec3Param("skyHorizon", v3(def.sky.horizon), "",
+                  "sky radiance at and below the horizon, linear RGB", 0, 1e6),
+        floatParam("ambient", def.sky.ambient, "",
+                   "scale of the sky light received by cloud and ground (1 = physical)", 0, 100),
+        floatParam("skyOcclusion", def.sky.occlusion, "",
+                   "sky light in the cloud falls as exp(-skyOcclusion x optical depth up)", 0, 10),
+        boolParam("ground", def.ground.enabled, "draw the ground plane z = 0 with cloud shadows"),
+        vec3Param("groundAlbedo", v3(def.ground.albedo), "", "ground reflectance, linear RGB",
+                  0, 1),
+        floatParam("hazeDistance", def.ground.hazeDistance, "m",
+                   "the ground fades to the horizon colour as exp(-distance / this); 0 = off",
+                   0, 1e7),
+        floatParam("extinction", def.medium.extinction, "1/m",
+                   "extinction coefficient per unit density (0.05 ~ cumulus liquid water)",
+                   0, 1e3),
+        floatParam("albedo", def.medium.albedo, "", "single-scattering albedo", 0, 1),
+        floatParam("g", def.medium.g, "", "asymmetry of the forward HG lobe", -0.99, 0.99),
+        floatParam("g2", def.medium.g2, "", "asymmetry of the second HG lobe", -0.99, 0.99),
+        floatParam("lobeBlend", def.medium.lobeBlend, "", "weight of the second lobe, 0 = one lobe",
+                   0, 1),
+        intParam("octaves", def.multiScatter.octaves, "",
+                 "multiple-scattering octaves (1 = single scattering)", 1, 16),
+        floatParam("msAttenuation", def.multiScatter.attenuation, "",
+                   "a: octave i sees the sun's optical depth x a^i", 0, 1),
+        floatParam("msContribution", def.multiScatter.contribution, "",
+                   "b: octave i is weighted b^i", 0, 1),
+        floatParam("msEccentricity", def.multiScatter.eccentricity, "",
+                   "c: octave i has phase asymmetry x c^i", 0, 1),
+        floatParam("step", def.march.step, "voxels", "camera-ray step", 0.05, 16),
+        floatParam("lightTexel", def.march.lightTexel, "voxels",
+                   "texel of the sun light map (grown if the map would exceed 8M texels)",
+                   0.25, 64),
+        floatParam("lightStep", def.march.lightStep, "voxels", "step when filling the light maps",
+                   0.1, 16),
+        boolParam("jitter", def.march.jitter,
+                  "offset each pixel's samples by a per-pixel random fraction of a step "
+                  "(turns banding into fine grain)"),
+        intParam("jitterSeed", 0, "", "seed of the jitter (counter-based on the pixel index)", 0,
+                 1e15),
+    };
+    d.validate = [](const ParamSet& p, const ParamChecker& check) {
+        check.checkAllocation("width", {p.getInt("width"), p.getInt("height")}, 4 * sizeof(float));
+        const Vec3 a = p.getVec3("cameraPosition"), b = p.getVec3("cameraLookAt");
+        if (a == b) check.fail("cameraLookAt", "equals cameraPosition");
+        const Vec3 s = p.getVec3("sunDirection");
+        if (s[0] == 0.0 && s[1] == 0.0 && s[2] == 0.0) check.fail("sunDirection", "is zero");
+        const Vec3 u = p.getVec3("cameraUp");
+        const double vx = b[0] - a[0], vy = b[1] - a[1], vz = b[2] - a[2];
+        const double cx = vy * u[2] - vz * u[1], cy = vz * u[0] - vx * u[2],
+                     cz = vx * u[1] - vy * u[0];
+        if (cx * cx + cy * cy + cz * cz == 0.0)
+            check.fail("cameraUp", "is zero or along the view direction");
+    };
+    d.create = [] { return std::make_unique<RendererNode>(); };
+    registry.addNode(std::move(d));
+}
+
+}  // namespace cg

@@ -1,0 +1,103 @@
+// Voxelizer: cloud particles to an OpenVDB fog volume (Sec. 6.3).
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "core/Error.h"
+#include "core/Node.h"
+#include "core/Registry.h"
+#include "nodes/DeclHelpers.h"
+#include "nodes/algo/Voxelize.h"
+#include "nodes/data/CloudParticles.h"
+#include "nodes/data/FogVolume.h"
+#include "nodes/volume/VolumeNodes.h"
+
+namespace cg {
+
+namespace {
+
+class VoxelizerNode final : public Node {
+public:
+    void cook(CookContext& ctx) override
+    {
+        const auto particles = ctx.input<CloudParticlesData>("particles");
+        const ParamSet& p = ctx.params();
+        algo::VoxelizeSettings s;
+        s.voxelSize = p.getFloat("voxelSize");
+        s.radius = p.getFloat("radius");
+        s.kernel = algo::voxelKernelFromName(p.getString("kernel"));
+        s.density = p.getFloat("density");
+        s.clamp = p.getBool("clamp");
+
+        openvdb::FloatGrid::Ptr grid;
+        try {
+            grid = algo::voxelizeParticles(particles->positions.data(), particles->size(), s,
+                                           [&] { ctx.checkCancelled(); });
+        } catch (const std::invalid_argument& e) {
+            throw InputError(ctx.nodeId(), e.what());
+        }
+        algo::filterVolume(*grid, algo::voxelFilterFromName(p.getString("filter")),
+                           static_cast<int>(p.getInt("filterWidth")),
+                           static_cast<int>(p.getInt("filterIterations")));
+
+        // Provenance for whoever opens the file (vdb_print, Houdini, Blender).
+        grid->insertMeta("frame", openvdb::Int32Metadata(ctx.frame()));
+        grid->insertMeta("units", openvdb::StringMetadata("metres"));
+        grid->insertMeta("voxel_size_m", openvdb::DoubleMetadata(s.voxelSize));
+        grid->insertMeta("particle_radius_m", openvdb::DoubleMetadata(s.radius));
+        grid->insertMeta("kernel", openvdb::StringMetadata(p.getString("kernel")));
+        grid->insertMeta("particle_count",
+                         openvdb::Int64Metadata(static_cast<openvdb::Int64>(particles->size())));
+        ctx.setOutput("volume", std::make_shared<FogVolumeData>(grid));
+    }
+};
+
+}  // namespace
+
+void registerVoxelizerNode(Registry& registry)
+{
+    NodeDecl d;
+    d.type = "Voxelizer";
+    d.version = 1;
+    d.category = "volume";
+    d.doc =
+        "Splats cloud particles into a sparse OpenVDB fog volume (Sec. 6.3: volume data with "
+        "alpha values): a FloatGrid named 'density', class fog volume, background 0, whose "
+        "linear transform has the voxel size in metres; voxel (i, j, k) is centred at "
+        "(i, j, k) * voxelSize. Each particle adds density * w(r) to every voxel centre at "
+        "distance r < radius, with w = (1 - r^2/radius^2)^3 ('smooth', integral "
+        "64 pi radius^3 / 315 m^3 per unit density) or w = 1 ('sphere', integral "
+        "4/3 pi radius^3). Sums are clamped to [0, 1] unless clamp is off, then optionally "
+        "filtered on the active voxels. Only leaves that particles touch are allocated; the "
+        "grid is identical for any thread count. Metadata: frame, units ('metres'), "
+        "voxel_size_m, particle_radius_m, kernel, particle_count. See docs/voxelizer.md.";
+    d.frameDependent = true;  // the frame is written into the grid's metadata
+    d.inputs = {port("particles", "CloudParticles", "the cloud particles, positions in metres")};
+    d.outputs = {port("volume", "FogVolume", "the density grid, values in [0, 1] when clamped")};
+    d.params = {
+        floatParam("voxelSize", 4.0, "m", "voxel edge length (value ours)", 0.01, 1000.0),
+        floatParam("radius", 8.0, "m",
+                   "kernel radius R of one particle, at most 32 voxels (value ours)", 0.01,
+                   10000.0),
+        stringParam("kernel", "smooth",
+                    "particle profile: smooth = (1 - r^2/R^2)^3, sphere = 1 inside R",
+                    {"smooth", "sphere"}),
+        floatParam("density", 0.25, "",
+                   "density one particle adds at its centre (fog density, 1 = opaque; value ours)",
+                   0.0, 1000.0),
+        boolParam("clamp", true, "clamp summed density to [0, 1] (a fog volume's range)"),
+        stringParam("filter", "none", "OpenVDB smoothing of the active voxels after splatting",
+                    {"none", "mean", "gaussian", "median"}),
+        intParam("filterWidth", 1, "voxels", "filter half-width: the stencil is (2 w + 1)^3", 1, 8),
+        intParam("filterIterations", 1, "", "filter passes", 1, 16),
+    };
+    d.validate = [](const ParamSet& p, const ParamChecker& check) {
+        if (p.getFloat("radius") > 32.0 * p.getFloat("voxelSize"))
+            check.fail("radius", "radius must be at most 32 voxel sizes");
+    };
+    d.create = [] { return std::make_unique<VoxelizerNode>(); };
+    registry.addNode(std::move(d));
+}
+
+}  // namespace cg

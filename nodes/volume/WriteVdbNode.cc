@@ -1,0 +1,84 @@
+// WriteVDB: a fog volume as an OpenVDB file per frame, written atomically.
+
+#include <memory>
+#include <string>
+
+#include <openvdb/io/File.h>
+
+#include "core/AtomicFile.h"
+#include "core/CoreData.h"
+#include "core/Error.h"
+#include "core/Node.h"
+#include "core/Registry.h"
+#include "nodes/DeclHelpers.h"
+#include "nodes/data/FogVolume.h"
+#include "nodes/io/WriterSupport.h"
+#include "nodes/volume/VolumeNodes.h"
+
+namespace cg {
+
+namespace {
+
+/// OpenVDB compression flags for a "compression" choice. Debian's OpenVDB 10 is built with
+/// Blosc; "auto" falls back to zip on a build without it (checked at run time).
+std::uint32_t compressionFlags(const std::string& choice, const std::string& nodeId)
+{
+    const bool blosc = openvdb::io::Archive::hasBloscCompression();
+    if (choice == "none") return openvdb::io::COMPRESS_NONE;
+    if (choice == "zip") return openvdb::io::COMPRESS_ACTIVE_MASK | openvdb::io::COMPRESS_ZIP;
+    if (choice == "blosc" && !blosc)
+        throw InputError(nodeId, "this OpenVDB build has no Blosc compression; use zip or auto");
+    return openvdb::io::COMPRESS_ACTIVE_MASK |
+           (blosc ? openvdb::io::COMPRESS_BLOSC : openvdb::io::COMPRESS_ZIP);
+}
+
+class WriteVdbNode final : public Node {
+public:
+    void cook(CookContext& ctx) override
+    {
+        if (!writesThisFrame(ctx)) return;
+        const auto volume = ctx.input<FogVolumeData>("volume");
+        const std::uint32_t flags = compressionFlags(ctx.params().getString("compression"),
+                                                     ctx.nodeId());
+        // A shallow copy shares the (immutable) tree; only its save flag differs.
+        openvdb::FloatGrid::Ptr grid =
+            openvdb::ConstPtrCast<openvdb::FloatGrid>(volume->grid)->copy();
+        grid->setSaveFloatAsHalf(ctx.params().getBool("halfFloat"));
+
+        const std::filesystem::path path = ctx.outputPath("file");
+        AtomicOutput out(path);  // OpenVDB truncates and writes in place: write beside, rename
+        {
+            openvdb::io::File file(out.tempPath().string());
+            file.setCompression(flags);
+            openvdb::MetaMap fileMeta;
+            fileMeta.insertMeta("creator", openvdb::StringMetadata("CloudGraph WriteVDB"));
+            file.write(openvdb::GridCPtrVec{grid}, fileMeta);
+            file.close();
+        }
+        ctx.checkCancelled();
+        out.commit();
+        ctx.setOutput("files", std::make_shared<TextData>(path.string()));
+    }
+};
+
+}  // namespace
+
+void registerWriteVdbNode(Registry& registry)
+{
+    NodeDecl d = writerDecl(
+        "WriteVDB",
+        "Writes a fog volume as an OpenVDB file (one grid, 'density'), readable by vdb_print, "
+        "vdb_render, Houdini and Blender. #### in the name becomes the frame number; the file "
+        "is written beside the target and renamed, so it appears whole or not at all.",
+        port("volume", "FogVolume", "the volume to write"), "density.####.vdb");
+    d.params.push_back(boolParam(
+        "halfFloat", false, "store values as 16-bit half floats (half the size, ~3 digits)"));
+    d.params.push_back(stringParam(
+        "compression", "auto",
+        "auto = blosc when this OpenVDB has it (Debian's does), else zip; none = uncompressed",
+        {"auto", "blosc", "zip", "none"}));
+    d.create = [] { return std::make_unique<WriteVdbNode>(); };
+    registry.addNode(std::move(d));
+}
+
+}  // namespace cg

@@ -1,0 +1,304 @@
+// The recursive mapping of Sec. 5.2 checked against Eq. 10-16 recomputed independently.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include <tbb/global_control.h>
+
+#include "nodes/algo/Mapping.h"
+
+namespace cg::algo {
+
+namespace {
+
+/// A small scene: a synthetic primitive, rising condensation particles, a ramp map.
+struct Scene {
+    static constexpr int kParticles = 40;
+    static constexpr int kPrimitiveFrames = 12;
+
+    std::vector<std::uint32_t> counts;
+    std::vector<std::vector<float>> primitiveFrames;
+    std::vector<const float*> framePointers;
+    std::vector<float> map;
+    MappingSettings settings;
+
+    Scene()
+    {
+        for (int s = 0; s < kPrimitiveFrames; ++s) {
+            counts.push_back(static_cast<std::uint32_t>(3 + 2 * s));
+            std::vector<float> f;
+            for (std::uint32_t i = 0; i < counts.back(); ++i)
+                f.insert(f.end(), {std::sin(0.7f * i) * (1.0f + s), std::cos(0.3f * i) * (1.0f + s),
+                                   0.5f * static_cast<float>(s) + 0.1f * static_cast<float>(i)});
+            primitiveFrames.push_back(std::move(f));
+        }
+        for (const auto& f : primitiveFrames) framePointers.push_back(f.data());
+        for (int iy = 0; iy < 8; ++iy)
+            for (int ix = 0; ix < 8; ++ix) map.push_back(static_cast<float>(ix + iy) / 14.0f);
+        settings.maxLevel = 3;
+        settings.selectionRatio = {0.25, 0.05};
+        settings.levelDelay = 4;
+        settings.windowLength = {6, 5};
+        settings.metresPerPrimitiveMetre = 3.0;
+        settings.timeStep = 0.5;
+        settings.seed = 11;
+    }
+
+    PrimitiveView primitive() const
+    {
+        PrimitiveView p;
+        p.counts = counts.data();
+        p.frames = framePointers.data();
+        p.frameCount = kPrimitiveFrames;
+        p.frameTime = 0.25;
+        return p;
+    }
+    MapView mapView() const { return {map.data(), 8, 8, 100.0}; }
+
+    /// Particle k condenses at frame 3 + k % 6 and rises 10 m per frame.
+    struct Frame {
+        std::vector<float> x, y, z;
+        std::vector<std::int32_t> condensed;
+    };
+    Frame condensation(int frame) const
+    {
+        Frame f;
+        for (int k = 0; k < kParticles; ++k) {
+            f.x.push_back(20.0f * static_cast<float>(k % 8) * 5.0f);
+            f.y.push_back(15.0f * static_cast<float>(k / 8) * 5.0f);
+            f.z.push_back(1400.0f + 10.0f * static_cast<float>(frame));
+            const int at = 3 + k % 6;
+            f.condensed.push_back(frame >= at ? at : -1);
+        }
+        return f;
+    }
+    static CondensationView view(const Frame& f)
+    {
+        return {f.x.data(), f.y.data(), f.z.data(), f.condensed.data(), f.x.size()};
+    }
+};
+
+/// N_f(floor(A (t - t0) dt / ds)), clamped to the last frame: Eq. 11 and 13 written out.
+std::uint64_t expectedClusterSize(const Scene& scene, const Source& src, int t)
+{
+    if (t < src.startFrame) return 0;
+    const double s = src.speed * (t - src.startFrame) * scene.settings.timeStep / 0.25;
+    const int f = std::min(static_cast<int>(std::floor(s)), Scene::kPrimitiveFrames - 1);
+    return scene.counts[static_cast<std::size_t>(f)];
+}
+
+/// P_f[i](s) with linear interpolation, written out independently.
+void expectedFluid(const Scene& scene, std::uint32_t i, double s, double out[3])
+{
+    const int last = Scene::kPrimitiveFrames - 1;
+    if (s >= last) {
+        for (int k = 0; k < 3; ++k) out[k] = scene.primitiveFrames[static_cast<std::size_t>(last)][3 * i + k];
+        return;
+    }
+    const int a = static_cast<int>(std::floor(s));
+    const double w = s - a;
+    for (int k = 0; k < 3; ++k) {
+        const double pa = scene.primitiveFrames[static_cast<std::size_t>(a)][3 * i + k];
+        const double pb = scene.primitiveFrames[static_cast<std::size_t>(a + 1)][3 * i + k];
+        out[k] = pa + w * (pb - pa);
+    }
+}
+
+/// Eq. 10 and 12, recursively: position of cloud particle (j, i) at frame t.
+void expectedCloudParticle(const Scene& scene, const SourceTable& table, const Scene::Frame& c,
+                           std::size_t j, std::uint32_t i, int t, double out[3])
+{
+    const Source& src = table.sources[j];
+    double origin[3];
+    if (src.level == 1) {
+        origin[0] = c.x[src.parent], origin[1] = c.y[src.parent], origin[2] = c.z[src.parent];
+    } else {
+        expectedCloudParticle(scene, table, c, src.parent, src.parentFluid, t, origin);
+    }
+    double f[3];
+    expectedFluid(scene, i, src.speed * (t - src.startFrame) * scene.settings.timeStep / 0.25, f);
+    const double r = scene.settings.metresPerPrimitiveMetre * src.scale;
+    for (int k = 0; k < 3; ++k) out[k] = origin[k] + r * f[k];
+}
+
+struct MappingRun {
+    std::vector<SourceTable> tables;  // after each frame
+    std::vector<Scene::Frame> frames;
+};
+
+MappingRun run(const Scene& scene, int frames)
+{
+    MappingRun r;
+    SourceTable table;
+    int first = -1;
+    for (int t = 0; t < frames; ++t) {
+        r.frames.push_back(scene.condensation(t));
+        for (auto f : r.frames.back().condensed)
+            if (f >= 0 && (first < 0 || f < first)) first = f;
+        table = stepSources(table, t, first, Scene::view(r.frames.back()), scene.mapView(),
+                            scene.primitive(), scene.settings);
+        r.tables.push_back(table);
+    }
+    return r;
+}
+
+}  // namespace
+
+TEST(Mapping, Eq13CountsMatchTheSumOverSources)
+{
+    Scene scene;
+    const MappingRun r = run(scene, 30);
+    bool sawLevel2 = false;
+    for (int t = 0; t < 30; ++t) {
+        const SourceTable& table = r.tables[static_cast<std::size_t>(t)];
+        std::vector<std::uint64_t> expected(3, 0);
+        for (const Source& src : table.sources) expected[src.level - 1u] += expectedClusterSize(scene, src, t);
+        EXPECT_EQ(cloudCounts(table, t, scene.primitive(), scene.settings), expected) << "frame " << t;
+        const auto generated = generateCloudParticles(table, t, Scene::view(r.frames[static_cast<std::size_t>(t)]),
+                                                      scene.primitive(), scene.settings);
+        EXPECT_EQ(generated.levels.size(), expected[0] + expected[1] + expected[2]);
+        sawLevel2 = sawLevel2 || expected[1] > 0;
+    }
+    EXPECT_TRUE(sawLevel2);
+}
+
+TEST(Mapping, Eq14SourcesFollowTheRatioInsideTheWindowOnly)
+{
+    Scene scene;
+    const MappingRun r = run(scene, 30);
+    const int ts1 = 3;  // the first condensation frame
+    for (int t = 0; t < 30; ++t) {
+        const SourceTable& table = r.tables[static_cast<std::size_t>(t)];
+        const auto counts = cloudCounts(table, t, scene.primitive(), scene.settings);
+        std::uint64_t condensed = 0;
+        for (auto f : r.frames[static_cast<std::size_t>(t)].condensed) condensed += f >= 0;
+        for (int level = 1; level <= 2; ++level) {
+            std::uint64_t g = 0;
+            for (const Source& src : table.sources) g += src.level == level;
+            const int start = ts1 + (level - 1) * scene.settings.levelDelay;
+            const int end = start + windowLength(scene.settings, level);
+            const std::uint64_t candidates = level == 1 ? condensed : counts[0];
+            if (t >= start && t <= end && level <= r.tables[static_cast<std::size_t>(std::max(t - 1, 0))].topLevel) {
+                EXPECT_EQ(g, static_cast<std::uint64_t>(std::floor(selectionRatio(scene.settings, level) *
+                                                                   static_cast<double>(candidates))))
+                    << "level " << level << " frame " << t;
+            }
+        }
+        for (const Source& src : table.sources) {
+            const int start = ts1 + (src.level - 1) * scene.settings.levelDelay;
+            EXPECT_GE(src.startFrame, start);
+            EXPECT_LE(src.startFrame, start + windowLength(scene.settings, src.level));
+        }
+        EXPECT_LE(table.topLevel, scene.settings.maxLevel);
+    }
+}
+
+TEST(Mapping, Eq10To12PositionsMatchTheRecursiveFormula)
+{
+    Scene scene;
+    const MappingRun r = run(scene, 30);
+    std::set<int> levelsSeen;
+    for (int t : {5, 12, 20, 29}) {
+        const SourceTable& table = r.tables[static_cast<std::size_t>(t)];
+        const auto& c = r.frames[static_cast<std::size_t>(t)];
+        const auto out = generateCloudParticles(table, t, Scene::view(c), scene.primitive(), scene.settings);
+        std::size_t q = 0;
+        for (std::size_t j = 0; j < table.sources.size(); ++j) {
+            const auto n = expectedClusterSize(scene, table.sources[j], t);
+            for (std::uint32_t i = 0; i < n; ++i, ++q) {
+                double e[3];
+                expectedCloudParticle(scene, table, c, j, i, t, e);
+                for (int k = 0; k < 3; ++k)
+                    ASSERT_NEAR(out.positions[3 * q + k], e[k], 1e-3 * std::max(1.0, std::abs(e[k])))
+                        << "source " << j << " particle " << i << " frame " << t;
+                EXPECT_EQ(out.sources[q], j);
+                EXPECT_EQ(out.levels[q], table.sources[j].level);
+                levelsSeen.insert(table.sources[j].level);
+            }
+        }
+        EXPECT_EQ(q, out.levels.size());
+    }
+    EXPECT_TRUE(levelsSeen.count(1) && levelsSeen.count(2));
+}
+
+TEST(Mapping, ALevel2ClusterFollowsItsParentCloudParticle)
+{
+    Scene scene;
+    const MappingRun r = run(scene, 30);
+    const SourceTable& final = r.tables.back();
+    std::size_t child = final.sources.size();
+    for (std::size_t j = 0; j < final.sources.size() && child == final.sources.size(); ++j)
+        if (final.sources[j].level == 2) child = j;
+    ASSERT_LT(child, final.sources.size());
+    const Source& src = final.sources[child];
+    for (int t = src.startFrame; t < 30; ++t) {
+        const auto& c = r.frames[static_cast<std::size_t>(t)];
+        const auto origins = sourceOrigins(final, t, Scene::view(c), scene.primitive(), scene.settings);
+        const auto cloud = generateCloudParticles(final, t, Scene::view(c), scene.primitive(), scene.settings);
+        // Find the parent cloud particle (source src.parent, fluid id src.parentFluid).
+        std::size_t q = 0;
+        while (!(cloud.sources[q] == src.parent)) ++q;
+        q += src.parentFluid;
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(origins[3 * child + k], cloud.positions[3 * q + k]) << "frame " << t;
+    }
+}
+
+TEST(Mapping, Eq16SpeedAndScaleComeFromTheMapUnderTheSource)
+{
+    Scene scene;
+    const MappingRun r = run(scene, 30);
+    const SourceTable& final = r.tables.back();
+    for (std::size_t j = 0; j < final.sources.size(); ++j) {
+        const Source& src = final.sources[j];
+        const auto& c = r.frames[static_cast<std::size_t>(src.startFrame)];
+        double x, y;
+        if (src.level == 1) {
+            x = c.x[src.parent];
+            y = c.y[src.parent];
+        } else {
+            double p[3];
+            expectedCloudParticle(scene, final, c, src.parent, src.parentFluid, src.startFrame, p);
+            x = p[0];
+            y = p[1];
+        }
+        const int ix = std::clamp(static_cast<int>(std::floor(x / 100.0)), 0, 7);
+        const int iy = std::clamp(static_cast<int>(std::floor(y / 100.0)), 0, 7);
+        const double f = scene.map[static_cast<std::size_t>(iy * 8 + ix)];
+        EXPECT_FLOAT_EQ(src.scale, static_cast<float>(1.5 * f)) << "source " << j;
+        EXPECT_FLOAT_EQ(src.speed, static_cast<float>(1.0 + 2.0 * f)) << "source " << j;
+    }
+}
+
+TEST(Mapping, NoCandidateIsSelectedTwiceAndLevelsRespectTheirCap)
+{
+    Scene scene;
+    scene.settings.selectionRatio = {0.9, 0.5};
+    scene.settings.maxLevel = 2;
+    const MappingRun r = run(scene, 30);
+    const SourceTable& final = r.tables.back();
+    std::set<std::pair<std::uint32_t, std::uint32_t>> seen;
+    for (const Source& src : final.sources) {
+        EXPECT_LE(src.level, 2);
+        EXPECT_TRUE(seen.insert({src.level == 1 ? src.parent : src.parent + 1000000u,
+                                 src.level == 1 ? 0u : src.parentFluid}).second);
+    }
+}
+
+TEST(Mapping, GenerationIsBitIdenticalForOneAndTwoThreads)
+{
+    Scene scene;
+    const MappingRun r = run(scene, 30);
+    std::vector<std::vector<float>> results;
+    for (int threads : {1, 2}) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+        results.push_back(generateCloudParticles(r.tables.back(), 29, Scene::view(r.frames.back()),
+                                                 scene.primitive(), scene.settings)
+                              .positions);
+    }
+    EXPECT_FALSE(results[0].empty());
+    EXPECT_EQ(results[0], results[1]);
+}
+
+}  // namespace cg::algo

@@ -1,0 +1,226 @@
+// Physics of the volume renderer: Beer-Lambert transmittance, phase-function normalisation,
+// sky for missed rays, sun-facing side brighter, independence of the thread count.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include <tbb/global_control.h>
+
+#include "nodes/algo/Phase.h"
+#include "nodes/algo/RenderVolume.h"
+#include "nodes/algo/ToneMap.h"
+
+namespace cg {
+
+namespace {
+
+using algo::RenderVec3;
+
+openvdb::FloatGrid::Ptr makeGrid(double voxel)
+{
+    openvdb::initialize();
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    grid->setName("density");
+    grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
+    return grid;
+}
+
+/// A box of voxels [0, n)^3 of constant density, stored as active tiles and voxels.
+openvdb::FloatGrid::Ptr makeBox(double voxel, int n, float density)
+{
+    auto grid = makeGrid(voxel);
+    grid->tree().fill(openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(n - 1)), density, true);
+    return grid;
+}
+
+/// A voxelised ball: every voxel whose centre is within r voxels of the origin.
+openvdb::FloatGrid::Ptr makeBall(double voxel, int r, float density)
+{
+    auto grid = makeGrid(voxel);
+    auto acc = grid->getAccessor();
+    for (int i = -r; i <= r; ++i)
+        for (int j = -r; j <= r; ++j)
+            for (int k = -r; k <= r; ++k)
+                if (i * i + j * j + k * k <= r * r) acc.setValue(openvdb::Coord(i, j, k), density);
+    return grid;
+}
+
+double luminance(const std::vector<float>& rgba, int width, int x, int y)
+{
+    const float* p = &rgba[(static_cast<std::size_t>(y) * width + x) * 4];
+    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+}
+
+}  // namespace
+
+TEST(RenderPhase, HenyeyGreensteinIntegratesToOne)
+{
+    // ∫ p dω = 2π ∫_{-1}^{1} p(μ) dμ, Simpson's rule on a fine grid (peaked for g near 1).
+    for (const double g : {0.0, 0.3, 0.8, -0.5, 0.95}) {
+        const int n = 200000;
+        const double h = 2.0 / n;
+        double sum = 0.0;
+        for (int i = 0; i <= n; ++i) {
+            const double mu = -1.0 + i * h;
+            const double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+            sum += w * algo::henyeyGreenstein(mu, g);
+        }
+        EXPECT_NEAR(2.0 * M_PI * sum * h / 3.0, 1.0, 1e-6) << "g = " << g;
+    }
+    EXPECT_DOUBLE_EQ(algo::henyeyGreenstein(0.3, 0.0), 1.0 / (4.0 * M_PI));
+    // The two-lobe blend stays normalised.
+    const int n = 200000;
+    const double h = 2.0 / n;
+    double sum = 0.0;
+    for (int i = 0; i <= n; ++i) {
+        const double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+        sum += w * algo::twoLobeHenyeyGreenstein(-1.0 + i * h, 0.8, -0.3, 0.2);
+    }
+    EXPECT_NEAR(2.0 * M_PI * sum * h / 3.0, 1.0, 1e-6);
+}
+
+TEST(RenderTransmittance, HomogeneousBoxFollowsBeerLambert)
+{
+    // Voxels 0..39 fill [-0.5, 39.5] voxels: 40 voxels = 20 m per side at 0.5 m voxels.
+    const double voxel = 0.5;
+    auto box = makeBox(voxel, 40, 0.5f);
+    const double sigmaT = 0.1 * 0.5;  // extinction 0.1 /m × density 0.5
+    {
+        const RenderVec3 o(-30.0, 10.0, 10.0);
+        const double T = algo::fogTransmittance(*box, o, RenderVec3(1, 0, 0), 0.1, 0.5);
+        const double expected = std::exp(-sigmaT * 20.0);
+        EXPECT_NEAR(T / expected, 1.0, 0.01) << T << " vs " << expected;
+    }
+    {
+        // Oblique, crossing the two x faces only: L = 20 m / cos.
+        const RenderVec3 dir = RenderVec3(1.0, 0.25, 0.1).unitSafe();
+        const RenderVec3 o = RenderVec3(-0.25, 6.0, 8.0) - dir * 50.0;
+        const double T = algo::fogTransmittance(*box, o, dir, 0.1, 0.5);
+        const double expected = std::exp(-sigmaT * 20.0 / dir.x());
+        EXPECT_NEAR(T / expected, 1.0, 0.01) << T << " vs " << expected;
+    }
+    // A ray that misses the box sees nothing.
+    EXPECT_EQ(algo::fogTransmittance(*box, RenderVec3(-30, 40, 10), RenderVec3(1, 0, 0), 0.1, 0.5),
+              1.0);
+}
+
+TEST(RenderTransmittance, HomogeneousBallFollowsBeerLambert)
+{
+    // Along an axis through the centre the ball holds voxels -20..20: L = 41 voxels.
+    const double voxel = 2.0;
+    auto ball = makeBall(voxel, 20, 1.0f);
+    for (const double step : {0.25, 0.5, 1.0}) {
+        const double T =
+            algo::fogTransmittance(*ball, RenderVec3(0, -500, 0), RenderVec3(0, 1, 0), 0.01, step);
+        const double expected = std::exp(-0.01 * 41.0 * voxel);
+        EXPECT_NEAR(T / expected, 1.0, 0.01) << "step " << step;
+    }
+}
+
+namespace {
+
+algo::RenderSettings ballScene()
+{
+    algo::RenderSettings s;
+    s.camera.position = RenderVec3(0, -1500, 0);
+    s.camera.lookAt = RenderVec3(0, 0, 0);
+    s.camera.up = RenderVec3(0, 0, 1);
+    s.camera.fovDegrees = 30.0;
+    s.camera.width = 64;
+    s.camera.height = 48;
+    s.ground.enabled = false;
+    s.sun.direction = RenderVec3(1, 0, 0);  // from +x: the right half of the image
+    s.medium.extinction = 0.05;
+    return s;
+}
+
+}  // namespace
+
+TEST(RenderImage, MissedRaysSeeTheSkyExactly)
+{
+    auto ball = makeBall(10.0, 20, 1.0f);  // radius 200 m, about 10 px in this view
+    const algo::RenderSettings s = ballScene();
+    const algo::RenderedImage img = algo::renderFogVolume(*ball, s);
+    ASSERT_EQ(img.rgba.size(), std::size_t(64 * 48 * 4));
+    for (const auto& [x, y] : {std::pair{0, 0}, {63, 0}, {0, 47}, {63, 47}, {5, 24}}) {
+        const RenderVec3 sky =
+            algo::skyRadiance(s.sky, algo::cameraRayDirection(s.camera, x, y));
+        const float* p = &img.rgba[(static_cast<std::size_t>(y) * 64 + x) * 4];
+        EXPECT_EQ(p[0], static_cast<float>(sky.x()));
+        EXPECT_EQ(p[1], static_cast<float>(sky.y()));
+        EXPECT_EQ(p[2], static_cast<float>(sky.z()));
+        EXPECT_EQ(p[3], 0.0f);
+    }
+    // The centre pixel sees the opaque ball.
+    EXPECT_GT(img.rgba[(24 * 64 + 32) * 4 + 3], 0.99f);
+}
+
+TEST(RenderImage, SunFacingSideIsBrighter)
+{
+    auto ball = makeBall(10.0, 20, 1.0f);
+    algo::RenderSettings s = ballScene();
+    s.sky.ambient = 0.0;  // sun light only, so the comparison is about the sun
+    const algo::RenderedImage img = algo::renderFogVolume(*ball, s);
+    // Ball radius 200 m at 1500 m with a 30° fov over 48 rows: about 13.6 px; probe ±7 px.
+    const double lit = luminance(img.rgba, 64, 32 + 7, 24);
+    const double dark = luminance(img.rgba, 64, 31 - 7, 24);
+    EXPECT_GT(lit, 3.0 * dark) << lit << " vs " << dark;
+    EXPECT_GT(lit, 0.0);
+}
+
+TEST(RenderImage, IdenticalForOneAndTwoThreads)
+{
+    auto ball = makeBall(10.0, 20, 0.7f);
+    algo::RenderSettings s = ballScene();
+    s.ground.enabled = true;
+    s.camera.position = RenderVec3(300, -1500, 400);
+    s.camera.lookAt = RenderVec3(0, 0, 100);
+    s.march.jitter = true;
+    algo::RenderedImage one, two;
+    {
+        tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+        one = algo::renderFogVolume(*ball, s);
+    }
+    {
+        tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
+        two = algo::renderFogVolume(*ball, s);
+    }
+    ASSERT_EQ(one.rgba.size(), two.rgba.size());
+    EXPECT_EQ(std::memcmp(one.rgba.data(), two.rgba.data(), one.rgba.size() * sizeof(float)), 0);
+}
+
+TEST(RenderImage, RefusesUnusableSettings)
+{
+    auto ball = makeBall(10.0, 4, 1.0f);
+    algo::RenderSettings s = ballScene();
+    s.camera.lookAt = s.camera.position;
+    EXPECT_THROW(algo::renderFogVolume(*ball, s), std::invalid_argument);
+    s = ballScene();
+    s.camera.up = RenderVec3(0, 1, 0);  // along the view direction
+    EXPECT_THROW(algo::renderFogVolume(*ball, s), std::invalid_argument);
+    s = ballScene();
+    s.camera.fovDegrees = 180.0;
+    EXPECT_THROW(algo::renderFogVolume(*ball, s), std::invalid_argument);
+}
+
+TEST(RenderToneMap, CurvesAreMonotoneAndBounded)
+{
+    for (const auto curve : {algo::ToneCurve::Aces, algo::ToneCurve::Hable, algo::ToneCurve::Clamp}) {
+        double prev = 0.0;
+        for (double x = 0.0; x < 50.0; x += 0.01) {
+            const double y = algo::toneMap(x, curve);
+            EXPECT_GE(y, prev);
+            EXPECT_LE(y, 1.0);
+            prev = y;
+        }
+        EXPECT_EQ(algo::toneMap(std::nan(""), curve), 0.0);
+    }
+    for (double v = 0.0; v <= 1.0; v += 0.01)
+        EXPECT_NEAR(algo::srgbDecode(algo::srgbEncode(v)), v, 1e-12);
+    EXPECT_NEAR(algo::srgbEncode(0.5), 0.7353569830524495, 1e-12);
+}
+
+}  // namespace cg
