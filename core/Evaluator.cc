@@ -95,6 +95,8 @@ public:
         Hasher h;
         h.str("cloudgraph-key-1").str(decl.type).i64(decl.version);
         for (std::size_t i = 0; i < decl.params.size(); ++i) {
+            // An input file enters the key by its content (hashExtra), never by its path.
+            if (decl.params[i].role == ParamRole::InputFile) continue;
             h.str(decl.params[i].name);
             hashParam(h, node.params.valueAt(i));
         }

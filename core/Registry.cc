@@ -33,6 +33,8 @@ void checkDeclaration(const NodeDecl& d, const Registry& registry)
     if (d.outputs.empty()) bad("no output port");
     for (const ParamDecl& p : d.params) {
         if (p.doc.empty()) bad("parameter '" + p.name + "' is undocumented");
+        if (p.role == ParamRole::InputFile && !d.hashExtra)
+            bad("input-file parameter '" + p.name + "' needs hashExtra to hash the file's content");
         if (paramTypeOf(p.defaultValue) != p.type)
             bad("parameter '" + p.name + "' default has the wrong type");
         try {

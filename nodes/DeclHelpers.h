@@ -57,6 +57,15 @@ inline ParamDecl stringParam(std::string name, std::string def, std::string doc,
     return p;
 }
 
+/// A file to read. The engine leaves it out of the key: the node's hashExtra must hash the
+/// file's content instead.
+inline ParamDecl inputFileParam(std::string name, std::string def, std::string doc)
+{
+    ParamDecl p = stringParam(std::move(name), std::move(def), std::move(doc));
+    p.role = ParamRole::InputFile;
+    return p;
+}
+
 inline ParamDecl outputPathParam(std::string name, std::string def, std::string doc)
 {
     ParamDecl p;

@@ -41,15 +41,17 @@ void registerPrimitiveLoadNode(Registry& registry)
         "(XXH3-64 of its bytes), not its path or time stamp.";
     d.outputs = {port("primitive", "PrimitiveSet", "the stored primitive set")};
     d.params = {
-        stringParam("file", "", "path of the .cgp file (relative to the working directory)")};
+        inputFileParam("file", "", "path of the .cgp file (relative to the working directory)")};
     d.hashExtra = [](const ParamSet& p, Hasher& h) {
+        // The key holds the file's content, not its path (the engine leaves input-file
+        // parameters out), so a copied or moved file is still a cache hit. An unreadable file
+        // fails at cook time with its reason; until then its path stands in for the content.
         const std::string& file = p.getString("file");
-        std::uint64_t content = 0;  // an unreadable file fails at cook time, with its reason
         try {
-            if (!file.empty()) content = algo::primitiveFileContentHash(file);
+            h.str("content").u64(algo::primitiveFileContentHash(file));
         } catch (const InputError&) {
+            h.str("unreadable").str(file);
         }
-        h.u64(content);
     };
     d.create = [] { return std::make_unique<PrimitiveLoadNode>(); };
     // The contract test has no file to give it; tests/nodes/test_primitive_nodes.cc covers it.

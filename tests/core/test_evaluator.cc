@@ -9,6 +9,7 @@
 #include "core/Evaluator.h"
 #include "core/Graph.h"
 #include "nodes/Builtin.h"
+#include "nodes/DeclHelpers.h"
 #include "support/FixtureNodes.h"
 #include "support/TestUtil.h"
 
@@ -294,6 +295,37 @@ TEST_F(EvaluatorTest, ReportTotalsCountCooksAndHits)
     EXPECT_EQ(j["totals"]["memoryHits"], 2);  // src at frames 1 and 2
     EXPECT_EQ(j["records"].size(), 6u);
     EXPECT_EQ(j["nodes"]["sim"]["cooked"], 3);
+}
+
+TEST_F(EvaluatorTest, InputFilesEnterTheKeyByContentNotByPath)
+{
+    NodeDecl d;
+    d.type = "TestReadText";
+    d.category = "test";
+    d.doc = "reads a text file";
+    d.outputs = {port("text", "Text", "the file")};
+    d.params = {inputFileParam("file", "", "the file")};
+    d.hashExtra = [](const ParamSet& p, Hasher& h) { h.str(test::readFile(p.getString("file"))); };
+    d.create = [] { return std::unique_ptr<Node>(); };
+    registry.addNode(d);
+
+    test::TempDir dir;
+    test::writeFile(dir / "a.txt", "cumulus");
+    test::writeFile(dir / "b.txt", "cumulus");
+    test::writeFile(dir / "c.txt", "stratus");
+    Graph g = parse(R"({"cloudgraph": 1, "nodes": {"read": {"type": "TestReadText"}}})");
+    Evaluator ev(registry, {});
+    g.setParam("read", "file", (dir / "a.txt").string());
+    const Key a = ev.key(g, "read", 0);
+    g.setParam("read", "file", (dir / "b.txt").string());
+    EXPECT_EQ(ev.key(g, "read", 0), a);  // a copy elsewhere is the same value
+    g.setParam("read", "file", (dir / "c.txt").string());
+    EXPECT_NE(ev.key(g, "read", 0), a);
+
+    NodeDecl unhashed = d;
+    unhashed.type = "TestReadTextWithoutContentHash";
+    unhashed.hashExtra = nullptr;
+    EXPECT_THROW(registry.addNode(unhashed), std::invalid_argument);
 }
 
 TEST_F(EvaluatorTest, ReportShowsSmallOutputValues)
