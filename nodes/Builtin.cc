@@ -23,6 +23,7 @@ void registerBuiltinNodes(Registry& registry)
     registerIntegrateNode(registry);
     registerStatisticsNode(registry);
     registerWriterNodes(registry);
+    registerLogTextNode(registry);
 
     // atmosphere/
     registerAtmosphereNode(registry);
@@ -48,6 +49,7 @@ void registerBuiltinNodes(Registry& registry)
     registerPrimitiveMapperNode(registry);
     registerGenerateCloudNode(registry);
     registerWriteCloudParticlesNode(registry);
+    registerPrimitiveSubsetNode(registry);
 
     // render/
     registerSyntheticCumulusNode(registry);

@@ -8,5 +8,6 @@ class Registry;
 void registerPrimitiveMapperNode(Registry& registry);  // PrimitiveMapper
 void registerGenerateCloudNode(Registry& registry);    // GenerateCloud
 void registerWriteCloudParticlesNode(Registry& registry);  // WriteCloudParticles
+void registerPrimitiveSubsetNode(Registry& registry);   // PrimitiveSubset
 
 }  // namespace cg

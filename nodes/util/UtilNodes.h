@@ -11,5 +11,6 @@ void registerArrayNodes(Registry& registry);       // Scale, Sum
 void registerIntegrateNode(Registry& registry);    // Integrate
 void registerStatisticsNode(Registry& registry);   // Statistics
 void registerWriterNodes(Registry& registry);      // WriteArray, WriteText
+void registerLogTextNode(Registry& registry);      // LogText
 
 }  // namespace cg

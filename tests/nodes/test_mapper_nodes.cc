@@ -13,6 +13,7 @@
 #include "nodes/Builtin.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/data/CloudSources.h"
+#include "nodes/data/PrimitiveSet.h"
 #include "support/FixtureNodes.h"
 #include "support/TestUtil.h"
 
@@ -92,6 +93,52 @@ TEST_F(MapperNodes, CloudIsBitIdenticalForOneAndTwoThreads)
     }
     EXPECT_FALSE(results[0].empty());
     EXPECT_EQ(results[0], results[1]);
+}
+
+TEST_F(MapperNodes, PrimitiveSubsetKeepsEveryKthParticleOnItsTrajectory)
+{
+    const Graph g = parseGraph(R"({"cloudgraph": 1, "nodes": {
+        "full": {"type": "TestPrimitiveSource", "params": {"frames": 12, "radius": 30}},
+        "thin": {"type": "PrimitiveSubset", "inputs": {"primitive": "full.primitive"}, "params": {"particles": 7}}}})",
+                               "subset.json", registry);
+    Evaluator ev(registry, {});
+    const auto full = std::dynamic_pointer_cast<const PrimitiveSetData>(ev.pull(g, "full", 0)->at("primitive"));
+    const auto thin = std::dynamic_pointer_cast<const PrimitiveSetData>(ev.pull(g, "thin", 0)->at("primitive"));
+    const std::uint32_t last = full->count(full->frames() - 1);
+    ASSERT_GT(last, 7u);
+    const std::uint32_t k = (last + 6) / 7;  // ceil(N_f(last) / K)
+    ASSERT_EQ(thin->frames(), full->frames());
+    EXPECT_EQ(thin->frameTime, full->frameTime);
+    for (int s = 0; s < full->frames(); ++s) {
+        ASSERT_EQ(thin->count(s), (full->count(s) + k - 1) / k) << "frame " << s;
+        for (std::uint32_t id = 0; id < thin->count(s); ++id)
+            for (int c = 0; c < 3; ++c)
+                ASSERT_EQ(thin->frame(s)[3 * id + c], full->frame(s)[3 * (id * k) + c]);
+    }
+    EXPECT_LE(thin->count(thin->frames() - 1), 7u);
+}
+
+TEST_F(MapperNodes, LogTextRecordsTheLinesItPrints)
+{
+    const Graph withLog = parseGraph(std::string(kGraph).insert(std::string(kGraph).rfind("}}"),
+        R"(, "log": {"type": "LogText", "inputs": {"text": "mapper.summary"}, "params": {"every": 40}})"),
+        "mapper.json", registry);
+    Evaluator ev(registry, {});
+    ev.cookFrames(withLog, 0, 130, {"log"});
+    int printed = 0;
+    const auto report = ev.report().toJson();
+    for (const auto& r : report["records"]) {
+        if (r["node"] != "log") continue;
+        const std::string line = r.value("values", nlohmann::json::object()).value("logged", "");
+        const int frame = r["frame"].get<int>();
+        if (frame % 40 == 0) {
+            EXPECT_EQ(line.rfind("frame " + std::to_string(frame) + ": L1=", 0), 0u) << line;
+            ++printed;
+        } else {
+            EXPECT_EQ(line, "");
+        }
+    }
+    EXPECT_EQ(printed, 4);  // frames 0, 40, 80, 120
 }
 
 }  // namespace cg
