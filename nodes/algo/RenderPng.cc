@@ -5,6 +5,9 @@
 #include <stdexcept>
 #include <utility>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "nodes/algo/CounterRandom.h"
 #include "nodes/algo/PngFile.h"
 
@@ -21,18 +24,24 @@ std::vector<std::uint8_t> displayRgb8(const std::vector<float>& rgba, int width,
     const double scale = std::exp2(s.exposure);
     const std::size_t n = rgba.size() / 4;
     std::vector<std::uint8_t> out(n * 3);
-    for (std::size_t i = 0; i < n; ++i) {
-        for (std::size_t c = 0; c < 3; ++c) {
-            const double v = 255.0 * srgbEncode(toneMap(scale * rgba[i * 4 + c], s.curve));
-            double d = 0.0;
-            if (s.dither) {  // triangular PDF on (−1, 1) code values
-                const std::uint64_t k = i * 3 + c;
-                d = counterUniform(s.seed, 2 * k, 0x44495448ull) -
-                    counterUniform(s.seed, 2 * k + 1, 0x44495448ull);
+    // Every pixel writes only its own bytes and the dither is keyed by its index: the same
+    // bytes for any thread count.
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+            for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                for (std::size_t c = 0; c < 3; ++c) {
+                    const double v = 255.0 * srgbEncode(toneMap(scale * rgba[i * 4 + c], s.curve));
+                    double d = 0.0;
+                    if (s.dither) {  // triangular PDF on (−1, 1) code values
+                        const std::uint64_t k = i * 3 + c;
+                        d = counterUniform(s.seed, 2 * k, 0x44495448ull) -
+                            counterUniform(s.seed, 2 * k + 1, 0x44495448ull);
+                    }
+                    out[i * 3 + c] =
+                        static_cast<std::uint8_t>(std::lround(std::clamp(v + d, 0.0, 255.0)));
+                }
             }
-            out[i * 3 + c] = static_cast<std::uint8_t>(std::lround(std::clamp(v + d, 0.0, 255.0)));
-        }
-    }
+        });
     return out;
 }
 
