@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Renders one 640 x 480 frame of the synthetic cumulus (graphs/cumulus_still.json) with our
-# Renderer and with OpenVDB's vdb_render (package libopenvdb-tools) on the same .vdb, same
-# resolution, same primary step (1 voxel), same camera and sun, in one run; prints the medians.
+# Renders one 640 x 480 frame of a 5-million-particle cumulus voxelized by our Voxelizer
+# (bench/render_bench.cc writes the .vdb) with our Renderer and with OpenVDB's vdb_render
+# (package libopenvdb-tools) on the same .vdb, same resolution, same primary step (1 voxel),
+# same camera and sun, in one run; prints the medians and the ratio.
 # Usage: bench/run_render_bench.sh [BUILD_DIR] [REPETITIONS]   (a Release build)
 set -euo pipefail
 build=${1:-build}

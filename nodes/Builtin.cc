@@ -40,10 +40,12 @@ void registerBuiltinNodes(Registry& registry)
     // io/
     registerWriteMapNode(registry);
     registerWriteParticlesNode(registry);
+    registerEncodeVideoNode(registry);
 
     // volume/
     registerVoxelizerNode(registry);
     registerWriteVdbNode(registry);
+    registerWritePointsNode(registry);
 
     // mapping/
     registerPrimitiveMapperNode(registry);

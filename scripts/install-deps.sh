@@ -8,6 +8,7 @@ packages=(
     libopenvdb-dev libopenvdb-tools libboost-iostreams-dev libtbb-dev
     nlohmann-json3-dev libfftw3-dev libspdlog-dev libxxhash-dev
     libgtest-dev libbenchmark-dev libpng-dev
+    ffmpeg  # EncodeVideo runs the ffmpeg program (H.264 via libx264)
 )
 
 missing=()

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -10,8 +11,12 @@
 #include <utility>
 #include <vector>
 
+#include <emmintrin.h>
+#include <sys/mman.h>
+
 #include <openvdb/tools/Filter.h>
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 namespace cg::algo {
@@ -19,14 +24,20 @@ namespace cg::algo {
 namespace {
 
 using LeafT = openvdb::FloatTree::LeafNodeType;
-static_assert(LeafT::LOG2DIM == 3, "the binning below assumes 8^3-voxel leaves");
-constexpr int kLeafLog2 = 3;
-constexpr int kLeafMax = 7;  // last voxel of a leaf along an axis, relative to its origin
+static_assert(LeafT::LOG2DIM == 3, "the bricks below hold whole 8^3-voxel leaves");
+/// Particles are binned by brick, a cube of 4^3 leaves (32^3 voxels), and each brick is summed
+/// in a dense accumulator that stays in the L2 cache. Bricks rather than leaves: a footprint
+/// crosses fewer brick faces (fewer duplicate entries), and scattering entries into a few
+/// hundred bricks stays in cache where scattering into thousands of leaves missed on every
+/// store.
+constexpr int kBrickLog2 = 5;
+constexpr int kBrick = 1 << kBrickLog2;
+constexpr int kBrickMax = kBrick - 1;  // last voxel of a brick along an axis, from its origin
 
 /// Fixed work unit (particles or sort entries) so the partition never depends on the thread
-/// count; only the leaf sums need a fixed order, but fixed chunks keep every phase reproducible.
+/// count; only the brick sums need a fixed order, but fixed chunks keep every phase reproducible.
 constexpr std::size_t kChunk = std::size_t(1) << 16;
-/// Index coordinates are limited to +-2^20 voxels so three leaf coordinates pack into 64 bits.
+/// Index coordinates are limited to +-2^20 voxels so three brick coordinates pack into 64 bits.
 constexpr float kMaxIndex = 1048576.0f;
 
 struct Kernel {
@@ -47,32 +58,37 @@ struct Footprint {
     int hi[3];
 };
 
-/// True when the particle's index coordinates are finite and within +-kMaxIndex.
-inline bool inRange(const float* p, const Kernel& k)
+/// floor and ceil for |x| < 2^31, exact: truncate, then step toward -inf / +inf when that
+/// moved x. Cheaper than std::floor / std::ceil without SSE4.1 (the baseline x86-64 target).
+inline int floorInt(float x)
 {
-    for (int a = 0; a < 3; ++a)
-        if (!(std::fabs(p[a] * k.invVoxel) < kMaxIndex)) return false;  // also catches NaN
-    return true;
+    const int i = static_cast<int>(x);
+    return i - (x < static_cast<float>(i) ? 1 : 0);
+}
+inline int ceilInt(float x)
+{
+    const int i = static_cast<int>(x);
+    return i + (x > static_cast<float>(i) ? 1 : 0);
 }
 
 /// Sets f.lo and f.hi from f.q.
 inline void bounds(const Kernel& k, Footprint& f)
 {
     for (int a = 0; a < 3; ++a) {
-        f.lo[a] = static_cast<int>(std::ceil(f.q[a] - k.rv));
-        f.hi[a] = static_cast<int>(std::floor(f.q[a] + k.rv));
+        f.lo[a] = ceilInt(f.q[a] - k.rv);
+        f.hi[a] = floorInt(f.q[a] + k.rv);
     }
 }
 
-/// Fills `f` for a particle at index-space position q = p / voxel size (inRange(p, k)).
+/// Fills `f` for a particle at index-space position q = p / voxel size (|q| < kMaxIndex).
 inline void footprint(const float* p, const Kernel& k, Footprint& f)
 {
     for (int a = 0; a < 3; ++a) f.q[a] = p[a] * k.invVoxel;
     bounds(k, f);
 }
 
-/// Floor division by the leaf size, also for negative coordinates.
-inline int leafOf(int voxel) { return voxel >> kLeafLog2; }
+/// Floor division by the brick size, also for negative coordinates.
+inline int brickOf(int voxel) { return voxel >> kBrickLog2; }
 
 int bitsFor(std::int64_t extent)
 {
@@ -81,7 +97,7 @@ int bitsFor(std::int64_t extent)
     return b;
 }
 
-/// Leaf coordinates relative to the minimum, packed x-major (OpenVDB's own order: z fastest).
+/// Brick coordinates relative to the minimum, packed x-major (OpenVDB's order: z fastest).
 struct KeyCodec {
     int min[3] = {0, 0, 0};
     int shiftX = 0;
@@ -101,11 +117,11 @@ struct KeyCodec {
         const int lx = static_cast<int>(key >> shiftX) + min[0];
         const int ly = static_cast<int>((key >> shiftY) & maskY) + min[1];
         const int lz = static_cast<int>(key & maskZ) + min[2];
-        return openvdb::Coord(lx * 8, ly * 8, lz * 8);
+        return openvdb::Coord(lx * kBrick, ly * kBrick, lz * kBrick);
     }
 };
 
-/// A sort entry: a leaf key and the particle's index-space position, so that splatting
+/// A sort entry: a brick key and the particle's index-space position, so that splatting
 /// streams through memory instead of gathering particles at random (a cache miss each). The
 /// index is not stored: entries are made in ascending particle index and the sort is stable.
 template <class KeyT>
@@ -117,13 +133,47 @@ struct Entry {
 using PackedEntry = Entry<std::uint32_t>;  ///< 16 bytes: keys of up to 32 bits (the usual case)
 using WideEntry = Entry<std::uint64_t>;    ///< 24 bytes: huge sparse domains
 
+/// Uninitialised scratch storage for trivially copyable T, on transparent huge pages where
+/// the kernel allows them (madvise mode): a 5M-particle frame's entries take ~110 MB, and
+/// faulting that in 4 KiB pages cost more than binning the particles.
+template <class T>
+class Scratch {
+public:
+    Scratch() = default;
+    explicit Scratch(std::size_t n)
+    {
+        constexpr std::size_t kHuge = std::size_t(2) << 20;
+        std::size_t bytes = std::max<std::size_t>(n * sizeof(T), 64);
+        const std::size_t align = bytes >= kHuge ? kHuge : 64;
+        bytes = (bytes + align - 1) / align * align;  // aligned_alloc wants a multiple
+        mData = static_cast<T*>(std::aligned_alloc(align, bytes));
+        if (!mData) throw std::bad_alloc();
+        if (align == kHuge) ::madvise(mData, bytes, MADV_HUGEPAGE);  // a hint; may fail
+    }
+    ~Scratch() { std::free(mData); }
+    Scratch(Scratch&& other) noexcept : mData(other.mData) { other.mData = nullptr; }
+    Scratch(const Scratch&) = delete;
+    Scratch& operator=(const Scratch&) = delete;
+    void swap(Scratch& other) { std::swap(mData, other.mData); }
+    void reset()
+    {
+        std::free(mData);
+        mData = nullptr;
+    }
+    T* get() const { return mData; }
+    T& operator[](std::size_t i) const { return mData[i]; }
+
+private:
+    T* mData = nullptr;
+};
+
 std::size_t chunkCount(std::size_t n) { return (n + kChunk - 1) / kChunk; }
 
 /// Stable LSD radix sort of `a` by key (11-bit digits over `keyBits` bits). Entries start in
 /// ascending particle index, so the result is ordered by (key, index): unique, whatever the
 /// thread count. `tmp` is scratch of the same size; the result ends in `a`.
 template <class E>
-void radixSortByKey(std::unique_ptr<E[]>& a, std::unique_ptr<E[]>& tmp, std::size_t n, int keyBits)
+void radixSortByKey(Scratch<E>& a, Scratch<E>& tmp, std::size_t n, int keyBits)
 {
     constexpr int kDigit = 11;
     constexpr std::size_t kBuckets = std::size_t(1) << kDigit;
@@ -158,17 +208,20 @@ void radixSortByKey(std::unique_ptr<E[]>& a, std::unique_ptr<E[]>& tmp, std::siz
             for (std::size_t i = b * kChunk; i < end; ++i)
                 dst[row[(src[i].key() >> shift) & (kBuckets - 1)]++] = src[i];
         });
-        std::swap(a, tmp);
+        a.swap(tmp);
     }
 }
 
-/// The per-leaf accumulator: 8 x 8 rows along z, each padded by kPad voxels on both sides so a
-/// fixed-width window of voxels along z can be added without clipping (what falls in the
-/// padding belongs to a neighbour leaf and is dropped).
+/// The per-brick accumulator: 32 x 32 rows along z, each padded by kPad voxels on both sides
+/// so a fixed-width window of voxels along z can be added without clipping (what falls in
+/// the padding belongs to a neighbour brick and is dropped). 192 KiB: fits the L2 cache.
 constexpr int kPad = 8;
-constexpr int kRow = 8 + 2 * kPad;
-constexpr int kAccSize = 64 * kRow;
-inline int accIndex(int x, int y, int z) { return ((x << 3) + y) * kRow + kPad + z; }
+constexpr int kRow = kBrick + 2 * kPad;
+constexpr int kAccSize = kBrick * kBrick * kRow;
+inline int accIndex(int x, int y, int z)
+{
+    return ((x << kBrickLog2) + y) * kRow + kPad + z;
+}
 
 /// Four floats in an SSE register (GCC/Clang vector extension): the same IEEE operations as
 /// the scalar code, lane by lane, so the sums are bit-identical.
@@ -182,7 +235,7 @@ inline Float4 load4(const float* p)
 }
 inline void store4(float* p, Float4 v) { std::memcpy(p, &v, sizeof(v)); }
 
-/// Adds every entry's particle, clipped to the leaf at `origin` in x and y, into `acc`, in the
+/// Adds every entry's particle, clipped to the brick at `origin` in x and y, into `acc`, in the
 /// entries' order. Along z it adds a fixed window of W voxels from the footprint's first
 /// (W >= the widest footprint): voxels past the footprint get exactly +0, so the sums are
 /// those of the clipped loop, without its unpredictable branches, and the window vectorises.
@@ -199,8 +252,8 @@ void splatWindow(const E* begin, const E* end, const Kernel& k, const openvdb::C
         f.q[1] = e->q[1];
         f.q[2] = e->q[2];
         bounds(k, f);  // as when binning, to the bit
-        const int x0 = std::max(f.lo[0], ox), x1 = std::min(f.hi[0], ox + kLeafMax);
-        const int y0 = std::max(f.lo[1], oy), y1 = std::min(f.hi[1], oy + kLeafMax);
+        const int x0 = std::max(f.lo[0], ox), x1 = std::min(f.hi[0], ox + kBrickMax);
+        const int y0 = std::max(f.lo[1], oy), y1 = std::min(f.hi[1], oy + kBrickMax);
         float dz2[W];
         for (int w = 0; w < W; ++w) {
             const float dz = static_cast<float>(f.lo[2] + w) - f.q[2];
@@ -248,9 +301,9 @@ void splatClipped(const E* begin, const E* end, const Kernel& k, const openvdb::
         f.q[1] = e->q[1];
         f.q[2] = e->q[2];
         bounds(k, f);
-        const int x0 = std::max(f.lo[0], ox), x1 = std::min(f.hi[0], ox + kLeafMax);
-        const int y0 = std::max(f.lo[1], oy), y1 = std::min(f.hi[1], oy + kLeafMax);
-        const int z0 = std::max(f.lo[2], oz), z1 = std::min(f.hi[2], oz + kLeafMax);
+        const int x0 = std::max(f.lo[0], ox), x1 = std::min(f.hi[0], ox + kBrickMax);
+        const int y0 = std::max(f.lo[1], oy), y1 = std::min(f.hi[1], oy + kBrickMax);
+        const int z0 = std::max(f.lo[2], oz), z1 = std::min(f.hi[2], oz + kBrickMax);
         for (int x = x0; x <= x1; ++x) {
             const float dx = static_cast<float>(x) - f.q[0];
             for (int y = y0; y <= y1; ++y) {
@@ -272,7 +325,7 @@ void splatClipped(const E* begin, const E* end, const Kernel& k, const openvdb::
 }
 
 template <class E>
-void splatLeaf(const E* begin, const E* end, const Kernel& k, const openvdb::Coord& origin,
+void splatBrick(const E* begin, const E* end, const Kernel& k, const openvdb::Coord& origin,
                float* acc)
 {
     // Widest footprint along an axis: floor(q + rv) - ceil(q - rv) + 1 <= 2 rv + 1, plus slack
@@ -289,41 +342,116 @@ void splatLeaf(const E* begin, const E* end, const Kernel& k, const openvdb::Coo
     }
 }
 
-template <class E>
-openvdb::FloatGrid::Ptr voxelizeWith(const float* xyz, std::size_t count, const Kernel& k,
-                                     bool clamp, const KeyCodec& codec,
-                                     const std::vector<std::size_t>& chunkEntries,
-                                     const std::function<void()>& checkCancelled)
+/// Calls fn(key) for each brick the footprint touches, in ascending key order.
+template <class F>
+inline void forEachBrick(const Footprint& f, const KeyCodec& codec, F&& fn)
 {
-    // Offsets of each particle chunk's entries.
-    const std::size_t chunks = chunkEntries.size();
-    std::vector<std::size_t> offsets(chunks + 1, 0);
-    for (std::size_t c = 0; c < chunks; ++c) offsets[c + 1] = offsets[c] + chunkEntries[c];
-    const std::size_t n = offsets[chunks];
-    if (n > std::numeric_limits<std::uint32_t>::max())
-        throw std::invalid_argument("voxelize: more than 2^32 - 1 particle-leaf pairs");
+    for (int lx = brickOf(f.lo[0]); lx <= brickOf(f.hi[0]); ++lx)
+        for (int ly = brickOf(f.lo[1]); ly <= brickOf(f.hi[1]); ++ly)
+            for (int lz = brickOf(f.lo[2]); lz <= brickOf(f.hi[2]); ++lz) fn(codec.encode(lx, ly, lz));
+}
 
-    // Uninitialised on purpose: every slot is written below.
-    std::unique_ptr<E[]> entries(new E[n]);
-    std::unique_ptr<E[]> scratch(new E[n]);
+/// Particles per block of the counting sort: few blocks, so that their per-brick histograms
+/// stay small, but fixed, so that the order within a brick never depends on the threads.
+constexpr std::size_t kCountBlock = std::size_t(1) << 19;
+/// Largest histogram (blocks x 2^key bits counters) for the counting sort; beyond it (huge
+/// sparse domains) the entries are radix sorted instead, in memory that follows the entries.
+constexpr std::size_t kMaxCountCells = std::size_t(1) << 23;
+
+bool countingSortFits(std::size_t count, const KeyCodec& codec)
+{
+    const std::size_t blocks = (count + kCountBlock - 1) / kCountBlock;
+    return codec.bits <= 23 && blocks <= (kMaxCountCells >> codec.bits);
+}
+
+/// One entry per (particle, brick it touches), grouped by brick key in ascending order and by
+/// particle index within a brick. `starts` gets the first entry of each brick, then n.
+template <class E>
+Scratch<E> binByBrick(const float* xyz, std::size_t count, const Kernel& k, const KeyCodec& codec,
+                      std::vector<std::size_t>& starts)
+{
+    using KeyT = decltype(E::k);
+    const auto tooMany = [] {
+        throw std::invalid_argument("voxelize: more than 2^32 - 1 particle-brick pairs");
+    };
+    if (countingSortFits(count, codec)) {
+        // Counting sort: a histogram per block over the dense key space (the brick bounding
+        // box, small next to the particles), offsets brick-major then block, then a scatter
+        // that writes every entry once in its final place.
+        const std::size_t blocks = (count + kCountBlock - 1) / kCountBlock;
+        const std::size_t cells = std::size_t(1) << codec.bits;
+        std::vector<std::uint32_t> hist(blocks * cells, 0u);
+        tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+            std::uint32_t* row = &hist[b * cells];
+            const std::size_t end = std::min(count, (b + 1) * kCountBlock);
+            for (std::size_t i = b * kCountBlock; i < end; ++i) {
+                Footprint f;
+                footprint(xyz + 3 * i, k, f);
+                forEachBrick(f, codec, [row](std::uint64_t key) { ++row[key]; });
+            }
+        });
+        std::uint64_t running = 0;
+        for (std::size_t key = 0; key < cells; ++key) {
+            const std::uint64_t before = running;
+            for (std::size_t b = 0; b < blocks; ++b) {
+                const std::uint32_t c = hist[b * cells + key];
+                hist[b * cells + key] = static_cast<std::uint32_t>(running);
+                running += c;
+            }
+            if (running > std::numeric_limits<std::uint32_t>::max()) tooMany();
+            if (running != before) starts.push_back(before);
+        }
+        const std::size_t n = running;
+        Scratch<E> entries(n);
+        tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+            std::uint32_t* row = &hist[b * cells];
+            E* out = entries.get();
+            const std::size_t end = std::min(count, (b + 1) * kCountBlock);
+            for (std::size_t i = b * kCountBlock; i < end; ++i) {
+                Footprint f;
+                footprint(xyz + 3 * i, k, f);
+                forEachBrick(f, codec, [&](std::uint64_t key) {
+                    out[row[key]++] = E{static_cast<KeyT>(key), {f.q[0], f.q[1], f.q[2]}};
+                });
+            }
+        });
+        starts.push_back(n);
+        return entries;
+    }
+
+    // Radix sort: entries made in particle order, then a stable sort by key.
+    const std::size_t chunks = chunkCount(count);
+    std::vector<std::size_t> offsets(chunks + 1, 0);
+    tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+        std::size_t touched = 0;
+        const std::size_t end = std::min(count, (c + 1) * kChunk);
+        for (std::size_t i = c * kChunk; i < end; ++i) {
+            Footprint f;
+            footprint(xyz + 3 * i, k, f);
+            forEachBrick(f, codec, [&touched](std::uint64_t) { ++touched; });
+        }
+        offsets[c + 1] = touched;
+    });
+    for (std::size_t c = 0; c < chunks; ++c) offsets[c + 1] += offsets[c];
+    const std::size_t n = offsets[chunks];
+    if (n > std::numeric_limits<std::uint32_t>::max()) tooMany();
+    Scratch<E> entries(n);
     tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
         E* out = entries.get() + offsets[c];
         const std::size_t end = std::min(count, (c + 1) * kChunk);
         for (std::size_t i = c * kChunk; i < end; ++i) {
             Footprint f;
             footprint(xyz + 3 * i, k, f);
-            for (int lx = leafOf(f.lo[0]); lx <= leafOf(f.hi[0]); ++lx)
-                for (int ly = leafOf(f.lo[1]); ly <= leafOf(f.hi[1]); ++ly)
-                    for (int lz = leafOf(f.lo[2]); lz <= leafOf(f.hi[2]); ++lz)
-                        *out++ = E{static_cast<decltype(E::k)>(codec.encode(lx, ly, lz)),
-                                   {f.q[0], f.q[1], f.q[2]}};
+            forEachBrick(f, codec, [&](std::uint64_t key) {
+                *out++ = E{static_cast<KeyT>(key), {f.q[0], f.q[1], f.q[2]}};
+            });
         }
     });
-    radixSortByKey(entries, scratch, n, codec.bits);
-    scratch.reset();
-    if (checkCancelled) checkCancelled();
-
-    // Where each leaf's run of entries starts; found per block, concatenated in block order.
+    {
+        Scratch<E> scratch(n);
+        radixSortByKey(entries, scratch, n, codec.bits);
+    }
+    // Where each brick's run of entries starts; found per block, concatenated in block order.
     const std::size_t blocks = chunkCount(n);
     std::vector<std::vector<std::size_t>> blockStarts(blocks);
     tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
@@ -331,40 +459,77 @@ openvdb::FloatGrid::Ptr voxelizeWith(const float* xyz, std::size_t count, const 
         for (std::size_t i = b * kChunk; i < end; ++i)
             if (i == 0 || entries[i].key() != entries[i - 1].key()) blockStarts[b].push_back(i);
     });
-    std::vector<std::size_t> starts;
     for (const auto& s : blockStarts) starts.insert(starts.end(), s.begin(), s.end());
-    blockStarts.clear();
     starts.push_back(n);
-    const std::size_t leafCount = starts.size() - 1;
+    return entries;
+}
 
-    // One task per leaf sums its particles in ascending index order: the float rounding is
-    // the same for any thread count.
-    std::vector<std::unique_ptr<LeafT>> leaves(leafCount);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leafCount, 16),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-        alignas(64) float acc[kAccSize];
-        for (std::size_t l = r.begin(); l != r.end(); ++l) {
-            std::fill(acc, acc + kAccSize, 0.0f);
-            const openvdb::Coord origin = codec.origin(entries[starts[l]].key());
-            splatLeaf(entries.get() + starts[l], entries.get() + starts[l + 1], k, origin, acc);
-            auto leaf = std::make_unique<LeafT>(origin, 0.0f, false);
-            bool any = false;
-            for (openvdb::Index i = 0; i < LeafT::SIZE; ++i) {
-                const float v = acc[accIndex(int(i >> 6), int((i >> 3) & 7), int(i & 7))];
-                if (!(v > 0.0f)) continue;
-                leaf->setValueOn(i, clamp ? std::min(v, 1.0f) : v);
-                any = true;
+/// The leaf at `offset` voxels inside the brick at `brick`, holding the voxels of `acc` with
+/// a value > 0 (clamped to 1 if asked); null when it would be empty.
+std::unique_ptr<LeafT> makeLeaf(const float* acc, const openvdb::Coord& brick,
+                                const openvdb::Coord& offset, bool clamp)
+{
+    // Eight voxels along z at a time (SSE2): the mask bits of a row come from one movemask.
+    // Voxel (x, y, z) is bit 8 y + z of the mask's word x.
+    LeafT::NodeMaskType mask;
+    alignas(64) float values[LeafT::SIZE];
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+    for (int x = 0; x < 8; ++x) {
+        std::uint64_t word = 0;
+        for (int y = 0; y < 8; ++y) {
+            const float* row = acc + accIndex(offset.x() + x, offset.y() + y, offset.z());
+            float* out = values + (x << 6) + (y << 3);
+            for (int h = 0; h < 2; ++h) {
+                __m128 v = _mm_loadu_ps(row + 4 * h);
+                const __m128 on = _mm_cmpgt_ps(v, zero);  // false for NaN
+                if (clamp) v = _mm_min_ps(v, one);
+                _mm_storeu_ps(out + 4 * h, _mm_and_ps(on, v));
+                word |= std::uint64_t(_mm_movemask_ps(on)) << (8 * y + 4 * h);
             }
-            if (any) leaves[l] = std::move(leaf);
         }
+        mask.template getWord<std::uint64_t>(static_cast<openvdb::Index>(x)) = word;
+    }
+    if (mask.isOff()) return nullptr;
+    auto leaf = std::make_unique<LeafT>(brick + offset, 0.0f, false);
+    std::memcpy(leaf->buffer().data(), values, sizeof(values));
+    leaf->setValueMask(mask);
+    return leaf;
+}
+
+template <class E>
+openvdb::FloatGrid::Ptr voxelizeWith(const float* xyz, std::size_t count, const Kernel& k,
+                                     bool clamp, const KeyCodec& codec,
+                                     const std::function<void()>& checkCancelled)
+{
+    std::vector<std::size_t> starts;
+    Scratch<E> entries = binByBrick<E>(xyz, count, k, codec, starts);
+    if (checkCancelled) checkCancelled();
+    const std::size_t brickCount = starts.size() - 1;
+
+    // One task per brick sums its particles in ascending index order: the float rounding is
+    // the same for any thread count.
+    constexpr int kLeavesPerBrick = (kBrick / 8) * (kBrick / 8) * (kBrick / 8);
+    std::vector<std::unique_ptr<LeafT>> leaves(brickCount * kLeavesPerBrick);
+    tbb::enumerable_thread_specific<std::vector<float>> accumulators(
+        [] { return std::vector<float>(kAccSize); });
+    tbb::parallel_for(std::size_t(0), brickCount, [&](std::size_t b) {
+        float* acc = accumulators.local().data();
+        std::fill(acc, acc + kAccSize, 0.0f);
+        const openvdb::Coord origin = codec.origin(entries[starts[b]].key());
+        splatBrick(entries.get() + starts[b], entries.get() + starts[b + 1], k, origin, acc);
+        std::unique_ptr<LeafT>* out = &leaves[b * kLeavesPerBrick];
+        for (int x = 0; x < kBrick; x += 8)
+            for (int y = 0; y < kBrick; y += 8)
+                for (int z = 0; z < kBrick; z += 8)
+                    *out++ = makeLeaf(acc, origin, openvdb::Coord(x, y, z), clamp);
     });
     entries.reset();
-    if (checkCancelled) checkCancelled();
 
     auto grid = openvdb::FloatGrid::create(0.0f);
     openvdb::FloatTree& tree = grid->tree();
     for (auto& leaf : leaves)
         if (leaf) tree.addLeaf(leaf.release());
+    if (checkCancelled) checkCancelled();
     return grid;
 }
 
@@ -406,48 +571,37 @@ openvdb::FloatGrid::Ptr voxelizeParticles(const float* xyz, std::size_t count,
     k.density = static_cast<float>(settings.density);
     k.smooth = settings.kernel == VoxelKernel::Smooth;
 
-    // Pass 1: entries per chunk (one per leaf a particle touches) and the leaf bounds.
+    // Pass 1: validity and the bounds of q = p / voxel size. The brick bounds follow from
+    // them by the same (monotonic) float operations as each particle's footprint.
     const std::size_t chunks = chunkCount(count);
     struct ChunkInfo {
-        std::size_t entries = 0;
-        int min[3] = {std::numeric_limits<int>::max(), std::numeric_limits<int>::max(),
-                      std::numeric_limits<int>::max()};
-        int max[3] = {std::numeric_limits<int>::min(), std::numeric_limits<int>::min(),
-                      std::numeric_limits<int>::min()};
+        float lo[3] = {kMaxIndex, kMaxIndex, kMaxIndex};
+        float hi[3] = {-kMaxIndex, -kMaxIndex, -kMaxIndex};
         bool bad = false;
     };
     std::vector<ChunkInfo> info(chunks);
     tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
         ChunkInfo& ci = info[c];
+        bool bad = false;
         const std::size_t end = std::min(count, (c + 1) * kChunk);
         for (std::size_t i = c * kChunk; i < end; ++i) {
-            if (!inRange(xyz + 3 * i, k)) {
-                ci.bad = true;
-                return;
-            }
-            Footprint f;
-            footprint(xyz + 3 * i, k, f);
-            std::size_t touched = 1;
             for (int a = 0; a < 3; ++a) {
-                const int l0 = leafOf(f.lo[a]);
-                const int l1 = leafOf(f.hi[a]);
-                touched *= static_cast<std::size_t>(l1 - l0 + 1);
-                ci.min[a] = std::min(ci.min[a], l0);
-                ci.max[a] = std::max(ci.max[a], l1);
+                const float q = xyz[3 * i + a] * k.invVoxel;
+                bad |= !(std::fabs(q) < kMaxIndex);  // also catches NaN
+                ci.lo[a] = std::min(ci.lo[a], q);
+                ci.hi[a] = std::max(ci.hi[a], q);
             }
-            ci.entries += touched;
         }
+        ci.bad = bad;
     });
     ChunkInfo all;
-    std::vector<std::size_t> chunkEntries(chunks);
     for (std::size_t c = 0; c < chunks; ++c) {
         if (info[c].bad)
             throw std::invalid_argument("voxelize: a particle position is not finite or lies "
                                         "beyond 2^20 voxels from the origin");
-        chunkEntries[c] = info[c].entries;
         for (int a = 0; a < 3; ++a) {
-            all.min[a] = std::min(all.min[a], info[c].min[a]);
-            all.max[a] = std::max(all.max[a], info[c].max[a]);
+            all.lo[a] = std::min(all.lo[a], info[c].lo[a]);
+            all.hi[a] = std::max(all.hi[a], info[c].hi[a]);
         }
     }
     if (checkCancelled) checkCancelled();
@@ -459,17 +613,17 @@ openvdb::FloatGrid::Ptr voxelizeParticles(const float* xyz, std::size_t count,
         KeyCodec codec;
         int bits[3];
         for (int a = 0; a < 3; ++a) {
-            codec.min[a] = all.min[a];
-            bits[a] = bitsFor(std::int64_t(all.max[a]) - all.min[a] + 1);
+            codec.min[a] = brickOf(ceilInt(all.lo[a] - k.rv));
+            const int max = brickOf(floorInt(all.hi[a] + k.rv));
+            bits[a] = bitsFor(std::int64_t(max) - codec.min[a] + 1);
         }
         codec.shiftY = bits[2];
         codec.shiftX = bits[1] + bits[2];
         codec.bits = bits[0] + bits[1] + bits[2];
         grid = codec.bits <= 32
-                   ? voxelizeWith<PackedEntry>(xyz, count, k, settings.clamp, codec, chunkEntries,
+                   ? voxelizeWith<PackedEntry>(xyz, count, k, settings.clamp, codec,
                                                checkCancelled)
-                   : voxelizeWith<WideEntry>(xyz, count, k, settings.clamp, codec, chunkEntries,
-                                             checkCancelled);
+                   : voxelizeWith<WideEntry>(xyz, count, k, settings.clamp, codec, checkCancelled);
     }
     grid->setName("density");
     grid->setGridClass(openvdb::GRID_FOG_VOLUME);

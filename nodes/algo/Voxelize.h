@@ -6,9 +6,9 @@
 /// (i, j, k) * voxelSize in metres. Only leaves (8^3 voxels) that some particle touches are
 /// allocated, so memory follows the occupied space, never the bounding box.
 ///
-/// Deterministic for any thread count: particles are binned into the leaves they touch by a
-/// stable sort on (leaf, particle index), and each leaf sums its particles in ascending index
-/// order within one task. No engine includes.
+/// Deterministic for any thread count: particles are binned into the bricks (4^3 leaves) they
+/// touch, ordered by (brick, particle index), and each brick sums its particles in ascending
+/// index order within one task. No engine includes.
 
 #include <cstddef>
 #include <functional>

@@ -1,5 +1,5 @@
 #pragma once
-/// Writers of maps and particles.
+/// Writers of maps and particles, and the video encoder.
 
 namespace cg {
 
@@ -7,5 +7,6 @@ class Registry;
 
 void registerWriteMapNode(Registry& registry);        // WriteMap: PFM + 16-bit PNG preview
 void registerWriteParticlesNode(Registry& registry);  // WriteParticles: binary PLY
+void registerEncodeVideoNode(Registry& registry);     // EncodeVideo: PNG frames -> MP4 (ffmpeg)
 
 }  // namespace cg

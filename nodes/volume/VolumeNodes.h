@@ -1,5 +1,5 @@
 #pragma once
-/// Cloud particles to OpenVDB fog volumes, and volume writers.
+/// Cloud particles to OpenVDB fog volumes, and volume and point writers.
 
 namespace cg {
 
@@ -7,5 +7,6 @@ class Registry;
 
 void registerVoxelizerNode(Registry& registry);    // Voxelizer
 void registerWriteVdbNode(Registry& registry);     // WriteVDB
+void registerWritePointsNode(Registry& registry);  // WritePoints: VDB Points
 
 }  // namespace cg

@@ -1,0 +1,109 @@
+// EncodeVideo: the PNG frames a WriteImage node wrote, as an H.264 MP4 through ffmpeg.
+// It cooks on every frame after the writer (its input) but encodes only on 'lastFrame', when
+// every frame of the range is on disk (frames cook in order).
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "core/AtomicFile.h"
+#include "core/CoreData.h"
+#include "core/Error.h"
+#include "core/Node.h"
+#include "core/Registry.h"
+#include "nodes/DeclHelpers.h"
+#include "nodes/algo/VideoEncode.h"
+#include "nodes/io/IoNodes.h"
+
+namespace cg {
+
+namespace {
+
+class EncodeVideoNode final : public Node {
+public:
+    void cook(CookContext& ctx) override
+    {
+        const ParamSet& p = ctx.params();
+        const auto last = static_cast<int>(p.getInt("lastFrame"));
+        if (ctx.frame() != last) {
+            ctx.setOutput("files", std::make_shared<TextData>(""));
+            return;
+        }
+        const auto first = static_cast<int>(p.getInt("firstFrame"));
+        algo::VideoEncodeSettings s;
+        s.program = p.getString("ffmpeg");
+        s.firstFrame = first < 0 ? ctx.startFrame() : first;
+        s.lastFrame = last;
+        s.fps = p.getFloat("fps");
+        s.crf = static_cast<int>(p.getInt("crf"));
+        const std::string images = p.getString("images");
+        if (std::filesystem::path(images).parent_path().string().find('#') != std::string::npos ||
+            std::filesystem::path(images).filename().string().find('#') == std::string::npos)
+            throw InputError(ctx.nodeId() + "/params/images",
+                             "'" + images + "' needs #### (the frame number) in its file name");
+        // Resolved under --out as WriteImage resolves its 'file'; #### stays a pattern.
+        s.images = ctx.outputPath("images").parent_path() /
+                   std::filesystem::path(images).filename();
+
+        const std::filesystem::path path = ctx.outputPath("file");
+        AtomicOutput out(path);
+        try {
+            algo::encodeVideo(s, out.tempPath(), [&ctx] { ctx.checkCancelled(); });
+        } catch (const algo::ProgramNotFound& e) {
+            throw InputError(ctx.nodeId(),
+                             std::string(e.what()) +
+                                 ": EncodeVideo needs the ffmpeg program; install it (Debian/"
+                                 "Ubuntu: sudo apt-get install -y ffmpeg, or run "
+                                 "scripts/install-deps.sh) or set the parameter 'ffmpeg' to "
+                                 "its full path");
+        } catch (const std::invalid_argument& e) {
+            throw InputError(ctx.nodeId(), e.what());
+        }
+        out.commit();
+        ctx.setOutput("files", std::make_shared<TextData>(path.string()));
+    }
+};
+
+}  // namespace
+
+void registerEncodeVideoNode(Registry& registry)
+{
+    NodeDecl d;
+    d.type = "EncodeVideo";
+    d.category = "io";
+    d.doc =
+        "Encodes the PNG frames written by a WriteImage node into an MP4 video (H.264 by "
+        "libx264, yuv420p, playable everywhere; odd sizes padded by one pixel) by running the "
+        "ffmpeg program. Cooks on every frame after its input but encodes only on 'lastFrame', "
+        "reading frames firstFrame..lastFrame (all must exist); on other frames 'files' is "
+        "empty. The video is written beside the target and renamed. Without ffmpeg the cook "
+        "fails with a message saying how to install it.";
+    d.writesFiles = true;
+    d.frameDependent = true;
+    d.inputs = {port("frames", "Text",
+                     "the WriteImage node's 'files' output: makes the encoder cook after each "
+                     "frame is written")};
+    d.outputs = {port("files", "Text", "the video's path on the encoding frame, else empty")};
+    d.params = {
+        outputPathParam("file", "video.mp4", "the MP4 to write, relative to --out"),
+        outputPathParam("images", "image.####.png",
+                        "the frames to read: the WriteImage node's 'file' value (relative to "
+                        "--out, #### in the file name)"),
+        intParam("firstFrame", -1, "frame", "first frame of the video; -1 = the graph's start",
+                 -1),
+        intParam("lastFrame", 0, "frame",
+                 "last frame of the video: the encoder runs when this frame cooks (set it to "
+                 "the run's last frame)"),
+        floatParam("fps", 24.0, "1/s", "frames per second of the video", 1, 240),
+        intParam("crf", 18, "",
+                 "x264 constant rate factor: 0 lossless, 18 visually lossless, 23 default, 51 "
+                 "worst",
+                 0, 51),
+        stringParam("ffmpeg", "ffmpeg", "the ffmpeg program: a name looked up on PATH, or a path"),
+    };
+    d.quickParams = {{"lastFrame", "1"}};  // the contract test cooks frame 0: nothing to encode
+    d.create = [] { return std::make_unique<EncodeVideoNode>(); };
+    registry.addNode(std::move(d));
+}
+
+}  // namespace cg

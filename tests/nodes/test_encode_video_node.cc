@@ -1,0 +1,197 @@
+// EncodeVideo: PNG frames written by WriteImage become an H.264 MP4 (checked by its ftyp box
+// and by ffprobe when installed); a missing ffmpeg or a missing frame gives a clear error.
+
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/CoreData.h"
+#include "core/Error.h"
+#include "core/Evaluator.h"
+#include "core/Graph.h"
+#include "core/Registry.h"
+#include "nodes/algo/VideoEncode.h"
+#include "nodes/data/DataTypes.h"
+#include "nodes/io/IoNodes.h"
+#include "nodes/render/RenderNodes.h"
+#include "support/FixtureNodes.h"
+#include "support/TestUtil.h"
+
+extern char** environ;
+
+namespace cg {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// The first executable `name` on PATH, or empty.
+std::string findOnPath(const std::string& name)
+{
+    const char* path = std::getenv("PATH");
+    std::stringstream dirs(path ? path : "/usr/local/bin:/usr/bin:/bin");
+    std::string dir;
+    while (std::getline(dirs, dir, ':')) {
+        const fs::path candidate = fs::path(dir.empty() ? "." : dir) / name;
+        if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
+    }
+    return "";
+}
+
+/// Runs `argv` without a shell; the exit status (-1 if it did not run), stdout in `output`.
+int spawn(const std::vector<std::string>& argv, const fs::path& log, std::string& output)
+{
+    std::vector<char*> args;
+    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    pid_t pid = -1;
+    const int rc = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (rc != 0) return -1;
+    int status = 0;
+    const bool exited = ::waitpid(pid, &status, 0) == pid && WIFEXITED(status);
+    output = test::readFile(log);
+    return exited ? WEXITSTATUS(status) : -1;
+}
+
+class EncodeVideoTest : public ::testing::Test {
+protected:
+    void SetUp() override
+    {
+        registerCoreDataTypes(registry);
+        registerNodeDataTypes(registry);
+        registerFixtureNodes(registry);
+        registerWriteImageNode(registry);
+        registerEncodeVideoNode(registry);
+    }
+
+    /// A 33 x 17 ramp (odd sizes: the encoder pads them) written as frames/f.####.png and
+    /// encoded on frame 3 from frame 0.
+    Graph parse(const std::string& videoParams)
+    {
+        return parseGraph(R"({"cloudgraph": 1, "nodes": {
+            "ramp": {"type": "TestImageSource", "params": {"width": 33, "height": 17}},
+            "write": {"type": "WriteImage", "inputs": {"image": "ramp.image"},
+                      "params": {"file": "frames/f.####.png"}},
+            "video": {"type": "EncodeVideo", "inputs": {"frames": "write.files"},
+                      "params": )" + videoParams + "}}}",
+                          "test.json", registry);
+    }
+
+    Evaluator evaluator()
+    {
+        EvaluatorOptions options;
+        options.outDir = out.path();
+        return Evaluator(registry, options);
+    }
+
+    Registry registry;
+    test::TempDir out;
+};
+
+const char* kParams = R"({"file": "video/v.mp4", "images": "frames/f.####.png",
+                          "firstFrame": 0, "lastFrame": 3, "fps": 12, "crf": 30)";
+
+std::size_t filesIn(const fs::path& dir)
+{
+    std::size_t n = 0;
+    for (const auto& e : fs::directory_iterator(dir)) n += e.is_regular_file();
+    return n;
+}
+
+}  // namespace
+
+TEST(VideoEncode, FramePathReplacesTheFirstHashRun)
+{
+    EXPECT_EQ(algo::framePath("/o/f.####.png", 42), fs::path("/o/f.0042.png"));
+    EXPECT_EQ(algo::framePath("a_##_b#.png", 7), fs::path("a_07_b#.png"));
+    EXPECT_THROW(algo::framePath("plain.png", 1), std::invalid_argument);
+}
+
+TEST_F(EncodeVideoTest, EncodesTheWrittenFramesIntoAnMp4)
+{
+    if (findOnPath("ffmpeg").empty()) GTEST_SKIP() << "ffmpeg is not installed";
+    const Graph g = parse(std::string(kParams) + "}");
+    Evaluator ev = evaluator();
+    ev.cookFrames(g, 0, 3);
+    const fs::path mp4 = out / "video/v.mp4";
+    ASSERT_TRUE(fs::is_regular_file(mp4));
+    EXPECT_EQ(filesIn(out / "video"), 1u);  // no temp file or log left beside it
+    // An MP4 starts with its ftyp box: 4 bytes of size, then "ftyp".
+    const std::string bytes = test::readFile(mp4);
+    ASSERT_GT(bytes.size(), 8u);
+    EXPECT_EQ(bytes.substr(4, 4), "ftyp");
+
+    const std::string ffprobe = findOnPath("ffprobe");
+    if (ffprobe.empty()) return;
+    std::string probe;
+    ASSERT_EQ(spawn({ffprobe, "-v", "error", "-select_streams", "v:0", "-count_frames",
+                     "-show_entries", "stream=codec_name,pix_fmt,width,height,nb_read_frames",
+                     "-of", "default=noprint_wrappers=1", mp4.string()},
+                    out / "ffprobe.log", probe),
+              0)
+        << probe;
+    EXPECT_NE(probe.find("codec_name=h264"), std::string::npos) << probe;
+    EXPECT_NE(probe.find("pix_fmt=yuv420p"), std::string::npos) << probe;
+    EXPECT_NE(probe.find("width=34"), std::string::npos) << probe;   // padded to even
+    EXPECT_NE(probe.find("height=18"), std::string::npos) << probe;
+    EXPECT_NE(probe.find("nb_read_frames=4"), std::string::npos) << probe;
+}
+
+TEST_F(EncodeVideoTest, OnlyTheLastFrameEncodes)
+{
+    const Graph g = parse(std::string(kParams) + "}");
+    Evaluator ev = evaluator();
+    const auto files =
+        std::dynamic_pointer_cast<const TextData>(ev.pull(g, "video", 1)->at("files"));
+    ASSERT_TRUE(files);
+    EXPECT_EQ(files->value, "");
+    EXPECT_FALSE(fs::exists(out / "video/v.mp4"));
+}
+
+TEST_F(EncodeVideoTest, MissingFfmpegSaysHowToInstallIt)
+{
+    const Graph g =
+        parse(std::string(kParams) + R"(, "ffmpeg": "/nonexistent/cloudgraph-test-ffmpeg"})");
+    Evaluator ev = evaluator();
+    try {
+        ev.cookFrames(g, 0, 3);
+        FAIL() << "expected an error";
+    } catch (const CookError& e) {
+        const std::string what = e.what();
+        EXPECT_TRUE(e.inputFault());
+        EXPECT_NE(what.find("'video'"), std::string::npos) << what;
+        EXPECT_NE(what.find("cloudgraph-test-ffmpeg"), std::string::npos) << what;
+        EXPECT_NE(what.find("apt-get install -y ffmpeg"), std::string::npos) << what;
+    }
+    EXPECT_FALSE(fs::exists(out / "video/v.mp4"));
+    EXPECT_EQ(filesIn(out / "video"), 0u);
+}
+
+TEST_F(EncodeVideoTest, MissingFrameIsNamed)
+{
+    const Graph g = parse(std::string(kParams) + "}");
+    Evaluator ev = evaluator();
+    try {
+        ev.pull(g, "video", 3);  // only frame 3 was written
+        FAIL() << "expected an error";
+    } catch (const CookError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("frame 0 is missing"), std::string::npos) << what;
+        EXPECT_NE(what.find("f.0000.png"), std::string::npos) << what;
+    }
+}
+
+}  // namespace cg
