@@ -38,8 +38,9 @@ std::string flags(const NodeDecl& d)
     std::string s;
     if (d.simulation) s += " simulation (steps from its previous frame);";
     else if (d.frameDependent) s += " frame-dependent;";
-    else s += " cooks once per animation;";
+    else s += " changes with the frame only through its inputs;";
     if (d.writesFiles) s += " writes files;";
+    if (!d.cacheOnDisk) s += " memory cache only;";
     if (!s.empty()) s.pop_back();
     return s;
 }

@@ -181,7 +181,7 @@ private:
         record.key = key;
 
         OutputsPtr outputs;
-        if (!decl.writesFiles) outputs = lookup(key, record.status);
+        if (!decl.writesFiles) outputs = lookup(key, decl, record.status);
         if (!outputs) {
             outputs = cook(idx, frame, key, results, record.reason);
             record.status = CookStatus::Cooked;
@@ -201,13 +201,13 @@ private:
         return outputs;
     }
 
-    OutputsPtr lookup(const Key& key, CookStatus& status)
+    OutputsPtr lookup(const Key& key, const NodeDecl& decl, CookStatus& status)
     {
         if (OutputsPtr hit = mEv.mMemory.find(key)) {
             status = CookStatus::MemoryHit;
             return hit;
         }
-        if (mEv.mOptions.diskCache) {
+        if (mEv.mOptions.diskCache && decl.cacheOnDisk) {
             if (auto stored = mEv.mOptions.diskCache->load(key, mEv.mRegistry)) {
                 auto hit = std::make_shared<const OutputMap>(std::move(*stored));
                 mEv.mMemory.insert(key, hit);
@@ -269,7 +269,8 @@ private:
         }
         auto shared = std::make_shared<const OutputMap>(std::move(out));
         mEv.mMemory.insert(key, shared);
-        if (mEv.mOptions.diskCache && !decl.writesFiles) mEv.mOptions.diskCache->store(key, *shared);
+        if (mEv.mOptions.diskCache && !decl.writesFiles && decl.cacheOnDisk)
+            mEv.mOptions.diskCache->store(key, *shared);
         return shared;
     }
 
@@ -306,7 +307,7 @@ private:
         int resume = frame - 1;
         OutputsPtr state;
         for (; resume >= mGraph.frames.start; --resume) {
-            if ((state = lookup(keyOf(idx, resume), ignored))) break;
+            if ((state = lookup(keyOf(idx, resume), *mGraph.nodes()[idx].decl, ignored))) break;
         }
         if (state) hold(idx, resume, state);
         // Step forward through the frames no cache holds; each step cooks the node's closure.

@@ -42,6 +42,10 @@ struct NodeDecl {
     bool simulation = false;
     /// The node writes files; it cooks on every run so outputs on disk are always complete.
     bool writesFiles = false;
+    /// Whether the output goes to the disk cache. False for large outputs that are cheaper to
+    /// cook again than to store and read back (e.g. a frame's cloud particles); the memory
+    /// cache still keeps them.
+    bool cacheOnDisk = true;
     /// The node reads the evaluation context's time step or seed (hashed into its key).
     bool readsTimeStep = false;
     bool readsSeed = false;

@@ -177,6 +177,27 @@ TEST_F(EvaluatorTest, SimulationResumesFromTheDiskCacheAcrossEvaluators)
     EXPECT_EQ(cookCount("src"), 0u);
 }
 
+TEST_F(EvaluatorTest, MemoryOnlyNodesNeverReachTheDiskCache)
+{
+    NodeDecl memoryOnly = *registry.findNode("TestAdd");
+    memoryOnly.type = "TestAddMemoryOnly";
+    memoryOnly.cacheOnDisk = false;
+    registry.addNode(memoryOnly);
+    test::TempDir dir;
+    const Graph g = parse(R"({"cloudgraph": 1, "nodes": {
+        "src": {"type": "TestSource"},
+        "kept": {"type": "TestAdd", "inputs": {"values": "src.values"}},
+        "regenerated": {"type": "TestAddMemoryOnly", "inputs": {"values": "kept.values"}}}})");
+    EvaluatorOptions options;
+    options.diskCache = std::make_shared<DiskCache>(dir.path());
+    const auto first = values(Evaluator(registry, options).pull(g, "regenerated", 0), "values");
+    resetCookCounts();
+    Evaluator second(registry, options);
+    EXPECT_EQ(values(second.pull(g, "regenerated", 0), "values"), first);
+    EXPECT_EQ(cookCount("kept"), 0u);         // read back from disk
+    EXPECT_EQ(cookCount("regenerated"), 1u);  // never stored there: cooked again
+}
+
 TEST_F(EvaluatorTest, IntegrateMatchesItsClosedForm)
 {
     Graph g = parse(R"({"cloudgraph": 1, "frames": {"start": 3, "end": 30}, "timeStep": 0.5,
