@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and cooks the default scene end to end into out/.
+# Installs what is missing, builds, and renders the default scene (the paper's Figure 6)
+# end to end into out/.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/build.sh" "$root/build"
 cd "$root"
-./build/cli/cloudgraph run graphs/default.json --out out --cache out/cache --report out/report.json "$@"
+./build/cli/cloudgraph run graphs/figure6_towering_cumulus.json --out out --cache out/cache \
+    --report out/report.json "$@"
