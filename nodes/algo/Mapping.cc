@@ -2,14 +2,36 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <unordered_set>
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "nodes/algo/CounterRandom.h"
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
+
 namespace cg::algo {
+
+void adviseHugePages(void* p, std::size_t bytes)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    // madvise wants page-aligned ranges: advise the whole pages inside the array.
+    static const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+    const auto at = reinterpret_cast<std::uintptr_t>(p);
+    const std::uintptr_t begin = (at + page - 1) / page * page;
+    const std::uintptr_t end = (at + bytes) / page * page;
+    if (end > begin) static_cast<void>(madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE));
+#else
+    static_cast<void>(p);
+    static_cast<void>(bytes);
+#endif
+}
 
 float MapView::at(double x, double y) const
 {
@@ -203,37 +225,161 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
     return table;
 }
 
+namespace {
+
+/// What every chunk of frame t needs: the origin of each source (Eq. 12) and the prefix sums
+/// of the cluster sizes (Eq. 13), so particle q belongs to the source j with
+/// offset[j] <= q < offset[j + 1].
+struct FramePlan {
+    std::vector<float> origins;
+    std::vector<std::uint64_t> offset;
+    std::uint64_t total() const { return offset.back(); }
+};
+
+FramePlan planFrame(const SourceTable& table, int frame, const CondensationView& c, const PrimitiveView& p,
+                    const MappingSettings& s)
+{
+    FramePlan plan;
+    plan.origins = sourceOrigins(table, frame, c, p, s);
+    const std::size_t n = table.sources.size();
+    plan.offset.assign(n + 1, 0);
+    for (std::size_t j = 0; j < n; ++j) plan.offset[j + 1] = plan.offset[j] + clusterSize(table.sources[j], frame, s, p);
+    return plan;
+}
+
+/// Eq. 10 for fluid particles [i0, i1) of source j: primitivePosition's arithmetic (P_f = a +
+/// w (b - a), or the last frame past its end) with the frame pair, weight, origin and scale
+/// hoisted out of the particle loop, bit-identical to calling it per particle.
+void sourceSlice(const Source& src, const float* origin, int frame, const PrimitiveView& p,
+                 const MappingSettings& s, std::uint64_t i0, std::uint64_t i1, float* __restrict out)
+{
+    const double time = primitiveTime(src, frame, s, p);
+    const auto scale = static_cast<float>(s.metresPerPrimitiveMetre * src.scale);
+    const float ox = origin[0], oy = origin[1], oz = origin[2];
+    const double whole = std::floor(time);
+    const std::uint64_t n = i1 - i0;
+    if (whole >= p.frameCount - 1) {
+        const float* __restrict a = p.frames[p.frameCount - 1] + 3 * i0;
+        for (std::uint64_t i = 0; i < n; ++i) {
+            out[3 * i] = ox + scale * a[3 * i];
+            out[3 * i + 1] = oy + scale * a[3 * i + 1];
+            out[3 * i + 2] = oz + scale * a[3 * i + 2];
+        }
+        return;
+    }
+    const int f = static_cast<int>(whole);
+    const auto w = static_cast<float>(time - whole);
+    const float* __restrict a = p.frames[f] + 3 * i0;
+    const float* __restrict b = p.frames[f + 1] + 3 * i0;
+    for (std::uint64_t i = 0; i < n; ++i) {
+        out[3 * i] = ox + scale * (a[3 * i] + w * (b[3 * i] - a[3 * i]));
+        out[3 * i + 1] = oy + scale * (a[3 * i + 1] + w * (b[3 * i + 1] - a[3 * i + 1]));
+        out[3 * i + 2] = oz + scale * (a[3 * i + 2] + w * (b[3 * i + 2] - a[3 * i + 2]));
+    }
+}
+
+/// Particles [first, last) of the frame into xyz (and levels / sources when not null), source
+/// slice by source slice.
+void fillRange(const FramePlan& plan, const SourceTable& table, int frame, const PrimitiveView& p,
+               const MappingSettings& s, std::uint64_t first, std::uint64_t last, float* xyz,
+               std::uint8_t* levels, std::uint32_t* sources)
+{
+    const auto& offset = plan.offset;
+    auto j = static_cast<std::size_t>(std::upper_bound(offset.begin(), offset.end(), first) - offset.begin() - 1);
+    for (std::uint64_t q = first; q < last; ++j) {
+        const std::uint64_t end = std::min(last, offset[j + 1]);
+        if (end == q) continue;  // a source not started yet: no cluster, no frame to look up
+        const Source& src = table.sources[j];
+        sourceSlice(src, &plan.origins[3 * j], frame, p, s, q - offset[j], end - offset[j], xyz + 3 * (q - first));
+        if (levels != nullptr) std::fill_n(levels + (q - first), end - q, src.level);
+        if (sources != nullptr) std::fill_n(sources + (q - first), end - q, static_cast<std::uint32_t>(j));
+        q = end;
+    }
+}
+
+/// The chunk loop behind forEachCloudChunk and generateCloudParticles.
+void runChunks(const FramePlan& plan, const SourceTable& table, int frame, const PrimitiveView& p,
+               const MappingSettings& s, const std::function<void(const CloudChunk&)>& consume,
+               const CloudChunkOptions& o)
+{
+    const std::uint64_t size = o.chunkParticles;
+    const bool direct = o.positionsOut != nullptr;
+    if (size == 0) throw std::invalid_argument("forEachCloudChunk: chunkParticles must be positive");
+    if (direct ? (o.levels && o.levelsOut == nullptr) || (o.sources && o.sourcesOut == nullptr)
+               : o.levelsOut != nullptr || o.sourcesOut != nullptr)
+        throw std::invalid_argument("forEachCloudChunk: frame arrays must be given for every requested field");
+    const std::uint64_t total = plan.total();
+    const std::uint64_t chunks = total / size + (total % size != 0);
+    struct Buffers {
+        std::vector<float> xyz;
+        std::vector<std::uint8_t> levels;
+        std::vector<std::uint32_t> sources;
+    };
+    tbb::enumerable_thread_specific<Buffers> perThread;
+    // Chunk k is particles [k size, (k + 1) size): fixed by the inputs, whatever the partition.
+    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, chunks), [&](const tbb::blocked_range<std::uint64_t>& r) {
+        for (std::uint64_t k = r.begin(); k < r.end(); ++k) {
+            if (o.checkCancelled) o.checkCancelled();
+            CloudChunk chunk;
+            chunk.first = k * size;
+            chunk.count = std::min(size, total - chunk.first);
+            float* xyz;
+            std::uint8_t* levels = nullptr;
+            std::uint32_t* sources = nullptr;
+            if (direct) {
+                xyz = o.positionsOut + 3 * chunk.first;
+                if (o.levels) levels = o.levelsOut + chunk.first;
+                if (o.sources) sources = o.sourcesOut + chunk.first;
+            } else {
+                Buffers& b = perThread.local();
+                if (b.xyz.empty()) {
+                    b.xyz.resize(3 * size);
+                    if (o.levels) b.levels.resize(size);
+                    if (o.sources) b.sources.resize(size);
+                }
+                xyz = b.xyz.data();
+                if (o.levels) levels = b.levels.data();
+                if (o.sources) sources = b.sources.data();
+            }
+            fillRange(plan, table, frame, p, s, chunk.first, chunk.first + chunk.count, xyz, levels, sources);
+            if (consume) {
+                chunk.positions = xyz;
+                chunk.levels = levels;
+                chunk.sources = sources;
+                consume(chunk);
+            }
+        }
+    });
+}
+
+}  // namespace
+
+std::uint64_t forEachCloudChunk(const SourceTable& table, int frame, const CondensationView& c,
+                                const PrimitiveView& p, const MappingSettings& s,
+                                const std::function<void(const CloudChunk&)>& consume,
+                                const CloudChunkOptions& options)
+{
+    const FramePlan plan = planFrame(table, frame, c, p, s);
+    runChunks(plan, table, frame, p, s, consume, options);
+    return plan.total();
+}
+
 CloudParticleArrays generateCloudParticles(const SourceTable& table, int frame,
                                            const CondensationView& c, const PrimitiveView& p,
                                            const MappingSettings& s,
                                            const std::function<void()>& checkCancelled)
 {
-    const std::vector<float> origins = sourceOrigins(table, frame, c, p, s);
-    const std::size_t n = table.sources.size();
-    std::vector<std::uint64_t> offset(n + 1, 0);
-    for (std::size_t j = 0; j < n; ++j) offset[j + 1] = offset[j] + clusterSize(table.sources[j], frame, s, p);
-
-    CloudParticleArrays out;
-    out.positions.resize(3 * offset[n]);
-    out.levels.resize(offset[n]);
-    out.sources.resize(offset[n]);
-    // Each source writes its own slice: the result does not depend on the thread count.
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), [&](const tbb::blocked_range<std::size_t>& r) {
-        if (checkCancelled) checkCancelled();
-        for (std::size_t j = r.begin(); j < r.end(); ++j) {
-            const Source& src = table.sources[j];
-            const double time = primitiveTime(src, frame, s, p);
-            const auto scale = static_cast<float>(s.metresPerPrimitiveMetre * src.scale);
-            const float* o = &origins[3 * j];
-            for (std::uint64_t q = offset[j]; q < offset[j + 1]; ++q) {
-                float f[3];
-                primitivePosition(p, static_cast<std::uint32_t>(q - offset[j]), time, f);
-                for (int k = 0; k < 3; ++k) out.positions[3 * q + k] = o[k] + scale * f[k];  // Eq. 10
-                out.levels[q] = src.level;
-                out.sources[q] = static_cast<std::uint32_t>(j);
-            }
-        }
-    });
+    const FramePlan plan = planFrame(table, frame, c, p, s);
+    const auto n = static_cast<std::size_t>(plan.total());
+    // Uninitialised: each chunk's writer touches its own pages first (no zero-fill on one thread).
+    CloudParticleArrays out{UninitArray<float>(3 * n), UninitArray<std::uint8_t>(n), UninitArray<std::uint32_t>(n)};
+    CloudChunkOptions o;
+    o.levels = o.sources = true;
+    o.positionsOut = out.positions.data();
+    o.levelsOut = out.levels.data();
+    o.sourcesOut = out.sources.data();
+    o.checkCancelled = checkCancelled;
+    runChunks(plan, table, frame, p, s, {}, o);
     return out;
 }
 

@@ -24,7 +24,8 @@ struct PrimitiveSettings {
     int maxParticles = 4000000;    ///< refuse boxes that would need more fluid particles
 };
 
-/// The default settings: about 16,000 cloud particles over 150 frames.
+/// The default settings (PrimitiveSim's defaults): 54,000 fluid particles, 150 frames of 2 s
+/// (see docs/primitive.md for what they give).
 PrimitiveSettings defaultPrimitiveSettings();
 
 struct PrimitiveResult {

@@ -100,25 +100,16 @@ SphSolver::SphSolver(const SphSettings& s, const double lo[3], const double hi[3
     pushLattice(true);
 
     mMass = s.airDensity * dx * dx * dx;
-    // rho0 and PCISPH's delta from a particle with a full lattice neighbourhood, so a resting
-    // lattice has zero density error.
+    // rho0 from a particle with a full lattice neighbourhood, so a resting lattice has zero
+    // density error.
     const double h = mKernel.support();
     const int reach = static_cast<int>(std::ceil(h / dx));
-    double w = 0.0, sumG[3] = {0, 0, 0}, sumGG = 0.0;
+    double w = 0.0;
     for (int k = -reach; k <= reach; ++k)
         for (int j = -reach; j <= reach; ++j)
-            for (int i = -reach; i <= reach; ++i) {
-                const double x[3] = {-i * dx, -j * dx, -k * dx};
-                const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
-                w += mKernel.value(r);
-                double g[3];
-                mKernel.gradient(x, r, g);
-                for (int a = 0; a < 3; ++a) sumG[a] += g[a];
-                sumGG += g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
-            }
+            for (int i = -reach; i <= reach; ++i)
+                w += mKernel.value(dx * std::sqrt(static_cast<double>(i * i + j * j + k * k)));
     mRho0 = mMass * w;
-    const double beta = 2.0 * (mMass / mRho0) * (mMass / mRho0);  // times dt^2
-    mDelta = 1.0 / (beta * (sumG[0] * sumG[0] + sumG[1] * sumG[1] + sumG[2] * sumG[2] + sumGG));
 
     const std::size_t all = mX.size() / 3;
     mV.assign(3 * all, 0.0);
@@ -135,9 +126,12 @@ SphSolver::SphSolver(const SphSettings& s, const double lo[3], const double hi[3
     mAccP.assign(3 * mFluid, 0.0);
     mDT.assign(mFluid, 0.0);
     mDQ.assign(mFluid, 0.0);
+    mTheta.assign(mFluid, 0.0);
+    mGradSq.assign(mFluid, 0.0);
+    mVapour.assign(mFluid, 0.0);
     mNbr.resize(kMaxNeighbours * mFluid);
     mNbrCount.resize(mFluid);
-    mGradW.resize(3 * kMaxNeighbours * mFluid);
+    mGradF.resize(kMaxNeighbours * mFluid);
 }
 
 double SphSolver::totalTemperature() const
@@ -153,9 +147,14 @@ double SphSolver::stableTimeStep() const
         const double* v = &mV[3 * i];
         return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     });
+    // The forces of the last sub-step, and the buoyancy now: before the first sub-step the
+    // forces are not known yet, and a warm blob must not start with a huge step.
+    const ThermoSettings& th = mSettings.thermo;
+    const bool lift = mSettings.buoyancy;
     const double amax = parallelMax(mFluid, [&](std::size_t i) {
         const double* a = &mAcc[3 * i];
-        return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+        const double b = lift ? buoyancy(th, mX[3 * i + 2], mT[i], mQv[i], mQc[i]) : 0.0;
+        return std::max(std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]), std::fabs(b));
     });
     double dt = 1e30;
     if (vmax > 0.0) dt = std::min(dt, mSettings.cfl * dx / vmax);
@@ -174,8 +173,9 @@ void SphSolver::buildNeighbours()
         const double* xi = &mX[3 * i];
         std::size_t c = 0;
         std::uint32_t* out = &mNbr[kMaxNeighbours * i];
-        float* g = &mGradW[3 * kMaxNeighbours * i];
+        float* f = &mGradF[kMaxNeighbours * i];
         bool overflow = false;
+        double sum[3] = {0, 0, 0}, sq = 0.0;
         mGrid.forEachNeighbour(mX.data(), xi, h, [&](std::uint32_t j) {
             if (j == i) return;
             if (c == kMaxNeighbours) {
@@ -185,12 +185,13 @@ void SphSolver::buildNeighbours()
             const double* xj = &mX[3 * static_cast<std::size_t>(j)];
             const double d[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
             const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-            double gw[3];
-            mKernel.gradient(d, r, gw);
+            // grad W_ij = F_ij (x_i - x_j); only F is stored, halving what the passes read.
+            f[c] = static_cast<float>(r > 1e-12 * h ? mKernel.derivative(r) / r : 0.0);
+            const double gw[3] = {f[c] * d[0], f[c] * d[1], f[c] * d[2]};
             out[c] = j;
-            g[3 * c] = static_cast<float>(gw[0]);
-            g[3 * c + 1] = static_cast<float>(gw[1]);
-            g[3 * c + 2] = static_cast<float>(gw[2]);
+            // The geometric part of IISPH's diagonal a_ii, for the pressure preconditioner.
+            for (int a = 0; a < 3; ++a) sum[a] += gw[a];
+            if (j < mFluid) sq += gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2];
             ++c;
         });
         if (overflow)
@@ -198,6 +199,7 @@ void SphSolver::buildNeighbours()
                                      " neighbours; the simulation became unstable "
                                      "(use a smaller time step or CFL number)");
         mNbrCount[i] = static_cast<std::uint16_t>(c);
+        mGradSq[i] = sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2] + sq;
     });
 }
 
@@ -224,21 +226,26 @@ void SphSolver::computeForcesAndHeat()
     const double visc = 10.0 * mSettings.viscosity * mMass / mRho0;  // 2 (d + 2) nu m / rho0
     const double cond = 2.0 * mSettings.conduction * mMass / mRho0;  // Brookshaw Laplacian
     const ThermoSettings& th = mSettings.thermo;
+    // Departures from the ambient profile, once per particle (the profile costs two exp).
+    forParticles(mFluid, [&](std::size_t i) {
+        mTheta[i] = mT[i] - ambientTemperature(th, mX[3 * i + 2]);
+        mVapour[i] = mQv[i] - ambientVapour(th, mX[3 * i + 2]);
+    });
     forParticles(mFluid, [&](std::size_t i) {
         const double* xi = &mX[3 * i];
         const double* vi = &mV[3 * i];
-        const double thetaI = mT[i] - ambientTemperature(th, xi[2]);
-        const double vapI = mQv[i] - ambientVapour(th, xi[2]);
+        const double thetaI = mTheta[i];
+        const double vapI = mVapour[i];
         double a[3] = {0, 0, 0}, dT = 0.0, dQ = 0.0;
         const std::uint32_t* nb = &mNbr[kMaxNeighbours * i];
-        const float* g = &mGradW[3 * kMaxNeighbours * i];
+        const float* f = &mGradF[kMaxNeighbours * i];
         for (std::size_t c = 0; c < mNbrCount[i]; ++c) {
             const std::size_t j = nb[c];
-            if (j >= mFluid) continue;  // free-slip, adiabatic, dry walls
             const double* xj = &mX[3 * j];
+            if (j >= mFluid) continue;  // free-slip, adiabatic, dry walls
             const double* vj = &mV[3 * j];
             const double d[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
-            const double gw[3] = {g[3 * c], g[3 * c + 1], g[3 * c + 2]};
+            const double gw[3] = {f[c] * d[0], f[c] * d[1], f[c] * d[2]};
             const double xg = (d[0] * gw[0] + d[1] * gw[1] + d[2] * gw[2]) /
                               (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + eta2);
             const double vx =
@@ -249,10 +256,8 @@ void SphSolver::computeForcesAndHeat()
             a[2] += sv * gw[2];
             // Conduction of the departures from the ambient profile (lap T_e = 0, so this is
             // alpha lap T of Eq. 2), pairwise antisymmetric: heat is only moved, never made.
-            const double thetaJ = mT[j] - ambientTemperature(th, xj[2]);
-            const double vapJ = mQv[j] - ambientVapour(th, xj[2]);
-            dT += cond * (thetaI - thetaJ) * xg;
-            dQ += cond * (vapI - vapJ) * xg;
+            dT += cond * (thetaI - mTheta[j]) * xg;
+            dQ += cond * (vapI - mVapour[j]) * xg;
         }
         if (mSettings.buoyancy) a[2] += buoyancy(th, xi[2], mT[i], mQv[i], mQc[i]);
         mAcc[3 * i] = a[0];
@@ -263,65 +268,117 @@ void SphSolver::computeForcesAndHeat()
     });
 }
 
+void SphSolver::pressureAcceleration(const std::vector<double>& p, std::vector<double>& acc) const
+{
+    // a_i = -m/rho0^2 [ sum_fluid (p_i + p_j) grad W_ij + sum_wall p_i grad W_iw ]: the
+    // wall term (p_wall = 0) makes this the exact adjoint of densityChange, so the pressure
+    // system is symmetric and conjugate gradients apply.
+    const double s0 = -mMass / (mRho0 * mRho0);
+    forParticles(mFluid, [&](std::size_t i) {
+        const std::uint32_t* nb = &mNbr[kMaxNeighbours * i];
+        const float* f = &mGradF[kMaxNeighbours * i];
+        const double* xi = &mX[3 * i];
+        double a[3] = {0, 0, 0};
+        for (std::size_t c = 0; c < mNbrCount[i]; ++c) {
+            const std::size_t j = nb[c];
+            const double* xj = &mX[3 * j];
+            const double s = s0 * f[c] * (j < mFluid ? p[i] + p[j] : p[i]);
+            a[0] += s * (xi[0] - xj[0]);
+            a[1] += s * (xi[1] - xj[1]);
+            a[2] += s * (xi[2] - xj[2]);
+        }
+        for (int k = 0; k < 3; ++k) acc[3 * i + k] = a[k];
+    });
+}
+
+void SphSolver::densityChange(const std::vector<double>& v, double scale,
+                              std::vector<double>& out) const
+{
+    // out_i = scale sum_j m (v_i - v_j) . grad W_ij, walls at rest.
+    forParticles(mFluid, [&](std::size_t i) {
+        const double* vi = &v[3 * i];
+        const std::uint32_t* nb = &mNbr[kMaxNeighbours * i];
+        const float* f = &mGradF[kMaxNeighbours * i];
+        const double* xi = &mX[3 * i];
+        double div = 0.0;
+        for (std::size_t c = 0; c < mNbrCount[i]; ++c) {
+            const std::size_t j = nb[c];
+            const double* xj = &mX[3 * j];
+            double dv[3] = {vi[0], vi[1], vi[2]};
+            if (j < mFluid)
+                for (int k = 0; k < 3; ++k) dv[k] -= v[3 * j + k];
+            div += f[c] *
+                   (dv[0] * (xi[0] - xj[0]) + dv[1] * (xi[1] - xj[1]) + dv[2] * (xi[2] - xj[2]));
+        }
+        out[i] = scale * mMass * div;
+    });
+}
+
 void SphSolver::solvePressure(double dt)
 {
-    // Predict rho*_i = rho_i + dt sum_j m (v*_i - v*_j) . grad W_ij with v* = v + dt (a + a_p),
-    // correct p_i += delta (rho*_i - rho0), repeat (PCISPH). Walls: v = 0, p_wall = p_i.
-    // Relaxed by one half: the full prototype delta over-corrects when neighbours move too
-    // (the Jacobi iteration then diverges), as IISPH's omega = 0.5.
-    const double delta = 0.5 * mDelta / (dt * dt);
-    const double invRho2 = 1.0 / (mRho0 * mRho0);
-    // Warm start from half the last pressure (as IISPH), so a steady pressure field (a
-    // resting column, a wall under load) is not rebuilt from zero every sub-step.
-    for (std::size_t i = 0; i < mFluid; ++i) mP[i] *= 0.5;
-    std::vector<double> vstar(3 * mFluid);
-    std::vector<double> err(mFluid);
+    // Implicit incompressible SPH: find p so that the density predicted after the step,
+    // rho*_i = rho_i + dt sum_j m (v*_i - v*_j) . grad W_ij with v* = v + dt (a + a_p(p)),
+    // equals rho0. The map p -> rho* is linear, symmetric and positive definite
+    // (M = -dt^2 D a_p, D the divergence above), so it is solved by conjugate gradients
+    // with IISPH's per-particle diagonal a_ii as preconditioner, warm-started from the last
+    // pressure. Pressures may be negative: the box is closed, there is no free surface.
+    const std::size_t n = mFluid;
+    std::vector<double>& vstar = mWork[0];
+    std::vector<double>& accD = mWork[1];
+    std::vector<double>& r = mWork[2];
+    std::vector<double>& z = mWork[3];
+    std::vector<double>& d = mWork[4];
+    std::vector<double>& q = mWork[5];
+    std::vector<double>& diag = mWork[6];
+    for (std::vector<double>* w : {&vstar, &accD}) w->resize(3 * n);
+    for (std::vector<double>* w : {&r, &z, &d, &q, &diag}) w->resize(n);
+
+    const double scale = dt * dt * mMass * mMass / (mRho0 * mRho0);
+    forParticles(
+        n, [&](std::size_t i) { diag[i] = mGradSq[i] > 0.0 ? 1.0 / (scale * mGradSq[i]) : 0.0; });
+
+    // Residual r = (rho* - rho0) / rho0 at the warm-start pressure; the unknown is p / rho0.
+    pressureAcceleration(mP, mAccP);
+    forParticles(n, [&](std::size_t i) {
+        for (int k = 0; k < 3; ++k)
+            vstar[3 * i + k] = mV[3 * i + k] + dt * (mAcc[3 * i + k] + mAccP[3 * i + k]);
+    });
+    densityChange(vstar, dt, r);
+    forParticles(n, [&](std::size_t i) { r[i] = (mRho[i] + r[i] - mRho0) / mRho0; });
+    auto maxAbs = [&](const std::vector<double>& e) {
+        return parallelMax(n, [&](std::size_t i) { return std::fabs(e[i]); });
+    };
+    auto dot = [&](const std::vector<double>& a, const std::vector<double>& b) {
+        return deterministicSum(n, [&](std::size_t i) { return a[i] * b[i]; });
+    };
     int it = 0;
-    double mean = 0.0;
-    for (;;) {
-        forParticles(mFluid, [&](std::size_t i) {
-            const std::uint32_t* nb = &mNbr[kMaxNeighbours * i];
-            const float* g = &mGradW[3 * kMaxNeighbours * i];
-            double a[3] = {0, 0, 0};
-            for (std::size_t c = 0; c < mNbrCount[i]; ++c) {
-                const std::size_t j = nb[c];
-                const double pj = j < mFluid ? mP[j] : mP[i];
-                const double s = -mMass * (mP[i] + pj) * invRho2;
-                a[0] += s * g[3 * c];
-                a[1] += s * g[3 * c + 1];
-                a[2] += s * g[3 * c + 2];
-            }
-            for (int k = 0; k < 3; ++k) {
-                mAccP[3 * i + k] = a[k];
-                vstar[3 * i + k] = mV[3 * i + k] + dt * (mAcc[3 * i + k] + a[k]);
-            }
+    double worst = maxAbs(r);
+    forParticles(n, [&](std::size_t i) { d[i] = z[i] = diag[i] * r[i]; });
+    double rz = dot(r, z);
+    while (worst > mSettings.maxDensityError && it < mSettings.maxIterations && rz > 0.0) {
+        // q = M d = -dt^2 D a_p(d); d is in units of p / rho0.
+        pressureAcceleration(d, accD);
+        densityChange(accD, -dt * dt, q);
+        const double dq = dot(d, q);
+        if (!(dq > 0.0)) break;
+        const double alpha = rz / dq;
+        forParticles(n, [&](std::size_t i) {
+            mP[i] += alpha * d[i] * mRho0;
+            for (int k = 0; k < 3; ++k) mAccP[3 * i + k] += alpha * mRho0 * accD[3 * i + k];
+            r[i] -= alpha * q[i];
+            z[i] = diag[i] * r[i];
         });
-        forParticles(mFluid, [&](std::size_t i) {
-            const double* vi = &vstar[3 * i];
-            const std::uint32_t* nb = &mNbr[kMaxNeighbours * i];
-            const float* g = &mGradW[3 * kMaxNeighbours * i];
-            double div = 0.0;
-            for (std::size_t c = 0; c < mNbrCount[i]; ++c) {
-                const std::size_t j = nb[c];
-                const double* vj = j < mFluid ? &vstar[3 * j] : nullptr;
-                const double dv[3] = {vi[0] - (vj ? vj[0] : 0.0), vi[1] - (vj ? vj[1] : 0.0),
-                                      vi[2] - (vj ? vj[2] : 0.0)};
-                div += dv[0] * g[3 * c] + dv[1] * g[3 * c + 1] + dv[2] * g[3 * c + 2];
-            }
-            err[i] = mRho[i] + dt * mMass * div - mRho0;
-        });
-        mean = deterministicSum(mFluid, [&](std::size_t i) { return std::fabs(err[i]); }) /
-               (static_cast<double>(mFluid) * mRho0);
-        if ((it >= mSettings.minIterations && mean < mSettings.maxDensityError) ||
-            it >= mSettings.maxIterations)
-            break;
-        // Pressures stay >= 0: negative pressure would pull particles into clumps (the SPH
-        // tensile instability); a rarefied spot is filled by its compressed neighbours.
-        forParticles(mFluid, [&](std::size_t i) { mP[i] = std::max(0.0, mP[i] + delta * err[i]); });
         ++it;
+        worst = maxAbs(r);
+        const double rzNew = dot(r, z);
+        const double beta = rzNew / rz;
+        rz = rzNew;
+        forParticles(n, [&](std::size_t i) { d[i] = z[i] + beta * d[i]; });
     }
     mStats.iterations = it;
-    mStats.meanDensityError = mean;
+    mStats.meanDensityError = deterministicSum(n, [&](std::size_t i) { return std::fabs(r[i]); }) /
+                              static_cast<double>(n);
+    mStats.solverDensityError = worst;
 }
 
 void SphSolver::integrate(double dt)

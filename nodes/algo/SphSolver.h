@@ -1,13 +1,14 @@
 #pragma once
 /// The particle fluid of Sec. 4: the incompressible Navier-Stokes equations (Eq. 1) with the
-/// thermodynamics of Eq. 2, by SPH with a predictive-corrective pressure solve (PCISPH,
-/// Solenthaler & Pajarola 2009, density predicted to first order as in IISPH/DFSPH).
+/// thermodynamics of Eq. 2, by SPH with an implicit pressure solve (IISPH's equation, Ihmsen et
+/// al. 2014, solved by conjugate gradients with IISPH's diagonal as preconditioner).
 ///
 /// Air fills a closed box, sampled by fluid particles on a cubic lattice of spacing dx; the
 /// walls are two frozen layers of the same lattice outside the box (so a resting box has
-/// exactly the rest density everywhere, corners included). Buoyancy is the external force of
-/// Eq. 1 (Boussinesq: the hydrostatic part of pressure balances gravity and is left out).
-/// Each particle carries temperature T, water vapour q_v and condensed water q_c.
+/// exactly the rest density everywhere, corners included). The pressure solve makes the
+/// density predicted after each sub-step equal rho0 within maxDensityError (max norm). Buoyancy is
+/// the external force of Eq. 1 (Boussinesq: the hydrostatic part of pressure balances gravity and
+/// is left out). Each particle carries temperature T, water vapour q_v and condensed water q_c.
 ///
 /// Every per-particle loop reads neighbours and writes only its own particle, and sums over
 /// particles use a fixed split (tbb::parallel_deterministic_reduce), so results are
@@ -44,9 +45,9 @@ struct SphSettings {
     double viscosity = 1.0;      ///< kinematic viscosity mu of Eq. 1, m^2/s (an eddy value, ours)
     double conduction = 1.0;     ///< alpha of Eq. 2, thermal diffusion (entrainment), m^2/s (ours)
     double cfl = 0.4;            ///< time step <= cfl dx / |u|_max (value ours)
-    double maxDensityError = 0.003;  ///< PCISPH stops when the mean |rho - rho0| / rho0 is below
-    int minIterations = 2;           ///< PCISPH iterations at least
-    int maxIterations = 12;          ///< PCISPH iterations at most
+    double maxDensityError = 0.002;  ///< the pressure solve stops when the predicted density
+                                     ///< error max |rho* - rho0| / rho0 is below this
+    int maxIterations = 60;          ///< pressure solve (CG) iterations at most per sub-step
     bool buoyancy = true;            ///< buoyancy as the external force f of Eq. 1
     bool thermodynamics = true;      ///< the -Gamma u_z and Q C_c terms of Eq. 2
     ThermoSettings thermo;
@@ -56,9 +57,11 @@ struct SphSettings {
 /// Statistics of the last sub-step.
 struct SphStepStats {
     int iterations = 0;
-    double meanDensityError = 0.0;  ///< mean |rho* - rho0| / rho0 after the pressure solve
-    double maxDensityError = 0.0;   ///< max |rho - rho0| / rho0 of the true SPH density
-    double maxSpeed = 0.0;          ///< m/s
+    double meanDensityError = 0.0;    ///< mean |rho* - rho0| / rho0 after the pressure solve
+    double solverDensityError = 0.0;  ///< max |rho* - rho0| / rho0 after the pressure solve
+    double maxDensityError = 0.0;     ///< max |rho - rho0| / rho0 of the true SPH density at
+                                      ///< the start of the sub-step (after the last move)
+    double maxSpeed = 0.0;            ///< m/s
 };
 
 class SphSolver {
@@ -104,19 +107,26 @@ private:
     void computeDensity();
     void computeForcesAndHeat();
     void solvePressure(double dt);
+    /// acc = the pressure acceleration of the pressures p (fluid particles).
+    void pressureAcceleration(const std::vector<double>& p, std::vector<double>& acc) const;
+    /// out_i = scale sum_j m (v_i - v_j) . grad W_ij, the walls at rest.
+    void densityChange(const std::vector<double>& v, double scale, std::vector<double>& out) const;
     void integrate(double dt);
 
     SphSettings mSettings;
     SphKernel mKernel;
     SphGrid mGrid;
     double mLo[3], mHi[3];
-    double mMass = 0.0, mRho0 = 0.0, mDelta = 0.0;  ///< m, rho0, PCISPH's delta / dt^2
+    double mMass = 0.0, mRho0 = 0.0;  ///< particle mass m, rest density rho0
     double mTime = 0.0;
     std::size_t mFluid = 0;  ///< fluid particles [0, mFluid); walls after
     std::vector<double> mX, mV, mT, mQv, mQc, mRho, mP, mAcc, mAccP, mDT, mDQ;
-    std::vector<std::uint32_t> mNbr;  ///< kMaxNeighbours slots per fluid particle
+    std::vector<double> mTheta, mVapour;  ///< T - T_e(z) and q_v - q_v,e(z), per sub-step
+    std::vector<std::uint32_t> mNbr;      ///< kMaxNeighbours slots per fluid particle
     std::vector<std::uint16_t> mNbrCount;
-    std::vector<float> mGradW;  ///< grad W_ij per neighbour slot, 1/m^4
+    std::vector<float> mGradF;     ///< F_ij per neighbour slot: grad W_ij = F_ij (x_i - x_j), 1/m^5
+    std::vector<double> mGradSq;   ///< |sum_j grad W_ij|^2 + sum_fluid |grad W_ij|^2 (IISPH a_ii)
+    std::vector<double> mWork[7];  ///< scratch of the pressure solve, kept to avoid reallocation
     SphStepStats mStats;
 };
 

@@ -1,17 +1,47 @@
 #include "nodes/data/CloudParticles.h"
 
 #include <stdexcept>
+#include <utility>
 
 #include "core/Registry.h"
 
 namespace cg {
 
-CloudParticlesData::CloudParticlesData(std::vector<float> positions_, std::vector<std::uint8_t> levels_,
-                                       std::vector<std::uint32_t> sources_)
+namespace {
+
+template <class T>
+void writeArray(ByteWriter& out, const algo::UninitArray<T>& a)
+{
+    out.u64(a.size());  // the layout of ByteWriter::podVector
+    out.bytes(a.data(), a.size() * sizeof(T));
+}
+
+template <class T>
+algo::UninitArray<T> readArray(ByteReader& in)
+{
+    const std::uint64_t n = in.u64();
+    if (n > in.remaining() / sizeof(T)) throw std::runtime_error("CloudParticles: truncated payload");
+    algo::UninitArray<T> a(static_cast<std::size_t>(n));
+    in.bytes(a.data(), a.size() * sizeof(T));
+    return a;
+}
+
+}  // namespace
+
+CloudParticlesData::CloudParticlesData(algo::UninitArray<float> positions_, algo::UninitArray<std::uint8_t> levels_,
+                                       algo::UninitArray<std::uint32_t> sources_)
     : positions(std::move(positions_)), levels(std::move(levels_)), sources(std::move(sources_))
 {
     if (positions.size() != 3 * levels.size() || sources.size() != levels.size())
         throw std::invalid_argument("CloudParticles: arrays differ in length");
+}
+
+CloudParticlesData::CloudParticlesData(const std::vector<float>& positions_,
+                                       const std::vector<std::uint8_t>& levels_,
+                                       const std::vector<std::uint32_t>& sources_)
+    : CloudParticlesData(algo::UninitArray<float>(positions_), algo::UninitArray<std::uint8_t>(levels_),
+                         algo::UninitArray<std::uint32_t>(sources_))
+{
 }
 
 std::size_t CloudParticlesData::byteSize() const
@@ -21,9 +51,9 @@ std::size_t CloudParticlesData::byteSize() const
 
 bool CloudParticlesData::serialize(ByteWriter& out) const
 {
-    out.podVector(positions);
-    out.podVector(levels);
-    out.podVector(sources);
+    writeArray(out, positions);
+    writeArray(out, levels);
+    writeArray(out, sources);
     return true;
 }
 
@@ -31,9 +61,9 @@ void registerCloudParticlesType(Registry& registry)
 {
     registry.addDataType({"CloudParticles", "cloud particles of one frame: position, level, source id",
                           [](ByteReader& in) -> DataPtr {
-                              auto positions = in.podVector<float>();
-                              auto levels = in.podVector<std::uint8_t>();
-                              auto sources = in.podVector<std::uint32_t>();
+                              auto positions = readArray<float>(in);
+                              auto levels = readArray<std::uint8_t>(in);
+                              auto sources = readArray<std::uint32_t>(in);
                               return std::make_shared<CloudParticlesData>(
                                   std::move(positions), std::move(levels), std::move(sources));
                           }});

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/Data.h"
+#include "nodes/algo/Mapping.h"
 
 namespace cg {
 
@@ -14,12 +15,17 @@ class Registry;
 
 class CloudParticlesData final : public Data {
 public:
-    CloudParticlesData(std::vector<float> positions, std::vector<std::uint8_t> levels,
-                       std::vector<std::uint32_t> sources);
+    /// Takes the arrays (GenerateCloud's fresh frame arrays, filled in parallel, never zeroed).
+    CloudParticlesData(algo::UninitArray<float> positions, algo::UninitArray<std::uint8_t> levels,
+                       algo::UninitArray<std::uint32_t> sources);
+    /// Copies the arrays.
+    CloudParticlesData(const std::vector<float>& positions, const std::vector<std::uint8_t>& levels,
+                       const std::vector<std::uint32_t>& sources);
 
-    const std::vector<float> positions;          ///< x, y, z per particle, metres
-    const std::vector<std::uint8_t> levels;      ///< recursive level L (1..L_max); 0 for other points
-    const std::vector<std::uint32_t> sources;    ///< id of the source record that made it
+    // Read like const std::vectors (data(), size(), begin()/end(), []) and convert to one.
+    const algo::UninitArray<float> positions;          ///< x, y, z per particle, metres
+    const algo::UninitArray<std::uint8_t> levels;      ///< recursive level L (1..L_max); 0 for other points
+    const algo::UninitArray<std::uint32_t> sources;    ///< id of the source record that made it
 
     std::size_t size() const { return levels.size(); }
 

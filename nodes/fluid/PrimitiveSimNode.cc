@@ -60,7 +60,8 @@ void registerPrimitiveSimNode(Registry& registry)
     d.category = "fluid";
     d.doc =
         "The 3D cloud primitive set (Sec. 4, Figure 2) by a particle fluid simulation: SPH "
-        "with a predictive-corrective pressure solve (PCISPH) for the incompressible "
+        "with an implicit pressure solve (IISPH's equation by preconditioned conjugate "
+        "gradients) for the incompressible "
         "Navier-Stokes equations (Eq. 1), viscosity, buoyancy as the external force, and the "
         "thermodynamics of Eq. 2 on every particle: heat conduction between neighbours "
         "(entrainment), dry adiabatic cooling -Gamma u_z, latent heat Q C_c; water vapour "
@@ -89,9 +90,11 @@ void registerPrimitiveSimNode(Registry& registry)
                    0, 1e6),
         floatParam("cfl", def.sph.cfl, "", "sub-step <= cfl dx / max |u| (value ours)", 0.01, 1),
         floatParam("densityErrorTarget", def.sph.maxDensityError, "",
-                   "pressure solve stops at this mean |rho - rho0| / rho0 (value ours)", 1e-6, 0.1),
+                   "pressure solve stops when the predicted max |rho* - rho0| / rho0 is below this "
+                   "(value ours)",
+                   1e-6, 0.1),
         intParam("maxPressureIterations", def.sph.maxIterations, "",
-                 "pressure solve iterations at most per sub-step (value ours)", 1, 1000),
+                 "pressure solve (CG) iterations at most per sub-step (value ours)", 1, 1000),
         floatParam("groundTemperature", def.sph.thermo.groundTemperature, "degC",
                    "ambient T_e at the floor (value ours)", -80, 60),
         floatParam(

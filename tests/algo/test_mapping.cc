@@ -2,8 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstring>
+#include <mutex>
 #include <set>
+#include <stdexcept>
 
 #include <tbb/global_control.h>
 
@@ -299,6 +304,95 @@ TEST(Mapping, GenerationIsBitIdenticalForOneAndTwoThreads)
     }
     EXPECT_FALSE(results[0].empty());
     EXPECT_EQ(results[0], results[1]);
+}
+
+TEST(Mapping, ChunksConcatenatedEqualTheFrameArraysForOneAndTwoThreads)
+{
+    Scene scene;
+    const MappingRun r = run(scene, 30);
+    bool sawSeveralChunks = false;
+    for (int t : {5, 12, 20, 29}) {
+        const SourceTable& table = r.tables[static_cast<std::size_t>(t)];
+        const CondensationView c = Scene::view(r.frames[static_cast<std::size_t>(t)]);
+        const auto ref = generateCloudParticles(table, t, c, scene.primitive(), scene.settings);
+        const std::size_t n = ref.levels.size();
+        // 7 particles a chunk: chunks straddle sources, and a source spans several chunks.
+        for (std::uint64_t chunkParticles : {std::uint64_t{7}, std::uint64_t{1}, kCloudChunkParticles}) {
+            for (int threads : {1, 2}) {
+                tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+                std::vector<float> positions(3 * n, std::nanf(""));
+                std::vector<std::uint8_t> levels(n, 0);
+                std::vector<std::uint32_t> sources(n, 0xffffffffu);
+                std::vector<int> deliveries(n, 0);
+                std::mutex mutex;
+                std::set<std::uint64_t> firsts;
+                CloudChunkOptions o;
+                o.chunkParticles = chunkParticles;
+                o.levels = o.sources = true;
+                const std::uint64_t total = forEachCloudChunk(
+                    table, t, c, scene.primitive(), scene.settings,
+                    [&](const CloudChunk& k) {
+                        ASSERT_EQ(k.first % chunkParticles, 0u);  // boundaries fixed by the chunk size
+                        ASSERT_EQ(k.count, std::min<std::uint64_t>(chunkParticles, n - k.first));
+                        ASSERT_NE(k.levels, nullptr);
+                        ASSERT_NE(k.sources, nullptr);
+                        std::lock_guard<std::mutex> lock(mutex);
+                        firsts.insert(k.first);
+                        for (std::uint64_t q = 0; q < k.count; ++q) {
+                            ++deliveries[k.first + q];
+                            std::memcpy(&positions[3 * (k.first + q)], k.positions + 3 * q, 3 * sizeof(float));
+                            levels[k.first + q] = k.levels[q];
+                            sources[k.first + q] = k.sources[q];
+                        }
+                    },
+                    o);
+                EXPECT_EQ(total, n);
+                EXPECT_EQ(firsts.size(), (n + chunkParticles - 1) / chunkParticles);
+                sawSeveralChunks = sawSeveralChunks || firsts.size() > 1;
+                for (std::size_t q = 0; q < n; ++q) ASSERT_EQ(deliveries[q], 1) << "particle " << q;
+                // Bit for bit: memcmp, not float ==.
+                EXPECT_EQ(std::memcmp(positions.data(), ref.positions.data(), 3 * n * sizeof(float)), 0)
+                    << "frame " << t << ", " << threads << " thread(s), chunks of " << chunkParticles;
+                EXPECT_TRUE(std::equal(levels.begin(), levels.end(), ref.levels.begin()));
+                EXPECT_TRUE(std::equal(sources.begin(), sources.end(), ref.sources.begin()));
+
+                // Positions only, straight into a frame array: the same bits, no levels/sources.
+                std::vector<float> direct(3 * n, std::nanf(""));
+                CloudChunkOptions into;
+                into.chunkParticles = chunkParticles;
+                into.positionsOut = direct.data();
+                std::atomic<std::uint64_t> counted{0};
+                forEachCloudChunk(table, t, c, scene.primitive(), scene.settings,
+                                  [&](const CloudChunk& k) {
+                                      EXPECT_EQ(k.positions, direct.data() + 3 * k.first);
+                                      EXPECT_EQ(k.levels, nullptr);
+                                      EXPECT_EQ(k.sources, nullptr);
+                                      counted += k.count;
+                                  },
+                                  into);
+                EXPECT_EQ(counted.load(), n);
+                EXPECT_EQ(std::memcmp(direct.data(), ref.positions.data(), 3 * n * sizeof(float)), 0);
+            }
+        }
+    }
+    EXPECT_TRUE(sawSeveralChunks);
+}
+
+TEST(Mapping, ChunkOptionsAreChecked)
+{
+    Scene scene;
+    const MappingRun r = run(scene, 12);
+    const CondensationView c = Scene::view(r.frames.back());
+    CloudChunkOptions zero;
+    zero.chunkParticles = 0;
+    EXPECT_THROW(forEachCloudChunk(r.tables.back(), 11, c, scene.primitive(), scene.settings, {}, zero),
+                 std::invalid_argument);
+    std::vector<float> frame(3 * 1000);
+    CloudChunkOptions missingLevels;
+    missingLevels.positionsOut = frame.data();
+    missingLevels.levels = true;
+    EXPECT_THROW(forEachCloudChunk(r.tables.back(), 11, c, scene.primitive(), scene.settings, {}, missingLevels),
+                 std::invalid_argument);
 }
 
 }  // namespace cg::algo

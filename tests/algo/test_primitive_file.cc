@@ -88,9 +88,10 @@ TEST(PrimitiveScene, SmallSceneIsDeterministicAndMonotone)
     for (std::size_t f = 1; f < a.counts.size(); ++f) EXPECT_GE(a.counts[f], a.counts[f - 1]);
     for (float v : a.positions) EXPECT_TRUE(std::isfinite(v));
     EXPECT_GT(a.counts.back(), 0u);
-    // KNOWN LIMIT, not the goal (see docs/primitive.md): the pressure solve leaves ~15% local
-    // density error in this tiny, strongly forced box; the issue asks < 1%. Tighten when fixed.
-    EXPECT_LT(a.maxDensityError, 0.25);
+    // KNOWN LIMIT (docs/primitive.md): the solve holds the predicted density within 0.4%, but
+    // the true density of the moved particles in this tiny, strongly forced box is off by up
+    // to 3.9% locally (the issue asks < 1%).
+    EXPECT_LT(a.maxDensityError, 0.05);
     const PrimitiveResult b = simulatePrimitive(s);
     EXPECT_EQ(a.counts, b.counts);
     EXPECT_EQ(a.positions, b.positions);

@@ -109,9 +109,12 @@ TEST(SphSolver, WarmBlobRisesColdBlobSinks)
     solver.advance(30.0);
     EXPECT_GT(meanZ(warm), warm0 + 2.0);
     EXPECT_LT(meanZ(cold), cold0 - 2.0);
-    // KNOWN LIMIT, not the goal: the issue asks < 1%; the pressure solve now leaves local
-    // maxima of ~5% in moving flows (mean ~0.4%). Tighten when the solver is fixed.
-    EXPECT_LT(solver.lastStats().maxDensityError, 0.10);
+    // The pressure solve meets its target on the predicted density (max 0.2%, mean ~0.04%).
+    EXPECT_LT(solver.lastStats().solverDensityError, s.maxDensityError);
+    EXPECT_LT(solver.lastStats().meanDensityError, 0.001);
+    // KNOWN LIMIT (docs/primitive.md): the true density of the moved particles differs from
+    // the prediction at second order in the step, most next to the walls: 1.5% here.
+    EXPECT_LT(solver.lastStats().maxDensityError, 0.02);
 }
 
 TEST(SphSolver, ConductionAloneConservesHeat)
@@ -135,17 +138,19 @@ TEST(SphSolver, ConductionAloneConservesHeat)
 
 TEST(SphSolver, LiftedParticleCoolsAtTheDryLapseRate)
 {
-    // One particle far from everything, moved up at a constant speed (no buoyancy, dry air).
-    const double lo[3] = {0, 0, 0}, hi[3] = {10, 10, 1000};
+    // A 2 x 1 x 100 box of dry air, no buoyancy: one column of particles rises, the other
+    // sinks (a closed box cannot lift everything), so the flow is divergence-free.
+    const double lo[3] = {0, 0, 0}, hi[3] = {20, 10, 1000};
     SphSettings s;
     s.spacing = 10.0;
     s.buoyancy = false;
     s.thermo.ambientHumidity = 0.0;
     s.conduction = 0.0;
+    s.viscosity = 0.0;
     SphSolver solver(s, lo, hi);
-    // A 1x1x100 column: lift it all together so no pressure acts.
-    for (std::size_t i = 0; i < solver.size(); ++i) solver.velocities()[3 * i + 2] = 2.0;
-    const std::size_t i = 10;
+    for (std::size_t i = 0; i < solver.size(); ++i)
+        solver.velocities()[3 * i + 2] = solver.positions()[3 * i] < 10.0 ? 2.0 : -2.0;
+    const std::size_t i = 20;  // the rising column (x = 5 m), 10th layer from the floor
     const double z0 = solver.positions()[3 * i + 2], t0 = solver.temperatures()[i];
     for (int k = 0; k < 20; ++k) solver.step(1.0);
     const double dz = solver.positions()[3 * i + 2] - z0;
