@@ -52,6 +52,7 @@ void registerBuiltinNodes(Registry& registry)
     registerGenerateCloudNode(registry);
     registerWriteCloudParticlesNode(registry);
     registerPrimitiveSubsetNode(registry);
+    registerPrimitiveFrameNode(registry);
 
     // render/
     registerSyntheticCumulusNode(registry);

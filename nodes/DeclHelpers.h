@@ -25,6 +25,17 @@ inline ParamDecl floatParam(std::string name, double def, std::string units, std
     return p;
 }
 
+/// A vec3 parameter; min and max, when given, bound each component.
+inline ParamDecl vec3Param(std::string name, Vec3 def, std::string units, std::string doc,
+                           std::optional<double> min = std::nullopt,
+                           std::optional<double> max = std::nullopt)
+{
+    ParamDecl p = floatParam(std::move(name), 0.0, std::move(units), std::move(doc), min, max);
+    p.type = ParamType::Vector3;
+    p.defaultValue = def;
+    return p;
+}
+
 inline ParamDecl intParam(std::string name, std::int64_t def, std::string units, std::string doc,
                           std::optional<double> min = std::nullopt,
                           std::optional<double> max = std::nullopt)

@@ -24,7 +24,7 @@ struct PrimitiveSettings {
     int maxParticles = 4000000;    ///< refuse boxes that would need more fluid particles
 };
 
-/// The default settings (PrimitiveSim's defaults): 54,000 fluid particles, 150 frames of 2 s
+/// The default settings (PrimitiveSim's defaults): 57,344 fluid particles, 150 frames of 2 s
 /// (see docs/primitive.md for what they give).
 PrimitiveSettings defaultPrimitiveSettings();
 
@@ -34,6 +34,7 @@ struct PrimitiveResult {
     std::vector<float> positions;       ///< xyz per cloud particle per frame, m from the source
     std::size_t fluidParticles = 0;     ///< fluid particles simulated
     long long subSteps = 0;             ///< CFL sub-steps taken in all
+    long long pressureIterations = 0;   ///< pressure-solve iterations in all
     double maxDensityError = 0.0;       ///< largest max |rho - rho0| / rho0 over the run
     double meanDensityError = 0.0;      ///< largest mean solver error over the run
 };

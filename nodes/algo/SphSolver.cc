@@ -13,7 +13,8 @@ namespace cg::algo {
 
 namespace {
 
-constexpr std::size_t kMaxNeighbours = 96;
+constexpr std::size_t kMaxNeighbours = 96;  // more means the flow blew up
+constexpr std::size_t kStrideMargin = 8;     // spare slots per row over the last fullest row
 constexpr std::size_t kGrain = 1024;  // fixed split for the deterministic reductions
 
 template <typename F>
@@ -129,9 +130,7 @@ SphSolver::SphSolver(const SphSettings& s, const double lo[3], const double hi[3
     mTheta.assign(mFluid, 0.0);
     mGradSq.assign(mFluid, 0.0);
     mVapour.assign(mFluid, 0.0);
-    mNbr.resize(kMaxNeighbours * mFluid);
     mNbrCount.resize(mFluid);
-    mGradF.resize(kMaxNeighbours * mFluid);
 }
 
 double SphSolver::totalTemperature() const
@@ -166,39 +165,52 @@ double SphSolver::stableTimeStep() const
 
 void SphSolver::buildNeighbours()
 {
-    const std::size_t all = mX.size() / 3;
-    mGrid.build(mX.data(), all);
+    mGrid.build(mX.data(), mX.size() / 3);
+    // Rows of mStride slots, as narrow as the fullest row of the last build allows: the passes
+    // stream these lists many times per sub-step, so wide, mostly empty rows cost bandwidth.
+    // A build whose fullest row does not fit is redone with wider rows.
+    mStride = mStrideHint;
+    for (;;) {
+        mNbr.resize(mStride * mFluid);
+        mGradF.resize(mStride * mFluid);
+        fillNeighbourRows();
+        const auto fullest = static_cast<std::size_t>(
+            parallelMax(mFluid, [&](std::size_t i) { return double(mNbrCount[i]); }));
+        if (fullest > kMaxNeighbours)
+            throw std::runtime_error("SPH: more than " + std::to_string(kMaxNeighbours) +
+                                     " neighbours; the simulation became unstable "
+                                     "(use a smaller time step or CFL number)");
+        mStrideHint = fullest + kStrideMargin;
+        if (fullest <= mStride) return;
+        mStride = mStrideHint;
+    }
+}
+
+void SphSolver::fillNeighbourRows()
+{
     const double h = mKernel.support();
     forParticles(mFluid, [&](std::size_t i) {
         const double* xi = &mX[3 * i];
         std::size_t c = 0;
-        std::uint32_t* out = &mNbr[kMaxNeighbours * i];
-        float* f = &mGradF[kMaxNeighbours * i];
-        bool overflow = false;
+        std::uint32_t* out = &mNbr[mStride * i];
+        float* f = &mGradF[mStride * i];
         double sum[3] = {0, 0, 0}, sq = 0.0;
         mGrid.forEachNeighbour(mX.data(), xi, h, [&](std::uint32_t j) {
             if (j == i) return;
-            if (c == kMaxNeighbours) {
-                overflow = true;
-                return;
-            }
+            if (c++ >= mStride) return;  // only counted: the row is too narrow
+            const std::size_t k = c - 1;
             const double* xj = &mX[3 * static_cast<std::size_t>(j)];
             const double d[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
             const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
             // grad W_ij = F_ij (x_i - x_j); only F is stored, halving what the passes read.
-            f[c] = static_cast<float>(r > 1e-12 * h ? mKernel.derivative(r) / r : 0.0);
-            const double gw[3] = {f[c] * d[0], f[c] * d[1], f[c] * d[2]};
-            out[c] = j;
+            f[k] = static_cast<float>(r > 1e-12 * h ? mKernel.derivative(r) / r : 0.0);
+            const double gw[3] = {f[k] * d[0], f[k] * d[1], f[k] * d[2]};
+            out[k] = j;
             // The geometric part of IISPH's diagonal a_ii, for the pressure preconditioner.
             for (int a = 0; a < 3; ++a) sum[a] += gw[a];
             if (j < mFluid) sq += gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2];
-            ++c;
         });
-        if (overflow)
-            throw std::runtime_error("SPH: more than " + std::to_string(kMaxNeighbours) +
-                                     " neighbours; the simulation became unstable "
-                                     "(use a smaller time step or CFL number)");
-        mNbrCount[i] = static_cast<std::uint16_t>(c);
+        mNbrCount[i] = static_cast<std::uint16_t>(std::min<std::size_t>(c, kMaxNeighbours + 1));
         mGradSq[i] = sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2] + sq;
     });
 }
@@ -209,7 +221,7 @@ void SphSolver::computeDensity()
     forParticles(mFluid, [&](std::size_t i) {
         const double* xi = &mX[3 * i];
         double w = w0;
-        const std::uint32_t* nb = &mNbr[kMaxNeighbours * i];
+        const std::uint32_t* nb = &mNbr[mStride * i];
         for (std::size_t c = 0; c < mNbrCount[i]; ++c) {
             const double* xj = &mX[3 * static_cast<std::size_t>(nb[c])];
             const double d[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
@@ -237,8 +249,8 @@ void SphSolver::computeForcesAndHeat()
         const double thetaI = mTheta[i];
         const double vapI = mVapour[i];
         double a[3] = {0, 0, 0}, dT = 0.0, dQ = 0.0;
-        const std::uint32_t* nb = &mNbr[kMaxNeighbours * i];
-        const float* f = &mGradF[kMaxNeighbours * i];
+        const std::uint32_t* nb = &mNbr[mStride * i];
+        const float* f = &mGradF[mStride * i];
         for (std::size_t c = 0; c < mNbrCount[i]; ++c) {
             const std::size_t j = nb[c];
             const double* xj = &mX[3 * j];
@@ -275,8 +287,8 @@ void SphSolver::pressureAcceleration(const std::vector<double>& p, std::vector<d
     // system is symmetric and conjugate gradients apply.
     const double s0 = -mMass / (mRho0 * mRho0);
     forParticles(mFluid, [&](std::size_t i) {
-        const std::uint32_t* nb = &mNbr[kMaxNeighbours * i];
-        const float* f = &mGradF[kMaxNeighbours * i];
+        const std::uint32_t* nb = &mNbr[mStride * i];
+        const float* f = &mGradF[mStride * i];
         const double* xi = &mX[3 * i];
         double a[3] = {0, 0, 0};
         for (std::size_t c = 0; c < mNbrCount[i]; ++c) {
@@ -297,8 +309,8 @@ void SphSolver::densityChange(const std::vector<double>& v, double scale,
     // out_i = scale sum_j m (v_i - v_j) . grad W_ij, walls at rest.
     forParticles(mFluid, [&](std::size_t i) {
         const double* vi = &v[3 * i];
-        const std::uint32_t* nb = &mNbr[kMaxNeighbours * i];
-        const float* f = &mGradF[kMaxNeighbours * i];
+        const std::uint32_t* nb = &mNbr[mStride * i];
+        const float* f = &mGradF[mStride * i];
         const double* xi = &mX[3 * i];
         double div = 0.0;
         for (std::size_t c = 0; c < mNbrCount[i]; ++c) {
@@ -376,6 +388,7 @@ void SphSolver::solvePressure(double dt)
         forParticles(n, [&](std::size_t i) { d[i] = z[i] + beta * d[i]; });
     }
     mStats.iterations = it;
+    mTotalIterations += it;
     mStats.meanDensityError = deterministicSum(n, [&](std::size_t i) { return std::fabs(r[i]); }) /
                               static_cast<double>(n);
     mStats.solverDensityError = worst;

@@ -98,12 +98,16 @@ public:
     int advance(double duration, const std::function<void()>& poll = {});
 
     const SphStepStats& lastStats() const { return mStats; }
+    /// Pressure-solve iterations over all sub-steps so far.
+    long long totalPressureIterations() const { return mTotalIterations; }
 
     /// Sum over fluid particles of T (K sum), with a fixed summation order.
     double totalTemperature() const;
 
 private:
     void buildNeighbours();
+    /// One try at the neighbour rows of width mStride; mNbrCount gets the true counts.
+    void fillNeighbourRows();
     void computeDensity();
     void computeForcesAndHeat();
     void solvePressure(double dt);
@@ -119,10 +123,13 @@ private:
     double mLo[3], mHi[3];
     double mMass = 0.0, mRho0 = 0.0;  ///< particle mass m, rest density rho0
     double mTime = 0.0;
+    long long mTotalIterations = 0;
     std::size_t mFluid = 0;  ///< fluid particles [0, mFluid); walls after
     std::vector<double> mX, mV, mT, mQv, mQc, mRho, mP, mAcc, mAccP, mDT, mDQ;
     std::vector<double> mTheta, mVapour;  ///< T - T_e(z) and q_v - q_v,e(z), per sub-step
-    std::vector<std::uint32_t> mNbr;      ///< kMaxNeighbours slots per fluid particle
+    std::vector<std::uint32_t> mNbr;      ///< mStride slots per fluid particle
+    std::size_t mStride = 0;              ///< slots per row of mNbr and mGradF
+    std::size_t mStrideHint = 48;         ///< the row width the next build starts with
     std::vector<std::uint16_t> mNbrCount;
     std::vector<float> mGradF;     ///< F_ij per neighbour slot: grad W_ij = F_ij (x_i - x_j), 1/m^5
     std::vector<double> mGradSq;   ///< |sum_j grad W_ij|^2 + sum_fluid |grad W_ij|^2 (IISPH a_ii)

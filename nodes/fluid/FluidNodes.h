@@ -9,5 +9,6 @@ class Registry;
 void registerPrimitiveSimNode(Registry& registry);   // PrimitiveSim
 void registerPrimitiveLoadNode(Registry& registry);  // PrimitiveLoad
 void registerWritePrimitiveNodes(Registry& registry); // WritePrimitive, WritePrimitivePly
+void registerPrimitiveFrameNode(Registry& registry);  // PrimitiveFrame
 
 }  // namespace cg

@@ -36,6 +36,7 @@ algo::PrimitiveSettings settingsFrom(const ParamSet& p)
     s.sph.source.excessTemperature = p.getFloat("sourceExcessTemperature");
     s.sph.source.humidity = p.getFloat("sourceHumidity");
     s.sph.source.relaxTime = p.getFloat("sourceRelaxTime");
+    s.sph.source.duration = p.getFloat("sourceDuration");
     return s;
 }
 
@@ -115,6 +116,10 @@ void registerPrimitiveSimNode(Registry& registry)
                    "relative humidity of the source air (value ours)", 0, 1),
         floatParam("sourceRelaxTime", def.sph.source.relaxTime, "s",
                    "time constant of the source heating and moistening (value ours)", 1e-3, 1e6),
+        floatParam("sourceDuration", def.sph.source.duration, "s",
+                   "seconds of simulated time the source stays on: a bubble rather than an "
+                   "endless plume (value ours)",
+                   0, 1e30),
         floatParam("cloudThreshold", def.cloudThreshold, "kg/kg",
                    "condensed water q_c that makes a fluid particle a cloud particle (value ours)",
                    0, 1),

@@ -19,17 +19,6 @@ namespace cg {
 
 namespace {
 
-/// A vec3 parameter; min and max, when given, bound each component.
-ParamDecl vec3Param(std::string name, Vec3 def, std::string units, std::string doc,
-                    std::optional<double> min = std::nullopt,
-                    std::optional<double> max = std::nullopt)
-{
-    ParamDecl p = floatParam(std::move(name), 0.0, std::move(units), std::move(doc), min, max);
-    p.type = ParamType::Vector3;
-    p.defaultValue = def;
-    return p;
-}
-
 algo::RenderVec3 vec(const ParamSet& p, const char* name)
 {
     const Vec3 v = p.getVec3(name);

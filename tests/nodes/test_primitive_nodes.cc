@@ -6,11 +6,15 @@
 
 #include <filesystem>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "core/Evaluator.h"
 #include "core/Graph.h"
 #include "core/Registry.h"
 #include "nodes/Builtin.h"
+#include "nodes/algo/PrimitiveFile.h"
+#include "nodes/data/CloudParticles.h"
 #include "nodes/data/PrimitiveSet.h"
 #include "support/TestUtil.h"
 
@@ -88,6 +92,41 @@ TEST(PrimitiveNodes, SimWriteLoadRoundTripAndThreadIndependence)
     const auto serial = pullPrimitive(r, g, "sim", out1.path());
     EXPECT_EQ(serial->counts, sim->counts);
     EXPECT_EQ(serial->positions, sim->positions);
+}
+
+TEST(PrimitiveNodes, PrimitiveFrameIsTheFrameScaledAndOffsetHeldAtTheEnds)
+{
+    Registry r;
+    registerBuiltinNodes(r);
+    // Three frames of 0, 2 and 3 particles.
+    const std::vector<std::uint32_t> counts{0, 2, 3};
+    const std::vector<float> positions{1, 2, 3, 4, 5, 6,  // frame 1
+                                       1.5f, 2, 3.5f, 4, 5.5f, 6, -7, 8, 9.25f};  // frame 2
+    test::TempDir dir;
+    algo::writePrimitiveFile(dir / "p.cgp", 2.0, counts, positions);
+    const Graph g = parseGraph(R"({"cloudgraph": 1, "frames": {"start": 0, "end": 40}, "nodes": {
+        "load": {"type": "PrimitiveLoad", "params": {"file": ")" + (dir / "p.cgp").string() + R"("}},
+        "frame": {"type": "PrimitiveFrame", "inputs": {"primitive": "load.primitive"},
+                  "params": {"scale": 2.5, "offset": [100, -50, 300]}}}})",
+                               "frame.json", r);
+    Evaluator ev(r, {});
+    const double offset[3] = {100, -50, 300};
+    // Evaluation frame 40 is past the primitive's last frame (2): the last frame holds.
+    for (const auto& [evalFrame, s, first] : {std::tuple{1, 1, 0}, std::tuple{2, 2, 6}, std::tuple{40, 2, 6}}) {
+        const auto cloud =
+            std::dynamic_pointer_cast<const CloudParticlesData>(ev.pull(g, "frame", evalFrame)->at("particles"));
+        ASSERT_TRUE(cloud);
+        ASSERT_EQ(cloud->size(), counts[static_cast<std::size_t>(s)]);
+        for (std::size_t q = 0; q < cloud->size(); ++q) {
+            for (std::size_t a = 0; a < 3; ++a)
+                EXPECT_EQ(cloud->positions[3 * q + a],
+                          static_cast<float>(offset[a]) + 2.5f * positions[static_cast<std::size_t>(first) + 3 * q + a]);
+            EXPECT_EQ(cloud->levels[q], 1);
+            EXPECT_EQ(cloud->sources[q], 0u);
+        }
+    }
+    const auto empty = std::dynamic_pointer_cast<const CloudParticlesData>(ev.pull(g, "frame", 0)->at("particles"));
+    EXPECT_EQ(empty->size(), 0u);
 }
 
 }  // namespace cg

@@ -1,0 +1,81 @@
+// The default primitive (PrimitiveSim's defaults, graphs/primitive.json): the whole 150-frame
+// run, about 27 s in Release on two cores.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "nodes/algo/PrimitiveScene.h"
+
+namespace cg::algo {
+
+namespace {
+
+/// Statistics of frame s's cloud particles.
+struct FrameShape {
+    double meanZ = 0.0;   ///< m above the source point
+    double top = 0.0;     ///< highest particle, m
+    double radius = 0.0;  ///< RMS horizontal distance from the cloud's own axis, m
+};
+
+FrameShape shapeAt(const PrimitiveResult& r, std::size_t s)
+{
+    std::size_t first = 0;
+    for (std::size_t f = 0; f < s; ++f) first += r.counts[f];
+    const std::size_t n = r.counts[s];
+    const float* p = r.positions.data() + 3 * first;
+    double cx = 0.0, cy = 0.0;
+    FrameShape out;
+    out.top = -1e30;
+    for (std::size_t q = 0; q < n; ++q) {
+        cx += p[3 * q];
+        cy += p[3 * q + 1];
+        out.meanZ += p[3 * q + 2];
+        out.top = std::max(out.top, double(p[3 * q + 2]));
+    }
+    cx /= double(n);
+    cy /= double(n);
+    out.meanZ /= double(n);
+    for (std::size_t q = 0; q < n; ++q) {
+        const double dx = p[3 * q] - cx, dy = p[3 * q + 1] - cy;
+        out.radius += dx * dx + dy * dy;
+    }
+    out.radius = std::sqrt(out.radius / double(n));
+    return out;
+}
+
+}  // namespace
+
+TEST(PrimitiveScene, DefaultPrimitiveGrowsRisesAndWidens)
+{
+    const PrimitiveSettings s = defaultPrimitiveSettings();
+    const PrimitiveResult r = simulatePrimitive(s);
+    ASSERT_EQ(r.counts.size(), 150u);
+    for (std::size_t f = 1; f < r.counts.size(); ++f) ASSERT_GE(r.counts[f], r.counts[f - 1]) << "frame " << f;
+    for (float v : r.positions) ASSERT_TRUE(std::isfinite(v));
+    // The thermal condenses within the first third of the run and ends with over 10,000 cloud
+    // particles (11,645 measured; the paper's primitive has 16,401 fluid particles).
+    EXPECT_EQ(r.counts[10], 0u);
+    EXPECT_GT(r.counts[50], 1000u);
+    EXPECT_GT(r.counts.back(), 10000u);
+    // Every particle stays inside the box (positions are relative to the source point).
+    const double half = 0.5 * s.width;
+    for (std::size_t q = 0; q < r.positions.size() / 3; ++q) {
+        EXPECT_LE(std::fabs(r.positions[3 * q]), half);
+        EXPECT_LE(std::fabs(r.positions[3 * q + 1]), half);
+        EXPECT_GE(r.positions[3 * q + 2], -s.sourceHeight);
+        EXPECT_LE(r.positions[3 * q + 2], s.height - s.sourceHeight);
+    }
+    // The cloud rises and widens with s: its mean height, top and horizontal spread grow
+    // from frame 50 to 100 to 149.
+    const FrameShape a = shapeAt(r, 50), b = shapeAt(r, 100), c = shapeAt(r, 149);
+    EXPECT_LT(a.meanZ, b.meanZ);
+    EXPECT_LT(b.meanZ, c.meanZ);
+    EXPECT_LT(a.top + 200.0, b.top);
+    EXPECT_LT(b.top, c.top);
+    EXPECT_LT(a.radius, b.radius);
+    EXPECT_LT(b.radius, c.radius);
+}
+
+}  // namespace cg::algo
