@@ -12,6 +12,7 @@ find_package(OpenVDB REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(FFTW3 REQUIRED IMPORTED_TARGET fftw3 fftw3f)
 find_package(PNG REQUIRED)
+find_package(OpenEXR CONFIG REQUIRED)    # WriteImage's linear .exr frames
 
 if(CLOUDGRAPH_BUILD_TESTS)
     find_package(GTest REQUIRED)

@@ -7,7 +7,7 @@ packages=(
     build-essential cmake pkg-config
     libopenvdb-dev libopenvdb-tools libboost-iostreams-dev libtbb-dev
     nlohmann-json3-dev libfftw3-dev libspdlog-dev libxxhash-dev
-    libgtest-dev libbenchmark-dev libpng-dev
+    libgtest-dev libbenchmark-dev libpng-dev libopenexr-dev
     ffmpeg  # EncodeVideo runs the ffmpeg program (H.264 via libx264)
 )
 

@@ -1,13 +1,16 @@
-// WriteImage: a linear radiance image to an 8-bit sRGB PNG (exposure, filmic tone map).
+// WriteImage: a linear radiance image to an 8-bit sRGB PNG (exposure, filmic tone map) or to a
+// linear OpenEXR file, chosen by the file's extension.
 
 #include <filesystem>
 #include <memory>
+#include <string>
 
 #include "core/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
+#include "nodes/algo/ExrFile.h"
 #include "nodes/algo/RenderPng.h"
 #include "nodes/data/Image.h"
 #include "nodes/io/WriterSupport.h"
@@ -17,24 +20,34 @@ namespace cg {
 
 namespace {
 
+bool endsWith(const std::string& s, const std::string& tail)
+{
+    return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+bool isExr(const std::string& file) { return endsWith(file, ".exr"); }
+
 class WriteImageNode final : public Node {
 public:
     void cook(CookContext& ctx) override
     {
         if (!writesThisFrame(ctx)) return;
         const auto image = ctx.input<ImageData>("image");
-        algo::DisplaySettings display;
-        display.exposure = ctx.params().getFloat("exposure");
-        display.curve = algo::toneCurveFromName(ctx.params().getString("toneMap"));
-        display.dither = ctx.params().getBool("dither");
-        display.seed = static_cast<std::uint64_t>(ctx.frame());
-        const std::vector<std::uint8_t> rgb =
-            algo::displayRgb8(image->rgba, image->width, image->height, display);
-        ctx.checkCancelled();
-
         const std::filesystem::path path = ctx.outputPath("file");
         AtomicOutput out(path);
-        algo::writePngRgb8(out.tempPath().string(), image->width, image->height, rgb);
+        if (isExr(path.string())) {
+            algo::writeExrRgba32(out.tempPath().string(), image->width, image->height, image->rgba);
+        } else {
+            algo::DisplaySettings display;
+            display.exposure = ctx.params().getFloat("exposure");
+            display.curve = algo::toneCurveFromName(ctx.params().getString("toneMap"));
+            display.dither = ctx.params().getBool("dither");
+            display.seed = static_cast<std::uint64_t>(ctx.frame());
+            const std::vector<std::uint8_t> rgb =
+                algo::displayRgb8(image->rgba, image->width, image->height, display);
+            ctx.checkCancelled();
+            algo::writePngRgb8(out.tempPath().string(), image->width, image->height, rgb);
+        }
         out.commit();
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));
     }
@@ -46,11 +59,13 @@ void registerWriteImageNode(Registry& registry)
 {
     NodeDecl d = writerDecl(
         "WriteImage",
-        "Writes an image of linear radiance (e.g. the Renderer's) as an 8-bit sRGB PNG: each "
-        "RGB value v becomes round(255 sRGB(toneMap(2^exposure v))) plus an optional +-1 "
-        "triangular dither seeded by the frame; alpha is dropped (the image is already "
-        "composited). Top row first. #### in the name becomes the frame number; the file "
-        "appears atomically. EXR output is not implemented (OpenEXR is not a dependency).",
+        "Writes an image of linear radiance (e.g. the Renderer's). A file ending in .png is an "
+        "8-bit sRGB PNG: each RGB value v becomes round(255 sRGB(toneMap(2^exposure v))) plus "
+        "an optional +-1 triangular dither seeded by the frame; alpha is dropped (the image is "
+        "already composited). A file ending in .exr is a linear OpenEXR image: RGBA as 32-bit "
+        "floats, unchanged (exposure, toneMap and dither do not apply), ZIP-compressed, for "
+        "compositing. Top row first. #### in the name becomes the frame number; the file "
+        "appears atomically.",
         port("image", "Image", "linear radiance RGBA"), "image.####.png");
     d.params.push_back(floatParam("exposure", 0.0, "stops",
                                   "radiance is multiplied by 2^exposure before the tone map",
@@ -60,6 +75,11 @@ void registerWriteImageNode(Registry& registry)
                                    "white 11.2) or clamp (none)",
                                    {"aces", "hable", "clamp"}));
     d.params.push_back(boolParam("dither", true, "add +-1 code-value triangular dither (no banding)"));
+    d.validate = [](const ParamSet& p, const ParamChecker& check) {
+        const std::string& file = p.getString("file");
+        if (!endsWith(file, ".png") && !isExr(file))
+            check.fail("file", "'" + file + "' must end in .png (8-bit sRGB) or .exr (linear float)");
+    };
     d.create = [] { return std::make_unique<WriteImageNode>(); };
     registry.addNode(std::move(d));
 }

@@ -1,4 +1,4 @@
-// WriteImage: 8-bit sRGB PNG, read back with libpng.
+// WriteImage: 8-bit sRGB PNG read back with libpng; linear OpenEXR read back with OpenEXR.
 
 #include <gtest/gtest.h>
 
@@ -7,9 +7,11 @@
 #include <string>
 
 #include "core/CoreData.h"
+#include "core/Error.h"
 #include "core/Evaluator.h"
 #include "core/Graph.h"
 #include "core/Registry.h"
+#include "nodes/algo/ExrFile.h"
 #include "nodes/algo/RenderPng.h"
 #include "nodes/algo/ToneMap.h"
 #include "nodes/data/DataTypes.h"
@@ -34,6 +36,13 @@ protected:
     /// Cooks frame 42 of TestImageSource (a 16 x 8 ramp v = x / 16) into WriteImage.
     algo::Rgb8Image write(const std::string& params)
     {
+        cook(params, "frames/cloud.0042.png");
+        return algo::readPngRgb8((out / "frames/cloud.0042.png").string());
+    }
+
+    /// Cooks frame 42 into WriteImage and checks that it reports `written` (relative to out).
+    void cook(const std::string& params, const std::string& written)
+    {
         const Graph g = parseGraph(R"({"cloudgraph": 1, "frames": {"start": 42, "end": 42},
             "nodes": {"src": {"type": "TestImageSource"},
                       "write": {"type": "WriteImage", "inputs": {"image": "src.image"},
@@ -46,8 +55,7 @@ protected:
         const auto files =
             std::dynamic_pointer_cast<const TextData>(ev.pull(g, "write", 42)->at("files"));
         EXPECT_TRUE(files);
-        EXPECT_EQ(files->value, (out / "frames/cloud.0042.png").string());
-        return algo::readPngRgb8((out / "frames/cloud.0042.png").string());
+        EXPECT_EQ(files->value, (out / written).string());
     }
 
     test::TempDir out;
@@ -92,6 +100,55 @@ TEST_F(WriteImageTest, ExposureToneMapAndDitherStayClose)
             255.0 * algo::srgbEncode(algo::toneMap(v, algo::ToneCurve::Aces));
         for (int c = 0; c < 3; ++c)
             EXPECT_LE(std::abs(img.rgb[static_cast<std::size_t>(x) * 3 + c] - expected), 1.5) << x;
+    }
+}
+
+TEST_F(WriteImageTest, ExrKeepsTheLinearValuesExactly)
+{
+    // Exposure and tone map are for display: the EXR holds the radiance unchanged.
+    cook(R"({"file": "frames/cloud.####.exr", "exposure": 3.0, "toneMap": "aces"})", "frames/cloud.0042.exr");
+    const algo::ExrRgbaImage img = algo::readExrRgba((out / "frames/cloud.0042.exr").string());
+    ASSERT_EQ(img.width, 16);
+    ASSERT_EQ(img.height, 8);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 16; ++x) {
+            const float* px = &img.rgba[4 * (static_cast<std::size_t>(y) * 16 + static_cast<std::size_t>(x))];
+            const float v = static_cast<float>(x) / 16.0f;
+            ASSERT_EQ(px[0], v) << x << "," << y;
+            ASSERT_EQ(px[1], v);
+            ASSERT_EQ(px[2], v);
+            ASSERT_EQ(px[3], 1.0f);
+        }
+    std::size_t count = 0;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(out.path()))
+        if (e.is_regular_file()) ++count;
+    EXPECT_EQ(count, 1u);
+}
+
+TEST_F(WriteImageTest, AnUnknownExtensionIsRefusedAtLoadNamingTheParameter)
+{
+    try {
+        parseGraph(R"({"cloudgraph": 1, "nodes": {"src": {"type": "TestImageSource"},
+            "write": {"type": "WriteImage", "inputs": {"image": "src.image"},
+                      "params": {"file": "frames/cloud.####.tif"}}}})",
+                   "test.json", registry);
+        FAIL() << "a .tif file was accepted";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("/nodes/write/params/file"), std::string::npos) << what;
+        EXPECT_NE(what.find(".exr"), std::string::npos) << what;
+    }
+}
+
+TEST(ExrFile, ReadingAFileThatIsNotExrNamesIt)
+{
+    test::TempDir dir;
+    test::writeFile(dir / "bad.exr", "not an exr");
+    try {
+        algo::readExrRgba((dir / "bad.exr").string());
+        FAIL();
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("bad.exr"), std::string::npos);
     }
 }
 
