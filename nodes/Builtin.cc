@@ -31,11 +31,13 @@ void registerBuiltinNodes(Registry& registry)
     registerVapourEmitterNode(registry);
     registerThermalIntegratorNode(registry);
     registerCondensationNode(registry);
+    registerVapourPointsNode(registry);
 
     // fluid/
     registerPrimitiveSimNode(registry);
     registerPrimitiveLoadNode(registry);
     registerWritePrimitiveNodes(registry);
+    registerPrimitiveFrameNode(registry);
 
     // io/
     registerWriteMapNode(registry);
@@ -46,13 +48,13 @@ void registerBuiltinNodes(Registry& registry)
     registerVoxelizerNode(registry);
     registerWriteVdbNode(registry);
     registerWritePointsNode(registry);
+    registerCombineVolumesNode(registry);
 
     // mapping/
     registerPrimitiveMapperNode(registry);
     registerGenerateCloudNode(registry);
     registerWriteCloudParticlesNode(registry);
     registerPrimitiveSubsetNode(registry);
-    registerPrimitiveFrameNode(registry);
 
     // render/
     registerSyntheticCumulusNode(registry);

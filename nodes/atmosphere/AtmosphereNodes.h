@@ -11,5 +11,6 @@ void registerNoiseMapNode(Registry& registry);            // NoiseMap
 void registerVapourEmitterNode(Registry& registry);       // VapourEmitter
 void registerThermalIntegratorNode(Registry& registry);   // ThermalIntegrator
 void registerCondensationNode(Registry& registry);        // Condensation
+void registerVapourPointsNode(Registry& registry);        // VapourPoints
 
 }  // namespace cg

@@ -8,5 +8,6 @@ class Registry;
 void registerVoxelizerNode(Registry& registry);    // Voxelizer
 void registerWriteVdbNode(Registry& registry);     // WriteVDB
 void registerWritePointsNode(Registry& registry);  // WritePoints: VDB Points
+void registerCombineVolumesNode(Registry& registry);  // CombineVolumes
 
 }  // namespace cg

@@ -11,6 +11,7 @@
 #include "core/Evaluator.h"
 #include "core/Graph.h"
 #include "nodes/Builtin.h"
+#include "nodes/data/CloudParticles.h"
 #include "nodes/data/VapourParticles.h"
 
 namespace cg {
@@ -24,7 +25,10 @@ const char* kGraph = R"({
     "atmosphere": {"type": "Atmosphere"},
     "emit": {"type": "VapourEmitter", "inputs": {"map": "noise.map"}},
     "rise": {"type": "ThermalIntegrator", "inputs": {"particles": "emit.particles", "atmosphere": "atmosphere.atmosphere"}},
-    "condense": {"type": "Condensation", "inputs": {"particles": "rise.particles", "atmosphere": "atmosphere.atmosphere"}}
+    "condense": {"type": "Condensation", "inputs": {"particles": "rise.particles", "atmosphere": "atmosphere.atmosphere"}},
+    "vapour": {"type": "VapourPoints", "inputs": {"condensation": "condense.condensation"}, "params": {"which": "vapour"}},
+    "condensed": {"type": "VapourPoints", "inputs": {"condensation": "condense.condensation"}, "params": {"which": "condensation"}},
+    "all": {"type": "VapourPoints", "inputs": {"condensation": "condense.condensation"}}
   }})";
 
 class AtmospherePipeline : public ::testing::Test {
@@ -108,6 +112,41 @@ TEST_F(AtmospherePipeline, OutputIsBitIdenticalForOneAndTwoThreads)
     }
     EXPECT_EQ(heights[0], heights[1]);
     EXPECT_EQ(frames[0], frames[1]);
+}
+
+TEST_F(AtmospherePipeline, VapourPointsSplitTheParticlesIntoVapourAndCondensation)
+{
+    const Graph g = parseGraph(kGraph, "atmosphere.json", registry);
+    Evaluator ev(registry, {});
+    ev.cookFrames(g, 0, 120, {"condense"});
+    for (int frame : {60, 120}) {
+        const auto c = std::dynamic_pointer_cast<const CondensationData>(ev.pull(g, "condense", frame)->at("condensation"));
+        auto points = [&](const char* node) {
+            return std::dynamic_pointer_cast<const CloudParticlesData>(ev.pull(g, node, frame)->at("particles"));
+        };
+        const auto vapour = points("vapour"), condensed = points("condensed"), all = points("all");
+        const VapourParticlesData& v = *c->particles;
+        ASSERT_EQ(all->size(), v.size());
+        ASSERT_EQ(condensed->size(), c->condensedCount());
+        ASSERT_EQ(vapour->size() + condensed->size(), v.size());
+        if (frame == 120) {
+            EXPECT_GT(condensed->size(), 0u);
+        }
+        std::size_t iv = 0, ic = 0;
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            const float xyz[3] = {v.statics->x[i], v.statics->y[i], v.z[i]};
+            const auto& part = c->condensed(i) ? condensed : vapour;
+            std::size_t& k = c->condensed(i) ? ic : iv;
+            for (int a = 0; a < 3; ++a) {
+                ASSERT_EQ(all->positions[3 * i + static_cast<std::size_t>(a)], xyz[a]);
+                ASSERT_EQ(part->positions[3 * k + static_cast<std::size_t>(a)], xyz[a]);
+            }
+            EXPECT_EQ(all->sources[i], v.statics->id[i]);
+            EXPECT_EQ(part->sources[k], v.statics->id[i]);
+            EXPECT_EQ(all->levels[i], 0);
+            ++k;
+        }
+    }
 }
 
 }  // namespace cg
