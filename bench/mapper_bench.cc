@@ -493,6 +493,50 @@ void BM_StreamCopy(benchmark::State& state)
 }
 BENCHMARK(BM_StreamCopy)->UseRealTime()->Unit(benchmark::kMillisecond);
 
+/// One frame of the hybrid method at the first frame of the run whose cloud-particle count
+/// reaches range(0): the condensation particles' state at t (the stochastic simulation's part;
+/// here the scene's closed form), the selection step (Eq. 12-16), then every cloud particle's
+/// position (Eq. 10-11) streamed to a counting consumer. The peer of sph_bench's
+/// BM_SolverStep at the same particle count: "hybrid vs simulating every particle
+/// physically" (bench/run_hybrid_vs_physical.sh prints the ratio).
+void BM_HybridStep(benchmark::State& state)
+{
+    const Scene& sc = scene();
+    const auto target = static_cast<std::uint64_t>(state.range(0));
+    Condensation cond;
+    SourceTable before;
+    int frame = -1;
+    for (int t = 0; t < kFrames; ++t) {
+        SourceTable next = stepSources(before, t, firstCondensation(sc, t), cond.at(sc, t), sc.mapView(),
+                                       sc.primitive(), sc.settings);
+        if (total(cloudCounts(next, t, sc.primitive(), sc.settings)) >= target) {
+            frame = t;
+            break;
+        }
+        before = std::move(next);
+    }
+    if (frame < 0) {
+        state.SkipWithError("the scene never reaches that many cloud particles");
+        return;
+    }
+    std::uint64_t particles = 0;
+    for (auto _ : state) {
+        const CondensationView c = cond.at(sc, frame);
+        const SourceTable table =
+            stepSources(before, frame, firstCondensation(sc, frame), c, sc.mapView(), sc.primitive(), sc.settings);
+        std::atomic<std::uint64_t> counted{0};
+        forEachCloudChunk(table, frame, c, sc.primitive(), sc.settings, [&](const CloudChunk& k) {
+            benchmark::DoNotOptimize(k.positions);
+            counted.fetch_add(k.count, std::memory_order_relaxed);
+        });
+        particles = counted.load();
+    }
+    state.counters["particles"] = static_cast<double>(particles);
+    state.counters["frame"] = frame;
+    state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(particles));
+}
+BENCHMARK(BM_HybridStep)->Arg(64000)->Arg(256000)->Arg(1000000)->UseRealTime()->Unit(benchmark::kMillisecond);
+
 /// --scene-info: the scene's counts per level every 51 frames, and the selection's time.
 void printSceneInfo()
 {

@@ -30,7 +30,7 @@ int infoCommand(const Args& args)
                     algo::kPrimitiveFileVersion);
         std::printf("  frames:      %d (Delta s = %g s, %g s in all)\n", reader.frames(),
                     reader.frameTime(), reader.frameTime() * (reader.frames() - 1));
-        std::printf("  units:       metres, relative to the source point\n");
+        std::printf("  units:       metres, relative to the cloud origin\n");
         std::printf("  particles:   N_f(0) = %u, N_f(last) = %u, %llu positions stored\n",
                     reader.counts().front(), reader.counts().back(),
                     static_cast<unsigned long long>(total));

@@ -7,7 +7,7 @@
 ///   8       4     u32 version = 1
 ///   12      4     u32 F, frame count (>= 1)
 ///   16      8     f64 Delta s, seconds of physical time per frame (> 0)
-///   24      4     u32 units of the positions: 1 = metres, relative to the source point
+///   24      4     u32 units of the positions: 1 = metres, relative to the cloud origin
 ///   28      4     u32 reserved, 0
 ///   32      24    f32 bounds: min x, y, z then max x, y, z over all frames (0 if empty)
 ///   56      8     u64 XXH3-64 of bytes 0..55 and of the frame index that follows

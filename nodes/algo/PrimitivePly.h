@@ -1,6 +1,6 @@
 #pragma once
 /// Exports frames of a primitive set as binary PLY point clouds (one file per frame), through
-/// the PLY writer of PlyWriter.h: x y z are the positions (m, from the source point), id the
+/// the PLY writer of PlyWriter.h: x y z are the positions (m, from the cloud origin), id the
 /// stable cloud-particle id; vz, temperature and home_cell are 0 and state is 1 (condensed).
 
 #include <cstdint>

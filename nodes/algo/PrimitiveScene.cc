@@ -66,7 +66,10 @@ PrimitiveResult simulatePrimitive(const PrimitiveSettings& s, const std::functio
     out.fluidParticles = solver.size();
     std::vector<std::uint32_t> cloud;  // fluid index of each cloud id
     std::vector<unsigned char> inCloud(solver.size(), 0);
-    const double* src = sph.source.centre;
+    // The cloud origin: where the cloud first appears (the first cloud particles' mean x and y
+    // at their lowest z). Positions are stored relative to it, so a mapped copy grows from its
+    // source particle upwards instead of floating a condensation level above it.
+    bool anchored = false;
     for (int f = 0; f < s.frames; ++f) {
         if (f > 0) {
             out.subSteps += solver.advance(s.frameTime, poll);
@@ -83,9 +86,18 @@ PrimitiveResult simulatePrimitive(const PrimitiveSettings& s, const std::functio
             }
         out.counts.push_back(static_cast<std::uint32_t>(cloud.size()));
         const std::vector<double>& x = solver.positions();
+        if (!anchored && !cloud.empty()) {
+            out.origin[2] = x[3 * std::size_t{cloud[0]} + 2];
+            for (std::uint32_t i : cloud) {
+                out.origin[0] += x[3 * std::size_t{i}] / static_cast<double>(cloud.size());
+                out.origin[1] += x[3 * std::size_t{i} + 1] / static_cast<double>(cloud.size());
+                out.origin[2] = std::min(out.origin[2], x[3 * std::size_t{i} + 2]);
+            }
+            anchored = true;
+        }
         for (std::uint32_t i : cloud)
             for (int a = 0; a < 3; ++a)
-                out.positions.push_back(static_cast<float>(x[3 * std::size_t{i} + a] - src[a]));
+                out.positions.push_back(static_cast<float>(x[3 * std::size_t{i} + a] - out.origin[a]));
         if (progress) progress(f);
     }
     out.pressureIterations = solver.totalPressureIterations();

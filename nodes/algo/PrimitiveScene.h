@@ -3,7 +3,8 @@
 /// a closed box and a warm, moist source near the floor. The source feeds a rising thermal
 /// that cools adiabatically, condenses above its lifting condensation level, releases latent
 /// heat and billows into a cauliflower-topped cumulus puff. The cloud particles are the fluid
-/// particles that have condensed: ids in order of appearance, N_f(s) never decreasing.
+/// particles that have condensed: ids in order of appearance, N_f(s) never decreasing,
+/// positions relative to the cloud origin (where the cloud first appears).
 
 #include <cstdint>
 #include <functional>
@@ -31,7 +32,10 @@ PrimitiveSettings defaultPrimitiveSettings();
 struct PrimitiveResult {
     double frameTime = 0.0;             ///< Delta s, seconds
     std::vector<std::uint32_t> counts;  ///< N_f(s)
-    std::vector<float> positions;       ///< xyz per cloud particle per frame, m from the source
+    std::vector<float> positions;       ///< xyz per cloud particle per frame, m from origin
+    /// The cloud origin in box coordinates (m): the first cloud particles' mean x and y at
+    /// their lowest z; (0, 0, 0) when nothing condenses.
+    double origin[3] = {0.0, 0.0, 0.0};
     std::size_t fluidParticles = 0;     ///< fluid particles simulated
     long long subSteps = 0;             ///< CFL sub-steps taken in all
     long long pressureIterations = 0;   ///< pressure-solve iterations in all

@@ -2,7 +2,8 @@
 /// The 3D cloud primitive set of Sec. 4: the positions of the condensed fluid particles of
 /// the physical simulation at every primitive frame s. Once a particle appears it stays, with
 /// a stable id: frame s holds ids 0..N_f(s)-1 in order of appearance, and N_f(s) never
-/// decreases. Positions are relative to the source point, in metres.
+/// decreases. Positions are relative to the cloud origin (where the cloud first appears: the
+/// first cloud particles' mean x and y at their lowest z), in metres.
 
 #include <cstdint>
 #include <vector>

@@ -53,7 +53,7 @@ void registerPrimitiveFrameNode(Registry& registry)
     d.inputs = {port("primitive", "PrimitiveSet", "the 3D cloud primitive set")};
     d.outputs = {port("particles", "CloudParticles", "the primitive's particles at frame s")};
     d.params = {floatParam("scale", 1.0, "", "metres per primitive metre", 1e-6, 1e6),
-                vec3Param("offset", Vec3{0.0, 0.0, 0.0}, "m", "where the source point goes (x, y, z)",
+                vec3Param("offset", Vec3{0.0, 0.0, 0.0}, "m", "where the cloud origin goes (x, y, z)",
                           -1e7, 1e7)};
     d.create = [] { return std::make_unique<PrimitiveFrameNode>(); };
     registry.addNode(std::move(d));

@@ -83,7 +83,7 @@ void registerWritePrimitiveNodes(Registry& registry)
                         "PLY point clouds, one file per frame: '.ssss' (frame s, zero-padded) "
                         "goes before the extension (do not use ####: the engine fills it with "
                         "the evaluation frame). Properties "
-                        "x y z (m, from the source point), id (stable), state 1.",
+                        "x y z (m, from the cloud origin), id (stable), state 1.",
                         "primitive/frame.ply");
     p.params.push_back(intParam("first", 0, "frames", "first primitive frame s to write", 0, 1e7));
     p.params.push_back(

@@ -14,7 +14,7 @@ namespace {
 
 /// Statistics of frame s's cloud particles.
 struct FrameShape {
-    double meanZ = 0.0;   ///< m above the source point
+    double meanZ = 0.0;   ///< m above the cloud origin
     double top = 0.0;     ///< highest particle, m
     double radius = 0.0;  ///< RMS horizontal distance from the cloud's own axis, m
 };
@@ -59,14 +59,25 @@ TEST(PrimitiveScene, DefaultPrimitiveGrowsRisesAndWidens)
     EXPECT_EQ(r.counts[10], 0u);
     EXPECT_GT(r.counts[50], 1000u);
     EXPECT_GT(r.counts.back(), 10000u);
-    // Every particle stays inside the box (positions are relative to the source point).
+    // Every particle stays inside the box (positions are relative to the cloud origin, which
+    // lies above the source, where the bubble first condenses).
+    EXPECT_GT(r.origin[2], s.sourceHeight);
+    EXPECT_LT(r.origin[2], s.sourceHeight + s.sph.source.radius + 200.0);
     const double half = 0.5 * s.width;
     for (std::size_t q = 0; q < r.positions.size() / 3; ++q) {
-        EXPECT_LE(std::fabs(r.positions[3 * q]), half);
-        EXPECT_LE(std::fabs(r.positions[3 * q + 1]), half);
-        EXPECT_GE(r.positions[3 * q + 2], -s.sourceHeight);
-        EXPECT_LE(r.positions[3 * q + 2], s.height - s.sourceHeight);
+        EXPECT_LE(std::fabs(r.positions[3 * q] + r.origin[0]), half);
+        EXPECT_LE(std::fabs(r.positions[3 * q + 1] + r.origin[1]), half);
+        EXPECT_GE(r.positions[3 * q + 2] + r.origin[2], 0.0);
+        EXPECT_LE(r.positions[3 * q + 2] + r.origin[2], s.height);
     }
+    // The first cloud particles sit at the origin's height and around its axis.
+    const std::size_t firstFrame = static_cast<std::size_t>(
+        std::find_if(r.counts.begin(), r.counts.end(), [](std::uint32_t n) { return n > 0; }) - r.counts.begin());
+    std::size_t first = 0;
+    for (std::size_t f = 0; f < firstFrame; ++f) first += r.counts[f];
+    float lowest = 1e30f;
+    for (std::uint32_t q = 0; q < r.counts[firstFrame]; ++q) lowest = std::min(lowest, r.positions[3 * (first + q) + 2]);
+    EXPECT_EQ(lowest, 0.0f);
     // The cloud rises and widens with s: its mean height, top and horizontal spread grow
     // from frame 50 to 100 to 149.
     const FrameShape a = shapeAt(r, 50), b = shapeAt(r, 100), c = shapeAt(r, 149);
