@@ -57,12 +57,22 @@ double primitiveTime(const Source& src, int frame, const MappingSettings& s, con
     return src.speed * static_cast<double>(frame - src.startFrame) * s.timeStep / p.frameTime;
 }
 
+std::uint32_t copyStride(const MappingSettings& s, const PrimitiveView& p)
+{
+    if (s.particlesPerCopy == 0 || p.frameCount == 0) return 1;
+    const std::uint64_t last = p.counts[p.frameCount - 1];
+    const std::uint64_t k = (last + s.particlesPerCopy - 1) / s.particlesPerCopy;
+    return static_cast<std::uint32_t>(std::clamp<std::uint64_t>(k, 1, 65536));
+}
+
 std::uint32_t clusterSize(const Source& src, int frame, const MappingSettings& s, const PrimitiveView& p)
 {
     if (frame < src.startFrame || p.frameCount == 0) return 0;
     const double t = std::floor(primitiveTime(src, frame, s, p));
     const int index = t >= p.frameCount - 1 ? p.frameCount - 1 : static_cast<int>(t);
-    return p.counts[index];
+    const std::uint32_t n = p.counts[index];
+    const std::uint32_t k = copyStride(s, p);
+    return n > src.phase ? (n - src.phase + k - 1) / k : 0;
 }
 
 void primitivePosition(const PrimitiveView& p, std::uint32_t i, double s, float out[3])
@@ -115,6 +125,9 @@ std::vector<std::uint64_t> cloudCounts(const SourceTable& table, int frame, cons
 
 namespace {
 
+/// The counter-based stream of the copies' phases (levels use streams below 2^40).
+constexpr std::uint64_t kPhaseStream = std::uint64_t{1} << 40;
+
 /// Picks the k-th new candidate of (level, frame) uniformly in [0, n), skipping taken ones by
 /// probing forward: a candidate becomes a source at most once.
 template <class Taken>
@@ -134,6 +147,7 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
                         const MappingSettings& s)
 {
     SourceTable table = previous;
+    const std::uint32_t stride = copyStride(s, p);
     table.condensationTaken.resize(c.count, 0);
     table.levelStart.assign(static_cast<std::size_t>(s.maxLevel), -1);
     const int first = s.firstStart >= 0 ? s.firstStart : firstCondensation;
@@ -200,7 +214,7 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
                 const std::uint64_t key = keyOf(u);
                 takenNow.insert(key);
                 src.parent = static_cast<std::uint32_t>(key >> 32);
-                src.parentFluid = static_cast<std::uint32_t>(key & 0xffffffffu);
+                src.parentFluid = copyFluidId(table.sources[src.parent], key & 0xffffffffu, stride);
                 // Eq. 16 reads the map under the parent cloud particle's position (Eq. 10).
                 const Source& parent = table.sources[src.parent];
                 float f[3];
@@ -209,6 +223,10 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
                 x = origins[3 * src.parent] + r * f[0];
                 y = origins[3 * src.parent + 1] + r * f[1];
             }
+            // Which of the primitive's particles this copy carries, keyed by the source's index,
+            // so it never depends on thread order.
+            src.phase = static_cast<std::uint16_t>(
+                counterBits(s.seed, kPhaseStream, table.sources.size()) % stride);
             const double noise = map.at(x, y);  // Eq. 16
             src.scale = static_cast<float>(s.scaleCoefficient * noise);
             src.speed = static_cast<float>(1.0 + s.speedCoefficient * noise);
@@ -231,6 +249,7 @@ namespace {
 /// of the cluster sizes (Eq. 13), so particle q belongs to the source j with
 /// offset[j] <= q < offset[j + 1].
 struct FramePlan {
+    std::uint32_t stride = 1;  ///< k of thinned copies
     std::vector<float> origins;
     std::vector<std::uint64_t> offset;
     std::uint64_t total() const { return offset.back(); }
@@ -240,6 +259,7 @@ FramePlan planFrame(const SourceTable& table, int frame, const CondensationView&
                     const MappingSettings& s)
 {
     FramePlan plan;
+    plan.stride = copyStride(s, p);
     plan.origins = sourceOrigins(table, frame, c, p, s);
     const std::size_t n = table.sources.size();
     plan.offset.assign(n + 1, 0);
@@ -247,35 +267,53 @@ FramePlan planFrame(const SourceTable& table, int frame, const CondensationView&
     return plan;
 }
 
-/// Eq. 10 for fluid particles [i0, i1) of source j: primitivePosition's arithmetic (P_f = a +
-/// w (b - a), or the last frame past its end) with the frame pair, weight, origin and scale
-/// hoisted out of the particle loop, bit-identical to calling it per particle.
-void sourceSlice(const Source& src, const float* origin, int frame, const PrimitiveView& p,
-                 const MappingSettings& s, std::uint64_t i0, std::uint64_t i1, float* __restrict out)
+/// Eq. 10 for particles [i0, i1) of one copy, whose fluid ids are first, first + k, ...:
+/// primitivePosition's arithmetic (P_f = a + w (b - a), or the last frame past its end) with
+/// the frame pair, weight, origin and scale hoisted out of the particle loop, bit-identical to
+/// calling it per particle. K is the stride when known at compile time (1: contiguous ids, the
+/// loop the compiler vectorises), 0 when it is `stride`.
+template <std::uint32_t K>
+void copySlice(const float* __restrict a, const float* __restrict b, float w, bool lerp, std::size_t stride,
+               const float* origin, float scale, std::uint64_t n, float* __restrict out)
 {
-    const double time = primitiveTime(src, frame, s, p);
-    const auto scale = static_cast<float>(s.metresPerPrimitiveMetre * src.scale);
+    const std::size_t step = 3 * (K != 0 ? K : stride);
     const float ox = origin[0], oy = origin[1], oz = origin[2];
-    const double whole = std::floor(time);
-    const std::uint64_t n = i1 - i0;
-    if (whole >= p.frameCount - 1) {
-        const float* __restrict a = p.frames[p.frameCount - 1] + 3 * i0;
+    if (!lerp) {
         for (std::uint64_t i = 0; i < n; ++i) {
-            out[3 * i] = ox + scale * a[3 * i];
-            out[3 * i + 1] = oy + scale * a[3 * i + 1];
-            out[3 * i + 2] = oz + scale * a[3 * i + 2];
+            const float* q = a + i * step;
+            out[3 * i] = ox + scale * q[0];
+            out[3 * i + 1] = oy + scale * q[1];
+            out[3 * i + 2] = oz + scale * q[2];
         }
         return;
     }
-    const int f = static_cast<int>(whole);
-    const auto w = static_cast<float>(time - whole);
-    const float* __restrict a = p.frames[f] + 3 * i0;
-    const float* __restrict b = p.frames[f + 1] + 3 * i0;
     for (std::uint64_t i = 0; i < n; ++i) {
-        out[3 * i] = ox + scale * (a[3 * i] + w * (b[3 * i] - a[3 * i]));
-        out[3 * i + 1] = oy + scale * (a[3 * i + 1] + w * (b[3 * i + 1] - a[3 * i + 1]));
-        out[3 * i + 2] = oz + scale * (a[3 * i + 2] + w * (b[3 * i + 2] - a[3 * i + 2]));
+        const float* qa = a + i * step;
+        const float* qb = b + i * step;
+        out[3 * i] = ox + scale * (qa[0] + w * (qb[0] - qa[0]));
+        out[3 * i + 1] = oy + scale * (qa[1] + w * (qb[1] - qa[1]));
+        out[3 * i + 2] = oz + scale * (qa[2] + w * (qb[2] - qa[2]));
     }
+}
+
+/// Eq. 10 for particles [i0, i1) of source j's copy.
+void sourceSlice(const Source& src, const float* origin, int frame, const PrimitiveView& p,
+                 const MappingSettings& s, std::uint32_t stride, std::uint64_t i0, std::uint64_t i1,
+                 float* __restrict out)
+{
+    const double time = primitiveTime(src, frame, s, p);
+    const auto scale = static_cast<float>(s.metresPerPrimitiveMetre * src.scale);
+    const double whole = std::floor(time);
+    const bool past = whole >= p.frameCount - 1;
+    const int f = past ? p.frameCount - 1 : static_cast<int>(whole);
+    const auto w = past ? 0.0f : static_cast<float>(time - whole);
+    const std::size_t first = 3 * static_cast<std::size_t>(copyFluidId(src, i0, stride));
+    const float* a = p.frames[f] + first;
+    const float* b = past ? a : p.frames[f + 1] + first;
+    if (stride == 1)
+        copySlice<1>(a, b, w, !past, 1, origin, scale, i1 - i0, out);
+    else
+        copySlice<0>(a, b, w, !past, stride, origin, scale, i1 - i0, out);
 }
 
 /// Particles [first, last) of the frame into xyz (and levels / sources when not null), source
@@ -290,7 +328,8 @@ void fillRange(const FramePlan& plan, const SourceTable& table, int frame, const
         const std::uint64_t end = std::min(last, offset[j + 1]);
         if (end == q) continue;  // a source not started yet: no cluster, no frame to look up
         const Source& src = table.sources[j];
-        sourceSlice(src, &plan.origins[3 * j], frame, p, s, q - offset[j], end - offset[j], xyz + 3 * (q - first));
+        sourceSlice(src, &plan.origins[3 * j], frame, p, s, plan.stride, q - offset[j], end - offset[j],
+                    xyz + 3 * (q - first));
         if (levels != nullptr) std::fill_n(levels + (q - first), end - q, src.level);
         if (sources != nullptr) std::fill_n(sources + (q - first), end - q, static_cast<std::uint32_t>(j));
         q = end;

@@ -25,12 +25,15 @@ namespace cg::algo {
 /// One source record j: what Eq. 10-12 and 16 need to place its cluster at any frame.
 struct Source {
     std::uint8_t level = 1;       ///< L
+    std::uint16_t phase = 0;      ///< o_j: the copy's first fluid id when copies are thinned
     std::uint32_t parent = 0;     ///< L = 1: condensation particle index; L >= 2: source index j'
-    std::uint32_t parentFluid = 0;///< L >= 2: fluid particle id i' of the parent cluster
+    std::uint32_t parentFluid = 0;///< L >= 2: fluid particle id i' (in the primitive) of the parent
     std::int32_t startFrame = 0;  ///< t0[L, j]
     float speed = 1.0f;           ///< A[L, j] = 1 + A0 fNoise (Eq. 16)
     float scale = 0.0f;           ///< R[L, j] = R0 fNoise (Eq. 16)
 };
+
+static_assert(sizeof(Source) == 24, "the source record stays 24 bytes (docs/mapper.md)");
 
 /// The mapper's whole state at one frame.
 struct SourceTable {
@@ -39,7 +42,8 @@ struct SourceTable {
     std::vector<std::int32_t> levelStart;   ///< t_s[L] per level (index L-1); -1 while unknown
     /// Condensation particles already selected (index -> 1): each is a source at most once.
     std::vector<std::uint8_t> condensationTaken;
-    /// Cloud particles already selected, as (j' << 32 | i'), sorted: each at most once.
+    /// Cloud particles already selected, as (j' << 32 | q), q the particle's index in its
+    /// copy, sorted: each at most once.
     std::vector<std::uint64_t> cloudTaken;
 };
 
@@ -81,15 +85,30 @@ struct MappingSettings {
     double timeStep = 1.0;                      ///< dt of the stochastic simulation, seconds
     std::uint64_t seed = 0;
     std::uint64_t maxSources = 1u << 24;        ///< selection stops here (a memory guard)
+    /// K: when > 0, each copy carries only about K of the primitive's particles (ours): copy j
+    /// takes fluid ids o_j, o_j + k, o_j + 2k, ... with k = ceil(N_f(last) / K) and its own
+    /// phase o_j in [0, k) drawn at selection, so different copies carry different particles.
+    /// 0: every copy carries all N_f(s) (the paper).
+    std::uint32_t particlesPerCopy = 0;
 };
+
+/// k, the fluid-id stride of thinned copies: ceil(N_f(last) / K), at least 1, at most 65,536
+/// (the phase is 16 bits); 1 when particlesPerCopy is 0.
+std::uint32_t copyStride(const MappingSettings& s, const PrimitiveView& p);
 
 double selectionRatio(const MappingSettings& s, int level);
 int windowLength(const MappingSettings& s, int level);
 
 /// Primitive frame s of a source at stochastic frame t (Eq. 11).
 double primitiveTime(const Source& src, int frame, const MappingSettings& s, const PrimitiveView& p);
-/// N_f(s) for a source at frame t (0 before its start).
+/// The copy's particle count at frame t (Eq. 13's N_f(s), thinned): the fluid ids o_j + q k
+/// below N_f(s); 0 before its start.
 std::uint32_t clusterSize(const Source& src, int frame, const MappingSettings& s, const PrimitiveView& p);
+/// Fluid id of particle q of source src's copy: o_j + q k.
+inline std::uint32_t copyFluidId(const Source& src, std::uint64_t q, std::uint32_t stride)
+{
+    return static_cast<std::uint32_t>(src.phase + q * stride);
+}
 /// Position of fluid particle i of the primitive at fractional primitive frame s (Eq. 10's P_f).
 void primitivePosition(const PrimitiveView& p, std::uint32_t i, double s, float out[3]);
 

@@ -18,6 +18,7 @@ bool CloudSourcesData::serialize(ByteWriter& out) const
     out.u64(table.sources.size());
     for (const algo::Source& src : table.sources) {
         out.u64(src.level);
+        out.u64(src.phase);
         out.u64(src.parent);
         out.u64(src.parentFluid);
         out.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(src.startFrame)));
@@ -38,6 +39,7 @@ bool CloudSourcesData::serialize(ByteWriter& out) const
         out.f64(v);
     out.u64(s.seed);
     out.u64(s.maxSources);
+    out.u64(s.particlesPerCopy);
     return true;
 }
 
@@ -47,10 +49,11 @@ void registerCloudSourcesType(Registry& registry)
                           [](ByteReader& in) -> DataPtr {
                               algo::SourceTable t;
                               const std::uint64_t n = in.u64();
-                              if (n > in.remaining() / 48) throw std::runtime_error("CloudSources: bad count");
+                              if (n > in.remaining() / 56) throw std::runtime_error("CloudSources: bad count");
                               t.sources.resize(static_cast<std::size_t>(n));
                               for (algo::Source& src : t.sources) {
                                   src.level = static_cast<std::uint8_t>(in.u64());
+                                  src.phase = static_cast<std::uint16_t>(in.u64());
                                   src.parent = static_cast<std::uint32_t>(in.u64());
                                   src.parentFluid = static_cast<std::uint32_t>(in.u64());
                                   src.startFrame = static_cast<std::int32_t>(static_cast<std::int64_t>(in.u64()));
@@ -73,6 +76,7 @@ void registerCloudSourcesType(Registry& registry)
                               s.timeStep = in.f64();
                               s.seed = in.u64();
                               s.maxSources = in.u64();
+                              s.particlesPerCopy = static_cast<std::uint32_t>(in.u64());
                               for (std::size_t j = 0; j < t.sources.size(); ++j) {
                                   const algo::Source& src = t.sources[j];
                                   if (src.level == 0 || src.level > s.maxLevel ||

@@ -30,6 +30,7 @@ algo::MappingSettings settingsFrom(const CookContext& ctx)
     s.timeStep = ctx.timeStep();
     s.seed = static_cast<std::uint64_t>(p.getInt("seed"));
     s.maxSources = static_cast<std::uint64_t>(p.getInt("maxSources"));
+    s.particlesPerCopy = static_cast<std::uint32_t>(p.getInt("particlesPerCopy"));
     return s;
 }
 
@@ -124,6 +125,11 @@ void registerPrimitiveMapperNode(Registry& registry)
         intParam("seed", 0, "", "keys the random selection", 0),
         intParam("maxSources", 1 << 24, "sources",
                  "selection stops at this many sources, a memory guard (value ours)", 1, 1e9),
+        intParam("particlesPerCopy", 0, "particles",
+                 "K (ours): each copy carries about K of the primitive's particles, ids o_j, "
+                 "o_j + k, ... (k = ceil(N_f(last) / K), phase o_j drawn per source, so copies "
+                 "differ); keeps deep recursions near the paper's counts; 0 = all (the paper)",
+                 0, 1 << 30),
     };
     d.create = [] { return std::make_unique<PrimitiveMapperNode>(); };
     registry.addNode(std::move(d));

@@ -228,6 +228,51 @@ TEST(Mapping, Eq10To12PositionsMatchTheRecursiveFormula)
     EXPECT_TRUE(levelsSeen.count(1) && levelsSeen.count(2));
 }
 
+TEST(Mapping, ThinnedCopiesCarryEveryKthParticleFromTheirOwnPhase)
+{
+    Scene scene;
+    scene.settings.particlesPerCopy = 4;
+    scene.settings.selectionRatio = {0.5, 0.2};
+    // N_f(last) = 25, so k = ceil(25 / 4) = 7.
+    ASSERT_EQ(copyStride(scene.settings, scene.primitive()), 7u);
+    const MappingRun r = run(scene, 30);
+    std::set<int> phases;
+    bool sawLevel2 = false;
+    for (int t : {5, 12, 20, 29}) {
+        const SourceTable& table = r.tables[static_cast<std::size_t>(t)];
+        const auto& c = r.frames[static_cast<std::size_t>(t)];
+        const auto out = generateCloudParticles(table, t, Scene::view(c), scene.primitive(), scene.settings);
+        std::vector<std::uint64_t> perLevel(3, 0);
+        std::size_t q = 0;
+        for (std::size_t j = 0; j < table.sources.size(); ++j) {
+            const Source& src = table.sources[j];
+            ASSERT_LT(src.phase, 7u);
+            phases.insert(src.phase);
+            if (src.level >= 2) {
+                // The parent cloud particle is one its parent's copy carries.
+                EXPECT_EQ(src.parentFluid % 7, table.sources[src.parent].phase);
+                sawLevel2 = true;
+            }
+            // Eq. 13 thinned: the ids phase, phase + 7, ... below N_f(s).
+            const std::uint64_t nf = expectedClusterSize(scene, src, t);
+            std::uint64_t n = 0;
+            for (std::uint64_t id = src.phase; id < nf; id += 7, ++n, ++q) {
+                double e[3];
+                expectedCloudParticle(scene, table, c, j, static_cast<std::uint32_t>(id), t, e);
+                for (int k = 0; k < 3; ++k)
+                    ASSERT_NEAR(out.positions[3 * q + k], e[k], 1e-3 * std::max(1.0, std::abs(e[k])))
+                        << "source " << j << " fluid id " << id << " frame " << t;
+            }
+            EXPECT_EQ(clusterSize(src, t, scene.settings, scene.primitive()), n);
+            perLevel[src.level - 1u] += n;
+        }
+        EXPECT_EQ(q, out.levels.size());
+        EXPECT_EQ(cloudCounts(table, t, scene.primitive(), scene.settings), perLevel);
+    }
+    EXPECT_TRUE(sawLevel2);
+    EXPECT_GT(phases.size(), 3u);  // copies carry different particles
+}
+
 TEST(Mapping, ALevel2ClusterFollowsItsParentCloudParticle)
 {
     Scene scene;
