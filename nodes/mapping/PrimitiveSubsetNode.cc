@@ -64,7 +64,9 @@ void registerPrimitiveSubsetNode(Registry& registry)
         "cloud particles of the level below, so the counts multiply by about M x N_f per "
         "level; a thinned primitive keeps a deep recursion (L_max 5) within millions of cloud "
         "particles, as the paper's Table 1 counts imply (Figure 6: 492,646). Give the "
-        "voxelizer a larger particle radius to fill the gaps.";
+        "voxelizer a larger particle radius to fill the gaps. Every copy then carries the same "
+        "particles, which line up in horizontal bands across a mapped cloud: for mapping, "
+        "PrimitiveMapper's particlesPerCopy (a different subset per copy) looks better.";
     d.inputs = {port("primitive", "PrimitiveSet", "the full primitive set")};
     d.outputs = {port("primitive", "PrimitiveSet", "ids 0, k, 2k, ... of the input, renumbered 0, 1, 2, ...")};
     d.params = {intParam("particles", 16384, "particles",
