@@ -28,7 +28,7 @@ PAPER = {  # Table 1: cloud particles, seconds, steps (Pentium 4, 3.8 GHz)
     "figure8_cumulonimbus": (1973087, 423.9, 500),
 }
 DISPLAY_TYPES = {"Voxelizer", "Renderer", "WriteImage", "EncodeVideo", "WriteVDB", "WritePoints",
-                 "WriteCloudParticles", "WriteText", "LogText"}
+                 "WriteCloudParticles", "WriteText", "LogText", "VapourPoints", "CombineVolumes"}
 
 
 def run(cli, graph_path, out, report):
