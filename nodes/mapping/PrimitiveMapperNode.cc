@@ -69,6 +69,7 @@ void registerPrimitiveMapperNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "PrimitiveMapper";
+    d.version = 2;  // 2: source records carry the copy phase
     d.category = "mapping";
     d.doc =
         "The recursive mapping of Sec. 5.2 (pseudocode lines 15-28). Each frame t, every active "
