@@ -19,9 +19,6 @@ for i in $(seq "$runs"); do
     "$bin" --benchmark_filter='BM_Figure5/0' --benchmark_format=json > "$tmp/fig0_$i.json"
     "$bin" --benchmark_filter='BM_Figure5/1' --benchmark_format=json > "$tmp/fig1_$i.json"
 done
-# The same with transparent huge pages for glibc's mmap'ed chunks (first-touch faults / 512).
-GLIBC_TUNABLES=glibc.malloc.hugetlb=1 "$bin" --benchmark_filter='BM_Figure5/1' --benchmark_format=json \
-    > "$tmp/fig1thp.json"
 
 python3 - "$tmp" "$runs" <<'PY'
 import json, statistics, sys
@@ -53,5 +50,4 @@ def show(label, bs):
     print("  totals (s): " + ", ".join(f"{b['real_time']/1e3:.2f}" for b in bs))
 show("Figure 5, streamed (forEachCloudChunk)", f0)
 show("Figure 5, generateCloudParticles", f1)
-show("Figure 5, generateCloudParticles, GLIBC_TUNABLES=glibc.malloc.hugetlb=1", [fig(f"{tmp}/fig1thp.json")])
 PY
