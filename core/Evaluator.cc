@@ -203,14 +203,14 @@ private:
 
     OutputsPtr lookup(const Key& key, const NodeDecl& decl, CookStatus& status)
     {
-        if (OutputsPtr hit = mEv.mMemory.find(key)) {
+        if (OutputsPtr hit = decl.cacheInMemory ? mEv.mMemory.find(key) : nullptr) {
             status = CookStatus::MemoryHit;
             return hit;
         }
         if (mEv.mOptions.diskCache && decl.cacheOnDisk) {
             if (auto stored = mEv.mOptions.diskCache->load(key, mEv.mRegistry)) {
                 auto hit = std::make_shared<const OutputMap>(std::move(*stored));
-                mEv.mMemory.insert(key, hit);
+                if (decl.cacheInMemory) mEv.mMemory.insert(key, hit);
                 status = CookStatus::DiskHit;
                 return hit;
             }
@@ -268,7 +268,7 @@ private:
             throw CookError(node.id, frame, e.what(), false);
         }
         auto shared = std::make_shared<const OutputMap>(std::move(out));
-        mEv.mMemory.insert(key, shared);
+        if (decl.cacheInMemory) mEv.mMemory.insert(key, shared);
         if (mEv.mOptions.diskCache && !decl.writesFiles && decl.cacheOnDisk)
             mEv.mOptions.diskCache->store(key, *shared);
         return shared;

@@ -46,6 +46,10 @@ struct NodeDecl {
     /// cook again than to store and read back (e.g. a frame's cloud particles); the memory
     /// cache still keeps them.
     bool cacheOnDisk = true;
+    /// Whether the memory cache keeps the output after its frame is evaluated. False for
+    /// outputs so large and so cheap to cook that keeping frames of them costs more (page
+    /// faults, evictions, gigabytes of resident memory) than cooking again when asked twice.
+    bool cacheInMemory = true;
     /// The node reads the evaluation context's time step or seed (hashed into its key).
     bool readsTimeStep = false;
     bool readsSeed = false;

@@ -49,7 +49,9 @@ void registerGenerateCloudNode(Registry& registry)
     d.category = "mapping";
     // A frame's particles take longer to store and read back than to generate (and would
     // keep every frame's particles on disk, which the mapper's memory model rules out).
+    // Kept in memory they evict everything else and cost fresh pages every frame.
     d.cacheOnDisk = false;
+    d.cacheInMemory = false;
     d.doc = "The cloud particles of this frame, generated from PrimitiveMapper's source table: "
             "particle (L, j, i) is at P_s[L, j](t) + scale R[L, j] P_f[i](s), s = A[L, j] "
             "(t - t0[L, j]) dt / ds (Eq. 10-11), with P_s the condensation particle (L = 1) or "

@@ -198,6 +198,24 @@ TEST_F(EvaluatorTest, MemoryOnlyNodesNeverReachTheDiskCache)
     EXPECT_EQ(cookCount("regenerated"), 1u);  // never stored there: cooked again
 }
 
+TEST_F(EvaluatorTest, UncachedNodesCookAgainAndTheirInputsStayCached)
+{
+    NodeDecl transient = *registry.findNode("TestAdd");
+    transient.type = "TestAddTransient";
+    transient.cacheInMemory = false;
+    registry.addNode(transient);
+    const Graph g = parse(R"({"cloudgraph": 1, "nodes": {
+        "src": {"type": "TestSource"},
+        "kept": {"type": "TestAdd", "inputs": {"values": "src.values"}},
+        "transient": {"type": "TestAddTransient", "inputs": {"values": "kept.values"}}}})");
+    Evaluator ev(registry, {});
+    const auto first = values(ev.pull(g, "transient", 0), "values");
+    resetCookCounts();
+    EXPECT_EQ(values(ev.pull(g, "transient", 0), "values"), first);
+    EXPECT_EQ(cookCount("kept"), 0u);       // a memory hit
+    EXPECT_EQ(cookCount("transient"), 1u);  // not kept: cooked again, the same values
+}
+
 TEST_F(EvaluatorTest, IntegrateMatchesItsClosedForm)
 {
     Graph g = parse(R"({"cloudgraph": 1, "frames": {"start": 3, "end": 30}, "timeStep": 0.5,
