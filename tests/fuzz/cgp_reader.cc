@@ -1,0 +1,93 @@
+// Fuzz target: the primitive-set reader (.cgp, nodes/algo/PrimitiveFile.h). The input is a
+// whole file whose checksums are then made valid, as a forged file's would be, so the fuzzer
+// reaches the index and frame checks behind them. The reader only opens paths, so each input
+// goes through one temporary file per process. Every rejection must be a cg::InputError.
+#include <unistd.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "core/Error.h"
+#include "core/Hash.h"
+#include "nodes/algo/PrimitiveFile.h"
+
+namespace {
+
+using cg::algo::kPrimitiveHeaderBytes;
+using cg::algo::kPrimitiveIndexEntryBytes;
+
+constexpr std::size_t kHeaderChecksumAt = 56;
+
+std::uint32_t getU32(const unsigned char* p)
+{
+    return std::uint32_t{p[0]} | std::uint32_t{p[1]} << 8 | std::uint32_t{p[2]} << 16 |
+           std::uint32_t{p[3]} << 24;
+}
+
+void putU64(unsigned char* p, std::uint64_t v)
+{
+    for (int k = 0; k < 8; ++k) p[k] = static_cast<unsigned char>(v >> (8 * k));
+}
+
+/// Writes the header checksum and every block checksum that lies inside the file.
+void forgeChecksums(std::vector<unsigned char>& f)
+{
+    if (f.size() < kPrimitiveHeaderBytes) return;
+    const std::uint64_t frames = getU32(f.data() + 12);
+    const std::uint64_t indexEnd = kPrimitiveHeaderBytes + kPrimitiveIndexEntryBytes * frames;
+    if (indexEnd > f.size()) return;
+    std::vector<unsigned char> checked(f.begin(), f.begin() + kHeaderChecksumAt);
+    checked.insert(checked.end(), f.begin() + kPrimitiveHeaderBytes, f.begin() + indexEnd);
+    putU64(f.data() + kHeaderChecksumAt, cg::checksum64(checked.data(), checked.size()));
+
+    std::uint64_t at = indexEnd;
+    for (std::uint64_t s = 0; s < frames; ++s) {
+        const std::uint64_t n = getU32(f.data() + kPrimitiveHeaderBytes +
+                                       kPrimitiveIndexEntryBytes * s + 8);
+        const std::uint64_t body = 8 + 12 * n;
+        if (body + 8 > f.size() - at) return;
+        putU64(f.data() + at + body, cg::checksum64(f.data() + at, body));
+        at += body + 8;
+    }
+}
+
+const std::string& tempPath()
+{
+    static const std::string path = [] {
+        const char* dir = std::getenv("TMPDIR");
+        std::string p = std::string(dir && *dir ? dir : "/tmp") + "/cloudgraph-fuzz-cgp-" +
+                        std::to_string(::getpid()) + ".cgp";
+        std::atexit([] { ::unlink(tempPath().c_str()); });
+        return p;
+    }();
+    return path;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+    std::vector<unsigned char> file(data, data + size);
+    forgeChecksums(file);
+    {
+        std::ofstream out(tempPath(), std::ios::binary | std::ios::trunc);
+        out.write(reinterpret_cast<const char*>(file.data()),
+                  static_cast<std::streamsize>(file.size()));
+        if (!out) std::abort();  // the harness's own failure, not a finding
+    }
+    try {
+        cg::algo::PrimitiveFileReader reader(tempPath());
+        const std::vector<float> all = reader.readAll();
+        std::uint64_t total = 0;
+        for (std::uint32_t n : reader.counts()) total += n;
+        if (all.size() != 3 * total) std::abort();  // readAll must return every position
+        cg::algo::primitiveFileContentHash(tempPath());
+    } catch (const cg::InputError&) {
+    }
+    return 0;
+}
