@@ -1,6 +1,9 @@
 // cloudgraph nodes [TYPE] [--markdown]: the node reference, generated from the registry.
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -88,6 +91,48 @@ void printText(const NodeDecl& d)
     }
 }
 
+/// True when the word that ends just before `dot` is an abbreviation whose '.' ends no sentence.
+bool isAbbreviation(const std::string& doc, std::size_t dot)
+{
+    static const std::set<std::string> known = {"al", "approx", "cf", "ch", "e.g", "eq", "eqs",
+                                                "fig", "figs", "i.e", "ref", "refs", "sec",
+                                                "secs", "vs"};
+    auto inWord = [&](std::size_t i) {
+        return std::isalpha(static_cast<unsigned char>(doc[i])) || doc[i] == '.';
+    };
+    std::size_t begin = dot;
+    while (begin > 0 && inWord(begin - 1)) --begin;
+    std::string word = doc.substr(begin, dot - begin);
+    for (char& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return known.count(word) > 0;
+}
+
+/// The doc's first sentence: it ends at '.', '!' or '?' outside parentheses that is followed by
+/// the end or by a space and no lower-case letter or digit ("Sec. 5.1", "e.g. the", "2k, ...
+/// in" go on), and not after a known abbreviation. Never empty, always ends a sentence.
+std::string summary(const std::string& doc)
+{
+    int depth = 0;  // unbalanced ')' (as in "[low, high)") must not make it negative
+    for (std::size_t i = 0; i < doc.size(); ++i) {
+        const char c = doc[i];
+        if (c == '(') ++depth;
+        if (c == ')') depth = std::max(0, depth - 1);
+        if ((c != '.' && c != '!' && c != '?') || depth > 0) continue;
+        if (i + 1 < doc.size() && !std::isspace(static_cast<unsigned char>(doc[i + 1]))) continue;
+        const std::size_t next = doc.find_first_not_of(" \t\n", i + 1);
+        if (next != std::string::npos && (std::islower(static_cast<unsigned char>(doc[next])) ||
+                                          std::isdigit(static_cast<unsigned char>(doc[next]))))
+            continue;
+        if (c == '.' && (isAbbreviation(doc, i) || (i >= 2 && doc.compare(i - 2, 2, "..") == 0)))
+            continue;
+        return doc.substr(0, i + 1);
+    }
+    std::string all = doc.substr(0, doc.find_last_not_of(" \t\n") + 1);
+    if (all.empty()) return "(undocumented).";
+    if (all.back() != '.' && all.back() != '!' && all.back() != '?') all += '.';
+    return all;
+}
+
 }  // namespace
 
 int nodesCommand(const Args& args)
@@ -114,8 +159,11 @@ int nodesCommand(const Args& args)
             std::printf("\n\n");
             for (const NodeDecl* d : registry.nodes()) printMarkdown(*d);
         } else {
+            int width = 0;
             for (const NodeDecl* d : registry.nodes())
-                std::printf("%-16s %s\n", d->type.c_str(), d->doc.substr(0, d->doc.find(". ") + 1).c_str());
+                width = std::max(width, static_cast<int>(d->type.size()));
+            for (const NodeDecl* d : registry.nodes())
+                std::printf("%-*s  %s\n", width, d->type.c_str(), summary(d->doc).c_str());
         }
         return kExitOk;
     });
