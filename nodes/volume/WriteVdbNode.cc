@@ -12,7 +12,6 @@
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
 #include "nodes/data/FogVolume.h"
-#include "nodes/io/WriterSupport.h"
 #include "nodes/volume/VolumeNodes.h"
 
 namespace cg {
@@ -32,12 +31,26 @@ std::uint32_t compressionFlags(const std::string& choice, const std::string& nod
            (blosc ? openvdb::io::COMPRESS_BLOSC : openvdb::io::COMPRESS_ZIP);
 }
 
+/// Whether this frame is written: frames firstFrame, firstFrame + every, ... whose grid has an
+/// active voxel (unless skipEmpty is off). It reads this frame's grid and the parameters only,
+/// never earlier frames, so a frame's file does not depend on which frames a run cooks.
+bool writesThisFrame(CookContext& ctx, const openvdb::FloatGrid& grid)
+{
+    const auto& p = ctx.params();
+    const auto first = p.getInt("firstFrame") < 0 ? ctx.startFrame() : p.getInt("firstFrame");
+    const bool scheduled = ctx.frame() >= first && (ctx.frame() - first) % p.getInt("every") == 0;
+    const bool skipped = p.getBool("skipEmpty") && !grid.cbeginValueOn();  // no active voxel
+    if (scheduled && !skipped) return true;
+    ctx.setOutput("files", std::make_shared<TextData>(""));
+    return false;
+}
+
 class WriteVdbNode final : public Node {
 public:
     void cook(CookContext& ctx) override
     {
-        if (!writesThisFrame(ctx)) return;
         const auto volume = ctx.input<FogVolumeData>("volume");
+        if (!writesThisFrame(ctx, *volume->grid)) return;
         const std::uint32_t flags = compressionFlags(ctx.params().getString("compression"),
                                                      ctx.nodeId());
         // A shallow copy shares the (immutable) tree; only its save flag differs.
@@ -69,8 +82,22 @@ void registerWriteVdbNode(Registry& registry)
         "WriteVDB",
         "Writes a fog volume as an OpenVDB file (one grid, 'density'), readable by vdb_print, "
         "vdb_render, Houdini and Blender. #### in the name becomes the frame number; the file "
-        "is written beside the target and renamed, so it appears whole or not at all.",
+        "is written beside the target and renamed, so it appears whole or not at all. Writes "
+        "frames firstFrame, firstFrame + every, ... and, with skipEmpty, only those whose grid "
+        "has an active voxel: a cloud that forms at frame 51 of a run with every = 1 gives "
+        "density.0051.vdb, density.0052.vdb, ..., a numbered sequence that Blender imports "
+        "as one (it needs consecutive numbers; every > 1 gives single files).",
         port("volume", "FogVolume", "the volume to write"), "density.####.vdb");
+    d.version = 2;  // skips empty grids: 'files' is empty on frames it wrote before
+    for (auto& p : d.params)
+        if (p.name == "every")
+            p.doc = "write frames firstFrame, firstFrame + every, ...; skip the rest";
+    d.params.push_back(intParam(
+        "firstFrame", -1, "frame",
+        "first frame to write, from which 'every' counts; -1 = the graph's start", -1));
+    d.params.push_back(boolParam(
+        "skipEmpty", true,
+        "write no file for a grid without active voxels (e.g. before the cloud forms)"));
     d.params.push_back(boolParam(
         "halfFloat", false, "store values as 16-bit half floats (half the size, ~3 digits)"));
     d.params.push_back(stringParam(

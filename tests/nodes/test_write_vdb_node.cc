@@ -1,5 +1,6 @@
 // WriteVDB: per-frame files that read back through OpenVDB with identical values, half floats,
-// compression, atomic writing, and the vdb_print program reading what we wrote.
+// compression, atomic writing, the vdb_print program reading what we wrote, and which frames
+// are written (firstFrame, every, skipEmpty) whatever frames a run cooks.
 
 #include <gtest/gtest.h>
 
@@ -22,7 +23,9 @@
 #include "core/CoreData.h"
 #include "core/Evaluator.h"
 #include "core/Graph.h"
+#include "core/Node.h"
 #include "core/Registry.h"
+#include "nodes/DeclHelpers.h"
 #include "nodes/data/DataTypes.h"
 #include "nodes/data/FogVolume.h"
 #include "nodes/volume/VolumeNodes.h"
@@ -37,6 +40,34 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// A fog ball that exists from frame `appears` on; before it the grid has no active voxel,
+/// as the Voxelizer's is before the cloud forms.
+class GrowingFogNode final : public Node {
+public:
+    void cook(CookContext& ctx) override
+    {
+        auto grid = openvdb::FloatGrid::create(0.0f);
+        grid->setName("density");
+        grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+        if (ctx.frame() >= ctx.params().getInt("appears"))
+            grid->fill(openvdb::CoordBBox({-2, -2, 0}, {2, 2, ctx.frame()}), 0.5f);
+        ctx.setOutput("volume", std::make_shared<FogVolumeData>(grid));
+    }
+};
+
+void registerGrowingFog(Registry& registry)
+{
+    NodeDecl d;
+    d.type = "TestGrowingFog";
+    d.category = "test";
+    d.doc = "an empty fog volume before frame 'appears', a box growing with the frame after";
+    d.frameDependent = true;
+    d.outputs = {port("volume", "FogVolume", "the volume")};
+    d.params = {intParam("appears", 3, "frame", "first frame with voxels", 0)};
+    d.create = [] { return std::make_unique<GrowingFogNode>(); };
+    registry.addNode(std::move(d));
+}
+
 class WriteVdbTest : public ::testing::Test {
 protected:
     void SetUp() override
@@ -46,6 +77,26 @@ protected:
         registerFixtureNodes(registry);
         registerVoxelizerNode(registry);
         registerWriteVdbNode(registry);
+        registerGrowingFog(registry);
+    }
+
+    /// A growing fog (voxels from frame 3) written by WriteVDB, frames 0..20.
+    Graph parseGrowing(const std::string& writeParams)
+    {
+        return parseGraph(R"({"cloudgraph": 1, "frames": {"start": 0, "end": 20}, "nodes": {
+            "fog": {"type": "TestGrowingFog", "params": {"appears": 3}},
+            "write": {"type": "WriteVDB", "inputs": {"volume": "fog.volume"},
+                      "params": )" + writeParams + "}}}",
+                          "growing.json", registry);
+    }
+
+    /// The frames of 0..20 written, each cooked by a fresh evaluator (nothing cooked before).
+    std::vector<int> writtenFrames(const Graph& g)
+    {
+        std::vector<int> frames;
+        for (int f = 0; f <= 20; ++f)
+            if (!write(g, f).empty()) frames.push_back(f);
+        return frames;
     }
 
     Graph parse(const std::string& writeParams)
@@ -195,6 +246,55 @@ TEST_F(WriteVdbTest, EveryNthFrameOnly)
     EXPECT_TRUE(write(g, 1).empty());
     EXPECT_TRUE(fs::exists(out / "e.0000.vdb"));
     EXPECT_FALSE(fs::exists(out / "e.0001.vdb"));
+}
+
+TEST_F(WriteVdbTest, EmptyGridsAreNotWrittenSoTheSequenceStartsWithTheCloud)
+{
+    const Graph g = parseGrowing(R"({"file": "s/density.####.vdb"})");
+    std::vector<int> expected;
+    for (int f = 3; f <= 20; ++f) expected.push_back(f);
+    EXPECT_EQ(writtenFrames(g), expected);
+    EXPECT_FALSE(fs::exists(out / "s/density.0002.vdb"));
+    // The first file holds the cloud: consecutive numbers from there, as Blender wants.
+    EXPECT_EQ(readBack(out / "s/density.0003.vdb")->activeVoxelCount(), 25u * 4u);
+}
+
+TEST_F(WriteVdbTest, SkipEmptyOffWritesTheEmptyGrid)
+{
+    const Graph g = parseGrowing(R"({"file": "e/density.####.vdb", "skipEmpty": false})");
+    const fs::path path = write(g, 0);
+    EXPECT_EQ(path, out / "e/density.0000.vdb");
+    EXPECT_EQ(readBack(path)->activeVoxelCount(), 0u);
+}
+
+TEST_F(WriteVdbTest, EveryCountsFromFirstFrame)
+{
+    // The default run's case: every 100 from the start wrote an empty frame 0. With firstFrame
+    // on the cloud's first frame the first file holds the cloud.
+    const Graph onCloud = parseGrowing(R"({"file": "a/d.####.vdb", "every": 4, "firstFrame": 3})");
+    EXPECT_EQ(writtenFrames(onCloud), (std::vector<int>{3, 7, 11, 15, 19}));
+    // From the start frame, the empty frame 0 is skipped and the schedule is kept.
+    EXPECT_EQ(writtenFrames(parseGrowing(R"({"file": "b/d.####.vdb", "every": 4})")),
+              (std::vector<int>{4, 8, 12, 16, 20}));
+    // A firstFrame before the cloud: its empty frames are skipped, the schedule is kept.
+    const Graph early = parseGrowing(R"({"file": "c/d.####.vdb", "every": 5, "firstFrame": 1})");
+    EXPECT_EQ(writtenFrames(early), (std::vector<int>{6, 11, 16}));
+}
+
+TEST_F(WriteVdbTest, WhichFramesAreWrittenDoesNotDependOnWhatWasCookedBefore)
+{
+    // One evaluator cooking 0..20 in order writes the same frames as fresh ones per frame.
+    const Graph g = parseGrowing(R"({"file": "d/d.####.vdb", "every": 4, "firstFrame": 3})");
+    EvaluatorOptions options;
+    options.outDir = out.path();
+    Evaluator ev(registry, options);
+    std::vector<int> inOrder;
+    for (int f = 0; f <= 20; ++f) {
+        const auto files =
+            std::dynamic_pointer_cast<const TextData>(ev.pull(g, "write", f)->at("files"));
+        if (files && !files->value.empty()) inOrder.push_back(f);
+    }
+    EXPECT_EQ(inOrder, writtenFrames(g));
 }
 
 TEST_F(WriteVdbTest, VdbPrintReadsTheWrittenFile)
