@@ -86,7 +86,8 @@ void registerWriteVdbNode(Registry& registry)
         "frames firstFrame, firstFrame + every, ... and, with skipEmpty, only those whose grid "
         "has an active voxel: a cloud that forms at frame 51 of a run with every = 1 gives "
         "density.0051.vdb, density.0052.vdb, ..., a numbered sequence that Blender imports "
-        "as one (it needs consecutive numbers; every > 1 gives single files).",
+        "as one (it needs consecutive numbers: every = 1, and skipEmpty off if the cloud can "
+        "vanish mid-run).",
         port("volume", "FogVolume", "the volume to write"), "density.####.vdb");
     d.version = 2;  // skips empty grids: 'files' is empty on frames it wrote before
     for (auto& p : d.params)
