@@ -1,6 +1,7 @@
 #include "cli/Common.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <cstdlib>
 
@@ -66,6 +67,19 @@ std::vector<std::string> OptionParser::values(const std::string& name) const
     return out;
 }
 
+std::int64_t parseIntegerOption(const std::string& text, const std::string& option,
+                                const std::string& what, std::int64_t min, std::int64_t max)
+{
+    // from_chars: no sign other than '-', no spaces, no trailing text, overflow reported.
+    std::int64_t value = 0;
+    const char* end = text.data() + text.size();
+    const auto [stop, error] = std::from_chars(text.data(), end, value);
+    if (text.empty() || error != std::errc() || stop != end || value < min || value > max)
+        throw InputError(option, "'" + text + "' is not " + what + " between " +
+                                     std::to_string(min) + " and " + std::to_string(max));
+    return value;
+}
+
 void configureLogging()
 {
     auto logger = spdlog::stderr_color_mt("cloudgraph");
@@ -77,8 +91,7 @@ void configureLogging()
 void buildRegistry(Registry& registry, const std::vector<std::string>& pluginPaths)
 {
     registerBuiltinNodes(registry);
-    if (const char* searchPath = std::getenv("CLOUDGRAPH_PLUGIN_PATH"))
-        for (const auto& p : pluginsFromSearchPath(searchPath)) loadPlugin(p, registry);
+    loadPluginsFromSearchPath(std::getenv("CLOUDGRAPH_PLUGIN_PATH"), registry);
     for (const auto& p : pluginPaths) loadPlugin(p, registry);
 }
 
@@ -87,6 +100,7 @@ void declareGraphOptions(OptionParser& opts)
     opts.valueOption("--set");
     opts.valueOption("--plugin");
     opts.flag("--allow-outside-out");
+    opts.flag("--allow-graph-programs");
 }
 
 Graph loadGraphFromOptions(const OptionParser& opts, Registry& registry, const char* command)
@@ -96,6 +110,7 @@ Graph loadGraphFromOptions(const OptionParser& opts, Registry& registry, const c
     buildRegistry(registry, opts.values("--plugin"));
     LoadOptions loadOptions;
     loadOptions.allowPathsOutsideOut = opts.has("--allow-outside-out");
+    loadOptions.allowGraphPrograms = opts.has("--allow-graph-programs");
     Graph graph = loadGraph(opts.positionals()[0], registry, loadOptions);
     for (const std::string& s : opts.values("--set")) applySetOverride(graph, s);
     return graph;

@@ -1,6 +1,7 @@
 #pragma once
 /// What the subcommands share: option parsing, the registry with plugins, error reporting.
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -40,6 +41,11 @@ private:
     std::vector<std::pair<std::string, std::string>> mSeen;
     std::vector<std::string> mPositionals;
 };
+
+/// `text` as a whole decimal integer in [min, max]; otherwise InputError naming `option`
+/// ("--threads") and what is expected (`what`: "a thread count").
+std::int64_t parseIntegerOption(const std::string& text, const std::string& option,
+                                const std::string& what, std::int64_t min, std::int64_t max);
 
 /// Sets up spdlog on stderr at info level (OptionParser::parse applies -v/-q).
 void configureLogging();

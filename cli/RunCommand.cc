@@ -22,33 +22,34 @@ namespace {
 
 std::shared_ptr<CancelToken> gCancel;
 
+/// 1 TiB: more than any machine we run on, small enough that << 20 cannot overflow.
+constexpr std::int64_t kMaxCacheMemoryMiB = std::int64_t{1} << 20;
+
+/// Throws InputError naming --report: the user chose the place.
 void writeReport(const std::string& path, const nlohmann::json& report)
 {
-    const std::filesystem::path p(path);
-    if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
-    writeFileAtomically(p, report.dump(2));
+    try {
+        const std::filesystem::path p(path);
+        if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+        writeFileAtomically(p, report.dump(2));
+    } catch (const std::exception& e) {
+        throw InputError("--report " + path, std::string("cannot write the report: ") + e.what());
+    }
 }
 
 extern "C" void onInterrupt(int) { if (gCancel) gCancel->cancel(); }
 
 FrameRange parseFrames(const std::string& text, const FrameRange& graphRange)
 {
+    const auto colon = text.find(':');
+    auto frame = [&](const std::string& part) {
+        return static_cast<int>(parseIntegerOption(part, "--frames", "a frame", graphRange.start,
+                                                   graphRange.end));
+    };
     FrameRange r;
-    try {
-        std::size_t used = 0;
-        const auto colon = text.find(':');
-        r.start = std::stoi(text.substr(0, colon), &used);
-        if (used != (colon == std::string::npos ? text.size() : colon)) throw std::invalid_argument("");
-        r.end = r.start;
-        if (colon != std::string::npos) {
-            const std::string rest = text.substr(colon + 1);
-            r.end = std::stoi(rest, &used);
-            if (used != rest.size()) throw std::invalid_argument("");
-        }
-    } catch (const std::exception&) {
-        throw InputError("--frames", "'" + text + "' is not a frame or a range A:B");
-    }
-    if (r.end < r.start || r.start < graphRange.start || r.end > graphRange.end) {
+    r.start = frame(text.substr(0, colon));
+    r.end = colon == std::string::npos ? r.start : frame(text.substr(colon + 1));
+    if (r.end < r.start) {
         throw InputError("--frames", "range " + text + " is not inside the graph's frames " +
                                          std::to_string(graphRange.start) + ":" +
                                          std::to_string(graphRange.end));
@@ -56,15 +57,23 @@ FrameRange parseFrames(const std::string& text, const FrameRange& graphRange)
     return r;
 }
 
-int parseThreads(const std::string& text)
+/// Refuses, before anything cooks, an --out that is not a directory and a --report that
+/// names one: found after the cook, they would cost the whole run.
+void checkOutputLocations(const OptionParser& opts)
 {
-    try {
-        std::size_t used = 0;
-        const int n = std::stoi(text, &used);
-        if (used == text.size() && n >= 1 && n <= 1024) return n;
-    } catch (const std::exception&) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path out = opts.value("--out").value_or("out");
+    if (fs::exists(out, ec) && !fs::is_directory(out, ec))
+        throw InputError("--out " + out.string(), "is not a directory");
+    if (const auto report = opts.value("--report")) {
+        const fs::path file(*report);
+        if (report->empty() || report->back() == '/' || fs::is_directory(file, ec))
+            throw InputError("--report " + *report, "names a directory, not a file");
+        if (file.has_parent_path() && fs::exists(file.parent_path(), ec) &&
+            !fs::is_directory(file.parent_path(), ec))
+            throw InputError("--report " + *report, "its directory is a file");
     }
-    throw InputError("--threads", "'" + text + "' is not a thread count between 1 and 1024");
 }
 
 }  // namespace
@@ -79,7 +88,9 @@ int runCommand(const Args& args)
         opts.parse();
         std::optional<tbb::global_control> threadLimit;
         if (auto t = opts.value("--threads"))
-            threadLimit.emplace(tbb::global_control::max_allowed_parallelism, parseThreads(*t));
+            threadLimit.emplace(tbb::global_control::max_allowed_parallelism,
+                                parseIntegerOption(*t, "--threads", "a thread count", 1, 1024));
+        checkOutputLocations(opts);
 
         Registry registry;
         const Graph graph = loadGraphFromOptions(opts, registry, "run");
@@ -89,13 +100,11 @@ int runCommand(const Args& args)
         EvaluatorOptions evalOptions;
         evalOptions.outDir = opts.value("--out").value_or("out");
         if (auto c = opts.value("--cache")) evalOptions.diskCache = std::make_shared<DiskCache>(*c);
-        if (auto m = opts.value("--cache-memory-mb")) {
-            try {
-                evalOptions.memoryBudgetBytes = std::stoull(*m) << 20;
-            } catch (const std::exception&) {
-                throw InputError("--cache-memory-mb", "'" + *m + "' is not a number");
-            }
-        }
+        if (auto m = opts.value("--cache-memory-mb"))
+            evalOptions.memoryBudgetBytes = static_cast<std::uint64_t>(parseIntegerOption(
+                                                *m, "--cache-memory-mb", "a size in MiB", 0,
+                                                kMaxCacheMemoryMiB))
+                                            << 20;
         gCancel = evalOptions.cancel;
         std::signal(SIGINT, onInterrupt);
         std::signal(SIGTERM, onInterrupt);
@@ -108,11 +117,16 @@ int runCommand(const Args& args)
             evaluator.cookFrames(graph, frames.start, frames.end);
         } catch (...) {
             bar.finish();
-            // Write the report even for a failed run: it shows what did cook.
+            // Write the report even for a failed run: it shows what did cook. A report that
+            // cannot be written must not hide the error that failed the run.
             if (auto r = opts.value("--report")) {
                 nlohmann::json j = evaluator.report().toJson();
                 j["failed"] = true;
-                writeReport(*r, j);
+                try {
+                    writeReport(*r, j);
+                } catch (const InputError& e) {
+                    spdlog::error("{}", e.what());
+                }
             }
             throw;
         }

@@ -23,6 +23,7 @@ usage:
       --report FILE                  JSON report: per node and frame, cooked or cache hit, why, time
       --plugin PATH                  load a plugin library; repeatable
       --allow-outside-out            let output paths leave --out (absolute paths, ..)
+      --allow-graph-programs         let the graph name the programs it runs (EncodeVideo's ffmpeg)
       -v / -q                        more / less logging
   cloudgraph validate GRAPH [--set ...] [--plugin PATH]   check a graph without cooking
   cloudgraph nodes [TYPE] [--markdown]                    the node reference

@@ -14,9 +14,9 @@
 ///                   str port name, str data type name (str = u64 length + bytes),
 ///                   u64 data length, data bytes (Data::serialize through ByteWriter)
 ///
-/// Entries are written to tmp/ under a unique name, fsynced and renamed into objects/, so
-/// readers (which only look in objects/) see no entry or a whole one. A temp file left by
-/// a killed writer is never read.
+/// Entries are written to tmp/ under a unique name, fsynced and renamed into objects/ (by
+/// AtomicOutput), so readers (which only look in objects/) see no entry or a whole one. A
+/// temp file left by a killed writer is never read, and removed when the cache is next opened.
 
 #include "core/DiskCache.h"
 
@@ -24,21 +24,20 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <atomic>
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
-#include <chrono>
 #include <cstring>
-#include <functional>
 #include <stdexcept>
 #include <system_error>
-#include <thread>
 
 #include <spdlog/spdlog.h>
 
+#include "core/AtomicFile.h"
 #include "core/Data.h"
 #include "core/Error.h"
 #include "core/Registry.h"
+#include "util/SystemMemory.h"
 
 namespace cg {
 
@@ -52,6 +51,8 @@ constexpr std::size_t kHeaderSize = 56;
 constexpr std::size_t kHeaderChecksumOffset = 48;
 /// Larger files are not entries we wrote; refuse them before allocating.
 constexpr std::uint64_t kMaxEntryBytes = 64ull << 30;
+/// Records are small JSON explanations; a larger file is not one of ours.
+constexpr std::uint64_t kMaxRecordBytes = 16ull << 20;
 
 void putU32(unsigned char* p, std::uint32_t v)
 {
@@ -74,9 +75,45 @@ std::uint64_t getU64(const unsigned char* p)
     return v;
 }
 
+/// Bytes that are not a valid entry: it is removed and recooked. Other failures (I/O, out
+/// of memory) leave the entry alone, as it may well be valid.
+class DamagedEntry : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
 [[noreturn]] void fail(std::size_t offset, const std::string& why)
 {
-    throw std::runtime_error("at byte " + std::to_string(offset) + ": " + why);
+    throw DamagedEntry("at byte " + std::to_string(offset) + ": " + why);
+}
+
+/// The most bytes one entry may take in memory now: half of what is available, so that a
+/// large entry is a miss to recook rather than a machine driven into swap.
+std::uint64_t loadableBytes()
+{
+    const std::uint64_t available = util::availableMemoryBytes();
+    return available == 0 ? kMaxEntryBytes : std::min(kMaxEntryBytes, available / 2);
+}
+
+/// Checks the header (the first kHeaderSize bytes of a file of `fileSize` bytes) and
+/// returns the payload length.
+std::uint64_t checkHeader(const Key& key, const unsigned char* data, std::uint64_t fileSize)
+{
+    if (fileSize < kHeaderSize)
+        fail(fileSize, "file of " + std::to_string(fileSize) + " bytes is shorter than the header");
+    if (std::memcmp(data, kMagic, 8) != 0) fail(0, "bad magic, not a cache entry");
+    if (const std::uint32_t v = getU32(data + 8); v != kVersion)
+        fail(8, "unsupported format version " + std::to_string(v));
+    const Key stored{getU64(data + 16), getU64(data + 24)};
+    if (stored != key) fail(16, "entry is for key " + stored.hex() + ", not " + key.hex());
+    if (getU64(data + 48) != checksum64(data, kHeaderChecksumOffset))
+        fail(kHeaderChecksumOffset, "header checksum mismatch");
+    if (getU32(data + 12) != 0) fail(12, "reserved field is not zero");
+    const std::uint64_t payloadSize = getU64(data + 32);
+    if (payloadSize != fileSize - kHeaderSize)
+        fail(32, "payload length " + std::to_string(payloadSize) + " but " +
+                     std::to_string(fileSize - kHeaderSize) + " bytes follow the header");
+    return payloadSize;
 }
 
 /// Walks the payload; every read checks bounds and reports absolute file offsets.
@@ -127,55 +164,59 @@ std::string sanitizeName(const std::string& name)
     return out;
 }
 
-/// Reads a whole regular file; nullopt when it does not exist. Throws on other errors.
-/// `identity` receives (device, inode) of what was read, so a damaged entry is only
-/// removed if it is still the same file.
-std::optional<std::vector<unsigned char>> readWholeFile(const fs::path& path,
-                                                        std::pair<dev_t, ino_t>* identity)
+/// An open file descriptor, closed on scope exit; moves, never copies.
+struct FileHandle {
+    int fd = -1;
+    explicit FileHandle(int fd_) : fd(fd_) {}
+    FileHandle(FileHandle&& other) noexcept : fd(other.fd) { other.fd = -1; }
+    FileHandle(const FileHandle&) = delete;
+    FileHandle& operator=(const FileHandle&) = delete;
+    FileHandle& operator=(FileHandle&&) = delete;
+    ~FileHandle()
+    {
+        if (fd >= 0) ::close(fd);
+    }
+};
+
+/// Reads exactly `size` bytes at `offset`; throws std::runtime_error (not DamagedEntry: the
+/// bytes were not judged) on an I/O error, DamagedEntry when the file ends early.
+void readAt(int fd, unsigned char* out, std::size_t size, std::uint64_t offset)
 {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) {
+    std::size_t done = 0;
+    while (done < size) {
+        const ssize_t n = ::pread(fd, out + done, size - done, static_cast<off_t>(offset + done));
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) throw std::runtime_error(std::string("read failed: ") + std::strerror(errno));
+        if (n == 0) fail(offset + done, "file shrank while being read");
+        done += static_cast<std::size_t>(n);
+    }
+}
+
+/// Opens a regular file for reading: nullopt when it does not exist. `st` receives what was
+/// opened (device and inode), so a damaged entry is only removed if it is still that file.
+std::optional<FileHandle> openRegular(const fs::path& path, struct stat& st)
+{
+    // O_NONBLOCK: opening a FIFO planted at an entry's path must not hang.
+    FileHandle file{::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK)};
+    if (file.fd < 0) {
         if (errno == ENOENT || errno == ENOTDIR) return std::nullopt;
         throw std::runtime_error(std::string("cannot open: ") + std::strerror(errno));
     }
-    struct Closer {
-        int fd;
-        ~Closer() { ::close(fd); }
-    } closer{fd};
-
-    struct stat st {};
-    if (::fstat(fd, &st) != 0)
+    if (::fstat(file.fd, &st) != 0)
         throw std::runtime_error(std::string("cannot stat: ") + std::strerror(errno));
-    if (identity) *identity = {st.st_dev, st.st_ino};
-    if (!S_ISREG(st.st_mode)) throw std::runtime_error("not a regular file");
-    const auto size = static_cast<std::uint64_t>(st.st_size);
-    if (size > kMaxEntryBytes)
-        throw std::runtime_error("at byte 0: file of " + std::to_string(size) +
-                                 " bytes is larger than any entry");
-
-    std::vector<unsigned char> buf(static_cast<std::size_t>(size));
-    std::size_t done = 0;
-    while (done < buf.size()) {
-        const ssize_t n = ::read(fd, buf.data() + done, buf.size() - done);
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            throw std::runtime_error(std::string("read failed: ") + std::strerror(errno));
-        }
-        if (n == 0) break;  // shrank while reading; the checks below catch it
-        done += static_cast<std::size_t>(n);
-    }
-    buf.resize(done);
-    return buf;
+    if (!S_ISREG(st.st_mode)) fail(0, "not a regular file");
+    return file;
 }
 
-std::string tempName()
+/// A small regular file (a record), whole; nullopt when absent or larger than `limit`.
+std::optional<std::vector<unsigned char>> readSmallFile(const fs::path& path, std::uint64_t limit)
 {
-    static std::atomic<std::uint64_t> counter{0};
-    const std::size_t tid = std::hash<std::thread::id>{}(std::this_thread::get_id());
-    char name[96];
-    std::snprintf(name, sizeof(name), "%ld-%zx-%llu.tmp", static_cast<long>(::getpid()), tid,
-                  static_cast<unsigned long long>(counter.fetch_add(1)));
-    return name;
+    struct stat st {};
+    auto file = openRegular(path, st);
+    if (!file || static_cast<std::uint64_t>(st.st_size) > limit) return std::nullopt;
+    std::vector<unsigned char> bytes(static_cast<std::size_t>(st.st_size));
+    readAt(file->fd, bytes.data(), bytes.size(), 0);
+    return bytes;
 }
 
 }  // namespace
@@ -192,20 +233,7 @@ DiskCache::DiskCache(fs::path root) : mRoot(std::move(root))
     if (::access((mRoot / "tmp").c_str(), W_OK | X_OK) != 0)
         throw InputError(mRoot.string(),
                          std::string("cannot write cache directory: ") + std::strerror(errno));
-    removeStaleTempFiles();
-}
-
-void DiskCache::removeStaleTempFiles() const
-{
-    // Writers killed mid-write leave temp files; none is ever read, but they take space.
-    // A live writer finishes within seconds, so a day-old temp file is an orphan.
-    const auto cutoff = fs::file_time_type::clock::now() - std::chrono::hours(24);
-    std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(mRoot / "tmp", ec)) {
-        std::error_code statError;
-        const auto written = entry.last_write_time(statError);
-        if (!statError && written < cutoff) fs::remove(entry.path(), statError);
-    }
+    removeOrphanedTemporaries(mRoot / "tmp");
 }
 
 fs::path DiskCache::entryPath(const Key& key) const
@@ -255,29 +283,25 @@ std::vector<unsigned char> DiskCache::encodeEntry(const Key& key, const OutputMa
 }
 
 OutputMap DiskCache::decodeEntry(const Key& key, const unsigned char* data, std::size_t size,
-                                 const Registry& registry)
+                                 const Registry& registry, const std::vector<PortDecl>* outputs)
 {
-    if (size < kHeaderSize)
-        fail(size, "file of " + std::to_string(size) + " bytes is shorter than the header");
-    if (std::memcmp(data, kMagic, 8) != 0) fail(0, "bad magic, not a cache entry");
-    if (const std::uint32_t v = getU32(data + 8); v != kVersion)
-        fail(8, "unsupported format version " + std::to_string(v));
-    const Key stored{getU64(data + 16), getU64(data + 24)};
-    if (stored != key) fail(16, "entry is for key " + stored.hex() + ", not " + key.hex());
-    if (getU64(data + 48) != checksum64(data, kHeaderChecksumOffset))
-        fail(kHeaderChecksumOffset, "header checksum mismatch");
-    if (getU32(data + 12) != 0) fail(12, "reserved field is not zero");
-    const std::uint64_t payloadSize = getU64(data + 32);
-    if (payloadSize != size - kHeaderSize)
-        fail(32, "payload length " + std::to_string(payloadSize) + " but " +
-                     std::to_string(size - kHeaderSize) + " bytes follow the header");
-    const unsigned char* payload = data + kHeaderSize;
-    if (getU64(data + 40) != checksum64(payload, static_cast<std::size_t>(payloadSize)))
-        fail(40, "payload checksum mismatch");
+    const std::uint64_t payloadSize = checkHeader(key, data, size);
+    return decodePayload(data + kHeaderSize, static_cast<std::size_t>(payloadSize),
+                         getU64(data + 40), registry, outputs);
+}
+
+OutputMap DiskCache::decodePayload(const unsigned char* payload, std::size_t payloadSize,
+                                   std::uint64_t checksum, const Registry& registry,
+                                   const std::vector<PortDecl>* declared)
+{
+    if (checksum != checksum64(payload, payloadSize)) fail(40, "payload checksum mismatch");
 
     PayloadCursor in(payload, static_cast<std::size_t>(payloadSize), kHeaderSize);
     const std::size_t countAt = in.offset();
     const std::uint64_t count = in.u64("port count");
+    if (declared && count != declared->size())
+        fail(countAt, std::to_string(count) + " ports stored, the node has " +
+                          std::to_string(declared->size()));
     // Each port takes at least three u64 lengths: rejects absurd counts up front.
     if (count > in.remaining() / 24) fail(countAt, "port count " + std::to_string(count) +
                                                        " does not fit in the payload");
@@ -291,6 +315,15 @@ OutputMap DiskCache::decodeEntry(const Key& key, const unsigned char* data, std:
         const std::uint64_t length = in.u64("data length");
         if (length > in.remaining()) fail(lengthAt, "data length runs past the end");
 
+        // Checked before anything is rebuilt: a value of the wrong type on a port would fail
+        // (or worse) in the node that reads it, on every run.
+        if (declared) {
+            const auto port = std::find_if(declared->begin(), declared->end(),
+                                           [&](const PortDecl& p) { return p.name == name; });
+            if (port == declared->end()) fail(portAt, "the node has no output '" + name + "'");
+            if (port->type != typeName)
+                fail(typeAt, "output '" + name + "' holds a " + port->type + ", not a " + typeName);
+        }
         const DataTypeInfo* info = registry.findDataType(typeName);
         if (!info || !info->deserialize) fail(typeAt, "unknown data type '" + typeName + "'");
 
@@ -299,6 +332,8 @@ OutputMap DiskCache::decodeEntry(const Key& key, const unsigned char* data, std:
         DataPtr value;
         try {
             value = info->deserialize(reader);
+        } catch (const std::bad_alloc&) {
+            throw;  // not the entry's fault: it stays
         } catch (const std::exception& e) {
             fail(dataAt, "cannot rebuild '" + typeName + "' value: " + e.what());
         }
@@ -315,22 +350,40 @@ OutputMap DiskCache::decodeEntry(const Key& key, const unsigned char* data, std:
     return outputs;
 }
 
-std::optional<OutputMap> DiskCache::load(const Key& key, const Registry& registry) const
+std::optional<OutputMap> DiskCache::load(const Key& key, const Registry& registry,
+                                         const std::vector<PortDecl>* outputs) const
 {
     const fs::path path = entryPath(key);
-    std::pair<dev_t, ino_t> identity{};
+    struct stat st {};
     try {
-        auto bytes = readWholeFile(path, &identity);
-        if (!bytes) return std::nullopt;
-        return decodeEntry(key, bytes->data(), bytes->size(), registry);
-    } catch (const std::exception& e) {
+        auto file = openRegular(path, st);
+        if (!file) return std::nullopt;
+        // The header first: a damaged or foreign file is refused before its size is trusted.
+        const auto fileSize = static_cast<std::uint64_t>(st.st_size);
+        unsigned char header[kHeaderSize] = {};
+        if (fileSize >= kHeaderSize) readAt(file->fd, header, kHeaderSize, 0);
+        const std::uint64_t payloadSize = checkHeader(key, header, fileSize);
+        if (payloadSize > loadableBytes()) {
+            spdlog::warn("disk cache: entry {} ({} bytes) does not fit in the memory available "
+                         "now; recooking",
+                         path.string(), payloadSize);
+            return std::nullopt;
+        }
+        std::vector<unsigned char> payload(static_cast<std::size_t>(payloadSize));
+        readAt(file->fd, payload.data(), payload.size(), kHeaderSize);
+        return decodePayload(payload.data(), payload.size(), getU64(header + 40), registry,
+                             outputs);
+    } catch (const DamagedEntry& e) {
         spdlog::warn("disk cache: damaged entry {}: {}; recooking", path.string(), e.what());
+    } catch (const std::exception& e) {
+        // I/O errors, out of memory: the entry may be valid, so it stays.
+        spdlog::warn("disk cache: cannot read entry {}: {}; recooking", path.string(), e.what());
+        return std::nullopt;
     }
     // Remove only the file we judged: another process may have just renamed a good entry
     // into place.
-    struct stat st {};
-    if (::stat(path.c_str(), &st) == 0 && st.st_dev == identity.first &&
-        st.st_ino == identity.second)
+    struct stat now {};
+    if (::stat(path.c_str(), &now) == 0 && now.st_dev == st.st_dev && now.st_ino == st.st_ino)
         ::unlink(path.c_str());
     return std::nullopt;
 }
@@ -346,40 +399,16 @@ bool DiskCache::store(const Key& key, const OutputMap& outputs) const
 bool DiskCache::writeAtomically(const fs::path& target, const void* data,
                                 std::size_t size) const
 {
-    const fs::path temp = mRoot / "tmp" / tempName();
-    std::string why;
-    const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-    if (fd < 0) {
-        spdlog::warn("disk cache: cannot create {}: {}", temp.string(), std::strerror(errno));
-        return false;
-    }
-    const auto* p = static_cast<const unsigned char*>(data);
-    std::size_t done = 0;
-    while (done < size) {
-        const ssize_t n = ::write(fd, p + done, size - done);
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            why = std::string("write failed: ") + std::strerror(errno);
-            break;
-        }
-        done += static_cast<std::size_t>(n);
-    }
-    // The data must be on disk before the rename makes it visible, or a crash could leave
-    // a whole-looking entry with garbage inside (the checksum would still catch it).
-    if (why.empty() && ::fsync(fd) != 0) why = std::string("fsync failed: ") + std::strerror(errno);
-    if (::close(fd) != 0 && why.empty())
-        why = std::string("close failed: ") + std::strerror(errno);
-
-    if (why.empty()) {
+    try {
         std::error_code ec;
         fs::create_directories(target.parent_path(), ec);
-        if (!ec) fs::rename(temp, target, ec);
-        if (ec) why = "cannot move into place: " + ec.message();
+        writeFileAtomically(target, std::string_view(static_cast<const char*>(data), size),
+                            mRoot / "tmp");
+        return true;
+    } catch (const std::exception& e) {
+        spdlog::warn("disk cache: {}", e.what());
+        return false;
     }
-    if (why.empty()) return true;
-    ::unlink(temp.c_str());
-    spdlog::warn("disk cache: cannot write {}: {}", target.string(), why);
-    return false;
 }
 
 std::optional<nlohmann::json> DiskCache::loadRecord(const std::string& name) const
@@ -387,7 +416,7 @@ std::optional<nlohmann::json> DiskCache::loadRecord(const std::string& name) con
     const fs::path path = mRoot / "records" / (sanitizeName(name) + ".json");
     std::optional<std::vector<unsigned char>> bytes;
     try {
-        bytes = readWholeFile(path, nullptr);
+        bytes = readSmallFile(path, kMaxRecordBytes);
     } catch (const std::exception& e) {
         spdlog::warn("disk cache: cannot read record {}: {}", path.string(), e.what());
         return std::nullopt;

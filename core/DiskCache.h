@@ -37,7 +37,11 @@ public:
 
     /// The stored outputs for `key`, rebuilt through the registry's data types; nullopt
     /// when absent or damaged (damaged entries are removed, with a warning).
-    std::optional<OutputMap> load(const Key& key, const Registry& registry) const;
+    /// `outputs`, when given, are the node's declared output ports: an entry with other
+    /// names or types is damaged. I/O errors and entries too large for the memory available
+    /// now are misses that leave the entry in place.
+    std::optional<OutputMap> load(const Key& key, const Registry& registry,
+                                  const std::vector<PortDecl>* outputs = nullptr) const;
     /// Stores the outputs. Returns false (storing nothing) when a value's type cannot be
     /// serialized. I/O failures are logged and return false: a cache is an optimisation.
     bool store(const Key& key, const OutputMap& outputs) const;
@@ -54,13 +58,15 @@ public:
     static std::vector<unsigned char> encodeEntry(const Key& key, const OutputMap& outputs,
                                                   bool& serializable);
     /// Parses a whole entry file; throws std::runtime_error with the byte offset of the
-    /// first inconsistency.
+    /// first inconsistency (std::bad_alloc passes through).
     static OutputMap decodeEntry(const Key& key, const unsigned char* data, std::size_t size,
-                                 const Registry& registry);
+                                 const Registry& registry,
+                                 const std::vector<PortDecl>* outputs = nullptr);
 
 private:
-    /// Removes temp files older than a day: orphans of writers that were killed.
-    void removeStaleTempFiles() const;
+    static OutputMap decodePayload(const unsigned char* payload, std::size_t payloadSize,
+                                   std::uint64_t checksum, const Registry& registry,
+                                   const std::vector<PortDecl>* outputs);
     /// Writes bytes to tmp/ then renames onto `target`.
     bool writeAtomically(const std::filesystem::path& target, const void* data,
                          std::size_t size) const;

@@ -30,11 +30,14 @@ public:
     Cancelled() : std::runtime_error("cancelled") {}
 };
 
-/// A node's cook failed; wraps the node id and what went wrong.
+/// A node's cook failed; wraps the node id, where in the graph (file and JSON pointer, e.g.
+/// "g.json:/nodes/video/params/images") and what went wrong.
 class CookError : public std::runtime_error {
 public:
-    CookError(const std::string& nodeId, int frame, const std::string& what, bool inputFault)
-        : std::runtime_error("node '" + nodeId + "' frame " + std::to_string(frame) + ": " + what),
+    CookError(const std::string& nodeId, const std::string& where, int frame,
+              const std::string& what, bool inputFault)
+        : std::runtime_error(where + ": node '" + nodeId + "' frame " + std::to_string(frame) +
+                             ": " + what),
           mNodeId(nodeId), mInputFault(inputFault)
     {
     }

@@ -6,10 +6,12 @@
 #include <set>
 #include <stdexcept>
 #include <unordered_map>
+#include <variant>
 
 #include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
 
+#include "core/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Hash.h"
@@ -208,7 +210,7 @@ private:
             return hit;
         }
         if (mEv.mOptions.diskCache && decl.cacheOnDisk) {
-            if (auto stored = mEv.mOptions.diskCache->load(key, mEv.mRegistry)) {
+            if (auto stored = mEv.mOptions.diskCache->load(key, mEv.mRegistry, &decl.outputs)) {
                 auto hit = std::make_shared<const OutputMap>(std::move(*stored));
                 if (decl.cacheInMemory) mEv.mMemory.insert(key, hit);
                 status = CookStatus::DiskHit;
@@ -263,9 +265,13 @@ private:
         } catch (const CookError&) {
             throw;
         } catch (const InputError& e) {
-            throw CookError(node.id, frame, e.what(), true);
+            // Nodes name their parameters as "<id>/params/<name>": made a full JSON pointer.
+            if (e.where() == node.id || e.where().rfind(node.id + "/", 0) == 0)
+                throw CookError(node.id, mGraph.locate("/nodes/" + e.where()), frame, e.message(),
+                                true);
+            throw CookError(node.id, mGraph.locate(node.pointer), frame, e.what(), true);
         } catch (const std::exception& e) {
-            throw CookError(node.id, frame, e.what(), false);
+            throw CookError(node.id, mGraph.locate(node.pointer), frame, e.what(), false);
         }
         auto shared = std::make_shared<const OutputMap>(std::move(out));
         if (decl.cacheInMemory) mEv.mMemory.insert(key, shared);
@@ -338,6 +344,27 @@ private:
     std::atomic<std::size_t> mTotal{0};
 };
 
+namespace {
+
+/// Writers killed in an earlier run left temp files beside their outputs; the directories
+/// this run writes to are the ones where they can be, and are cheap to scan.
+void removeOrphansWhereWritersWrite(const Graph& graph, const std::vector<std::size_t>& nodes,
+                                    const std::filesystem::path& outDir)
+{
+    std::set<std::filesystem::path> dirs;
+    for (std::size_t idx : nodes) {
+        const GraphNode& node = graph.nodes()[idx];
+        for (std::size_t i = 0; i < node.decl->params.size(); ++i) {
+            if (node.decl->params[i].role != ParamRole::OutputPath) continue;
+            const std::filesystem::path file(std::get<std::string>(node.params.valueAt(i)));
+            dirs.insert((file.is_relative() ? outDir / file : file).parent_path());
+        }
+    }
+    for (const auto& dir : dirs) removeOrphanedTemporaries(dir);
+}
+
+}  // namespace
+
 Evaluator::Evaluator(const Registry& registry, EvaluatorOptions options)
     : mRegistry(registry), mOptions(std::move(options)), mMemory(mOptions.memoryBudgetBytes),
       mHistory(mOptions.diskCache)
@@ -360,6 +387,7 @@ void Evaluator::cookFrames(const Graph& graph, int first, int last,
     }
     const std::vector<std::size_t> nodes = session.closure(targetIdx);
     session.addToTotal(nodes.size() * static_cast<std::size_t>(last - first + 1));
+    removeOrphansWhereWritersWrite(graph, nodes, mOptions.outDir);
     try {
         for (int frame = first; frame <= last; ++frame) {
             FrameOutputs results = session.cookFrame(nodes, frame);

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/Error.h"
+#include "util/FramePattern.h"
 #include "core/JsonParse.h"
 
 namespace cg {
@@ -15,10 +16,20 @@ namespace cg {
 void checkParamRole(const ParamDecl& decl, const ParamValue& value, const LoadOptions& options,
                     const std::string& where)
 {
-    if (decl.role != ParamRole::OutputPath || options.allowPathsOutsideOut) return;
+    if (decl.role == ParamRole::Program && !options.allowGraphPrograms &&
+        value != decl.defaultValue) {
+        throw InputError(where, "a graph may not name a program to run (" + paramToString(value) +
+                                    "); the program is found on PATH by its name '" +
+                                    paramToString(decl.defaultValue) +
+                                    "' or given by the environment (see the node's docs); "
+                                    "pass --allow-graph-programs to trust this graph");
+    }
+    if (decl.role != ParamRole::OutputPath) return;
     const auto* path = std::get_if<std::string>(&value);
     if (!path) return;
-    if (path->empty()) throw InputError(where, "output path is empty");
+    if (const std::string problem = util::outputFileProblem(*path); !problem.empty())
+        throw InputError(where, "bad output file: " + problem);
+    if (options.allowPathsOutsideOut) return;
     bool escapes = (*path)[0] == '/';
     // Split by hand: std::filesystem would also accept "a/../.." after normalising.
     std::size_t start = 0;

@@ -44,6 +44,8 @@ struct LoadOptions {
     std::size_t maxFileBytes = 64u << 20;
     /// Lets OutputPath parameters be absolute or climb out with "..".
     bool allowPathsOutsideOut = false;
+    /// Lets a graph set Program parameters (--allow-graph-programs): the user trusts it.
+    bool allowGraphPrograms = false;
 };
 
 class Graph {
@@ -84,9 +86,10 @@ public:
     /// Runs every node's NodeDecl::validate. Throws InputError.
     void validateNode(const GraphNode& node) const;
 
-private:
-    /// `pointer` prefixed by the source name, as errors name places.
+    /// `pointer` prefixed by the source name, as errors name places ("g.json:/nodes/a").
     std::string locate(const std::string& pointer) const;
+
+private:
 
     std::string mSourceName;
     std::vector<GraphNode> mNodes;  ///< sorted by id after finalize()

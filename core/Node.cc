@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "core/Error.h"
+#include "util/FramePattern.h"
 
 namespace cg {
 
@@ -51,18 +52,7 @@ void CookContext::setOutput(const std::string& port, DataPtr value)
 
 std::filesystem::path CookContext::outputPath(const std::string& param) const
 {
-    std::string name = mParams.getString(param);
-    // Replace the first run of '#' by the zero-padded frame: name.####.ply -> name.0042.ply
-    const auto first = name.find('#');
-    if (first != std::string::npos) {
-        auto last = name.find_first_not_of('#', first);
-        if (last == std::string::npos) last = name.size();
-        const int width = static_cast<int>(last - first);
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%0*d", width, mEval.frame);
-        name.replace(first, last - first, buf);
-    }
-    std::filesystem::path p(name);
+    std::filesystem::path p = util::framePath(mParams.getString(param), mEval.frame);
     if (p.is_relative()) p = mOutDir / p;
     std::filesystem::create_directories(p.parent_path());
     return p;

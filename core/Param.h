@@ -27,6 +27,9 @@ enum class ParamRole {
     Plain,
     OutputPath,  ///< a file name under the run's --out directory; may hold a #### frame pattern
     InputFile,   ///< a file to read; nodes hash its content into their key themselves
+    /// A program the node runs. A graph is data and may not choose what runs: a graph that
+    /// sets it is refused unless the user opts in (LoadOptions::allowGraphPrograms).
+    Program,
 };
 
 const char* paramTypeName(ParamType t);

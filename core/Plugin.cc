@@ -1,9 +1,11 @@
 #include "core/Plugin.h"
 
 #include <dlfcn.h>
+#include <link.h>
 
 #include <algorithm>
 #include <exception>
+#include <optional>
 #include <system_error>
 
 #include <spdlog/spdlog.h>
@@ -16,6 +18,30 @@ namespace {
 
 using AbiVersionFn = int (*)();
 using RegisterFn = void (*)(Registry*);
+
+InputError abiMismatch(const std::string& where, int version)
+{
+    return InputError(where, "plugin ABI version " + std::to_string(version) +
+                                 ", this cloudgraph needs " +
+                                 std::to_string(CLOUDGRAPH_PLUGIN_ABI_VERSION) +
+                                 "; rebuild the plugin against this version");
+}
+
+/// Whether a symbol from dlsym is code: calling a data symbol would crash the process.
+bool isFunction(void* symbol)
+{
+#if defined(__GLIBC__)  // dladdr1 and RTLD_DL_SYMENT (an enum, not a macro) are glibc's
+    Dl_info info{};
+    void* raw = nullptr;
+    if (dladdr1(symbol, &info, &raw, RTLD_DL_SYMENT) == 0 || !raw) return false;
+    const auto* entry = static_cast<const ElfW(Sym)*>(raw);
+    const int type = ELF64_ST_TYPE(entry->st_info);
+    return type == STT_FUNC || type == STT_GNU_IFUNC;
+#else
+    (void)symbol;
+    return true;
+#endif
+}
 
 std::string lastDlError()
 {
@@ -52,35 +78,44 @@ void loadPlugin(const std::filesystem::path& path, Registry& registry)
     // Absolute, because dlopen searches the library path for a name without a '/'.
     std::filesystem::path file = std::filesystem::absolute(path, ec);
     if (ec || file.empty()) file = path;  // dlopen("") would return the main program
+    // The stamp first: dlopen runs the library's static constructors, and those of a plugin
+    // built against another engine must not run.
+    std::optional<std::int32_t> stamp;
+    try {
+        stamp = readPluginStampFromFile(file);
+    } catch (const std::exception& e) {
+        throw InputError(where, std::string("cannot load plugin: ") + e.what());
+    }
+#if defined(__ELF__)
+    if (!stamp)
+        throw InputError(where, "not a CloudGraph plugin: no ABI stamp (a plugin is built with "
+                                "the CLOUDGRAPH_PLUGIN macro of core/Plugin.h)");
+#endif
+    if (stamp && *stamp != CLOUDGRAPH_PLUGIN_ABI_VERSION) throw abiMismatch(where, *stamp);
+
     dlerror();  // clear any stale message
     // RTLD_LOCAL: two plugins may use the same internal symbol names without clashing.
     void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!handle) throw InputError(where, "cannot load plugin: " + lastDlError());
-
     auto entry = [&](const char* name) {
         void* sym = dlsym(handle, name);
-        if (!sym) {
+        if (!sym || !isFunction(sym)) {
             dlclose(handle);
-            throw InputError(where, std::string("not a CloudGraph plugin: missing entry point '") +
-                                        name + "'");
+            throw InputError(where, std::string("not a CloudGraph plugin: ") +
+                                        (sym ? "entry point '" + std::string(name) +
+                                                   "' is not a function"
+                                             : "missing entry point '" + std::string(name) + "'"));
         }
         return sym;
     };
     // POSIX guarantees a data pointer from dlsym converts to a function pointer.
     auto abiVersion = reinterpret_cast<AbiVersionFn>(entry("cloudgraph_plugin_abi_version"));
     auto registerFn = reinterpret_cast<RegisterFn>(entry("cloudgraph_plugin_register"));
-
-    // Checked before any other plugin code runs: a plugin built against another engine
-    // may disagree on every class layout.
-    const int version = abiVersion();
-    if (version != CLOUDGRAPH_PLUGIN_ABI_VERSION) {
+    // Checked again where there is no stamp to read, before any other plugin code runs.
+    if (const int version = abiVersion(); version != CLOUDGRAPH_PLUGIN_ABI_VERSION) {
         dlclose(handle);
-        throw InputError(where, "plugin ABI version " + std::to_string(version) +
-                                    ", this cloudgraph needs " +
-                                    std::to_string(CLOUDGRAPH_PLUGIN_ABI_VERSION) +
-                                    "; rebuild the plugin against this version");
+        throw abiMismatch(where, version);
     }
-
     // The plugin registers into a scratch registry that knows the current data types, and
     // its additions are committed only when all of them fit: a plugin that fails halfway
     // leaves the registry untouched. The cost: register() sees no existing node types.
@@ -151,6 +186,17 @@ std::vector<std::filesystem::path> pluginsFromSearchPath(const char* searchPath)
         out.insert(out.end(), found.begin(), found.end());
     }
     return out;
+}
+
+void loadPluginsFromSearchPath(const char* searchPath, Registry& registry)
+{
+    for (const auto& path : pluginsFromSearchPath(searchPath)) {
+        try {
+            loadPlugin(path, registry);
+        } catch (const InputError& e) {
+            spdlog::warn("CLOUDGRAPH_PLUGIN_PATH: skipped {}", e.what());
+        }
+    }
 }
 
 }  // namespace cg

@@ -77,6 +77,15 @@ inline ParamDecl inputFileParam(std::string name, std::string def, std::string d
     return p;
 }
 
+/// A program the node runs, found on PATH by `name` unless the user says otherwise; see
+/// ParamRole::Program.
+inline ParamDecl programParam(std::string name, std::string programName, std::string doc)
+{
+    ParamDecl p = stringParam(std::move(name), std::move(programName), std::move(doc));
+    p.role = ParamRole::Program;
+    return p;
+}
+
 inline ParamDecl outputPathParam(std::string name, std::string def, std::string doc)
 {
     ParamDecl p;

@@ -8,6 +8,7 @@ packages=(
     libopenvdb-dev libopenvdb-tools libboost-iostreams-dev libtbb-dev
     nlohmann-json3-dev libfftw3-dev libspdlog-dev libxxhash-dev
     libgtest-dev libbenchmark-dev libpng-dev libopenexr-dev
+    ccache  # rebuilds and the sanitizer build reuse compiled objects
     ffmpeg  # EncodeVideo runs the ffmpeg program (H.264 via libx264)
 )
 

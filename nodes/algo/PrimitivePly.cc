@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "nodes/algo/PlyWriter.h"
+#include "util/FramePattern.h"
 
 namespace cg::algo {
 
@@ -33,20 +34,9 @@ void writePrimitiveFramePly(const std::filesystem::path& path, const float* posi
 
 std::filesystem::path primitiveFramePath(const std::filesystem::path& pattern, int frame)
 {
-    std::string name = pattern.filename().string();
-    const auto first = name.find('#');
-    if (first == std::string::npos) {
-        char digits[32];
-        std::snprintf(digits, sizeof digits, "%04d", frame);
-        const std::string stem = pattern.stem().string(), ext = pattern.extension().string();
-        return pattern.parent_path() / (stem + "." + digits + ext);
-    }
-    auto last = name.find_first_not_of('#', first);
-    if (last == std::string::npos) last = name.size();
-    std::string digits = std::to_string(frame);
-    if (digits.size() < last - first) digits.insert(0, last - first - digits.size(), '0');
-    name.replace(first, last - first, digits);
-    return pattern.parent_path() / name;
+    if (util::firstHashRun(pattern.filename().string())) return util::framePath(pattern, frame);
+    const std::string stem = pattern.stem().string(), ext = pattern.extension().string();
+    return util::framePath(pattern.parent_path() / (stem + ".####" + ext), frame);
 }
 
 }  // namespace cg::algo

@@ -17,6 +17,8 @@
 #include <thread>
 #include <vector>
 
+#include "util/FramePattern.h"
+
 extern char** environ;
 
 namespace cg::algo {
@@ -25,15 +27,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// [first, last) of the first run of '#' in the file name; throws when there is none.
-std::pair<std::size_t, std::size_t> hashRun(const std::string& name)
+/// The first run of '#' in the file name; throws when there is none.
+util::HashRun hashRun(const std::string& name)
 {
-    const auto first = name.find('#');
-    if (first == std::string::npos)
-        throw std::invalid_argument("image pattern '" + name + "' has no #### frame number");
-    auto last = name.find_first_not_of('#', first);
-    if (last == std::string::npos) last = name.size();
-    return {first, last};
+    const auto run = util::firstHashRun(name);
+    if (!run) throw std::invalid_argument("image pattern '" + name + "' has no #### frame number");
+    return *run;
 }
 
 /// The pattern in ffmpeg's image2 syntax: %0Nd for the #### run, '%' escaped as "%%".
@@ -80,16 +79,6 @@ std::string number(double v)
 
 }  // namespace
 
-fs::path framePath(const fs::path& pattern, int frame)
-{
-    std::string name = pattern.filename().string();
-    const auto [first, last] = hashRun(name);
-    char digits[32];
-    std::snprintf(digits, sizeof digits, "%0*d", static_cast<int>(last - first), frame);
-    name.replace(first, last - first, digits);
-    return pattern.parent_path() / name;
-}
-
 void encodeVideo(const VideoEncodeSettings& s, const fs::path& output,
                  const std::function<void()>& poll)
 {
@@ -103,9 +92,10 @@ void encodeVideo(const VideoEncodeSettings& s, const fs::path& output,
     if (s.images.parent_path().string().find('#') != std::string::npos)
         throw std::invalid_argument("image pattern '" + s.images.string() +
                                     "': #### must be in the file name, not a directory");
+    hashRun(s.images.filename().string());
     // ffmpeg stops at the first gap in the numbering: find it here and name it.
     for (int f = s.firstFrame; f <= s.lastFrame; ++f) {
-        const fs::path p = framePath(s.images, f);
+        const fs::path p = util::framePath(s.images, f);
         if (!fs::is_regular_file(p))
             throw std::invalid_argument("frame " + std::to_string(f) + " is missing: " +
                                         p.string());

@@ -25,9 +25,6 @@ struct VideoEncodeSettings {
     int crf = 18;                       ///< x264 constant rate factor: 0 lossless .. 51 worst
 };
 
-/// The path of frame `frame` of `pattern` (the first run of '#' replaced, zero-padded).
-std::filesystem::path framePath(const std::filesystem::path& pattern, int frame);
-
 /// Encodes the frames into an MP4 at `output` (H.264 via libx264, yuv420p so that every
 /// player reads it; odd sizes are padded by a pixel). Runs the program with an argument
 /// vector, never a shell. `poll` (optional) is called every few milliseconds while it runs

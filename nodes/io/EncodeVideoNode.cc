@@ -2,6 +2,7 @@
 // It cooks on every frame after the writer (its input) but encodes only on 'lastFrame', when
 // every frame of the range is on disk (frames cook in order).
 
+#include <cstdlib>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -19,6 +20,18 @@ namespace cg {
 
 namespace {
 
+constexpr const char* kProgramName = "ffmpeg";
+constexpr const char* kProgramVariable = "CLOUDGRAPH_FFMPEG";
+
+/// The graph's choice only when the user let it choose (load refuses it otherwise), then the
+/// environment's, then the fixed name on PATH.
+std::string encoderProgram(const std::string& fromGraph)
+{
+    if (fromGraph != kProgramName) return fromGraph;
+    const char* fromEnvironment = std::getenv(kProgramVariable);
+    return fromEnvironment && *fromEnvironment ? fromEnvironment : kProgramName;
+}
+
 class EncodeVideoNode final : public Node {
 public:
     void cook(CookContext& ctx) override
@@ -31,7 +44,7 @@ public:
         }
         const auto first = static_cast<int>(p.getInt("firstFrame"));
         algo::VideoEncodeSettings s;
-        s.program = p.getString("ffmpeg");
+        s.program = encoderProgram(p.getString("ffmpeg"));
         s.firstFrame = first < 0 ? ctx.startFrame() : first;
         s.lastFrame = last;
         s.fps = p.getFloat("fps");
@@ -54,8 +67,8 @@ public:
                              std::string(e.what()) +
                                  ": EncodeVideo needs the ffmpeg program; install it (Debian/"
                                  "Ubuntu: sudo apt-get install -y ffmpeg, or run "
-                                 "scripts/install-deps.sh) or set the parameter 'ffmpeg' to "
-                                 "its full path");
+                                 "scripts/install-deps.sh) or set the environment variable " +
+                                 std::string(kProgramVariable) + " to its full path");
         } catch (const std::invalid_argument& e) {
             throw InputError(ctx.nodeId(), e.what());
         }
@@ -99,7 +112,10 @@ void registerEncodeVideoNode(Registry& registry)
                  "x264 constant rate factor: 0 lossless, 18 visually lossless, 23 default, 51 "
                  "worst",
                  0, 51),
-        stringParam("ffmpeg", "ffmpeg", "the ffmpeg program: a name looked up on PATH, or a path"),
+        programParam("ffmpeg", kProgramName,
+                     "the ffmpeg program. Leave it: the node runs $CLOUDGRAPH_FFMPEG, else "
+                     "ffmpeg on PATH; a graph that sets it is refused unless run with "
+                     "--allow-graph-programs"),
     };
     d.quickParams = {{"lastFrame", "1"}};  // the contract test cooks frame 0: nothing to encode
     d.create = [] { return std::make_unique<EncodeVideoNode>(); };

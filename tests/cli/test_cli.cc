@@ -221,7 +221,7 @@ TEST(Cli, PluginNodeCooksAndABadPluginIsRefused)
     EXPECT_NE(bad.errors.find("ABI version"), std::string::npos) << bad.errors;
     const auto noEntry = runCli({"nodes", "--plugin", CLOUDGRAPH_NO_ENTRY_PLUGIN});
     EXPECT_EQ(noEntry.exitCode, 2);
-    EXPECT_NE(noEntry.errors.find("entry point"), std::string::npos) << noEntry.errors;
+    EXPECT_NE(noEntry.errors.find("not a CloudGraph plugin"), std::string::npos) << noEntry.errors;
 }
 
 TEST(Cli, PluginsLoadFromAbsoluteSearchPathDirectoriesOnly)

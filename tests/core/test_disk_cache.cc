@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -22,6 +23,7 @@
 #include "core/DiskCache.h"
 #include "core/Error.h"
 #include "core/Registry.h"
+#include "util/SystemMemory.h"
 
 namespace cg {
 
@@ -640,6 +642,114 @@ TEST(DiskCache, CorruptedRecordIsNullopt)
     EXPECT_FALSE(cache.loadRecord("run").has_value());
     writeFile(p, {'{', 'n', 'o', 't', ' ', 'j', 's', 'o', 'n'});
     EXPECT_FALSE(cache.loadRecord("run").has_value());
+}
+
+}  // namespace cg
+
+namespace cg {
+
+namespace {
+
+std::vector<PortDecl> declaredOutputs()
+{
+    return {{"arr", "FloatArray", ""}, {"f", "Float", ""}, {"i", "Int", ""}, {"text", "Text", ""}};
+}
+
+}  // namespace
+
+TEST(DiskCache, AForgedEntryWithARenamedPortOrAnotherTypeIsRecookedNotAnError)
+{
+    TempDir dir;
+    DiskCache cache(dir.path());
+    const Registry registry = coreRegistry();
+    const std::vector<PortDecl> outputs = declaredOutputs();
+    const Key k = keyOf(7);
+    bool ok = false;
+    ASSERT_TRUE(cache.store(k, allCoreTypes()));
+    ASSERT_TRUE(cache.load(k, registry, &outputs).has_value());
+
+    OutputMap renamed = allCoreTypes();
+    renamed["g"] = renamed["f"];
+    renamed.erase("f");
+    OutputMap retyped = allCoreTypes();
+    retyped["f"] = std::make_shared<IntData>(1);
+    OutputMap extra = allCoreTypes();
+    extra["z"] = std::make_shared<IntData>(1);
+    for (const OutputMap& forged : {renamed, retyped, extra}) {
+        writeFile(cache.entryPath(k), DiskCache::encodeEntry(k, forged, ok));
+        ASSERT_TRUE(ok);
+        EXPECT_FALSE(cache.load(k, registry, &outputs).has_value());
+        EXPECT_FALSE(fs::exists(cache.entryPath(k))) << "a forged entry stays and fails again";
+    }
+}
+
+TEST(DiskCache, AHugeDamagedEntryIsRefusedByItsHeaderWithoutReadingIt)
+{
+    TempDir dir;
+    DiskCache cache(dir.path());
+    const Registry registry = coreRegistry();
+    const Key k = keyOf(8);
+    // A sparse 12 GiB file: reading it would take minutes and all the memory.
+    const fs::path path = cache.entryPath(k);
+    fs::create_directories(path.parent_path());
+    { std::ofstream(path, std::ios::binary) << "not an entry"; }
+    fs::resize_file(path, 12ull << 30);
+    EXPECT_FALSE(cache.load(k, registry).has_value());
+    EXPECT_FALSE(fs::exists(path));
+
+    // A valid header claiming a payload larger than the memory there is: a miss that keeps
+    // the entry (it may be valid; this machine cannot load it now).
+    bool ok = false;
+    auto entry = DiskCache::encodeEntry(k, allCoreTypes(), ok);
+    const std::uint64_t huge = 60ull << 30;
+    if (util::availableMemoryBytes() / 2 > huge) GTEST_SKIP() << "this machine could load it";
+    putU64(entry.data() + 32, huge);
+    putU64(entry.data() + 48, checksum64(entry.data(), 48));
+    writeFile(path, std::vector<unsigned char>(entry.begin(), entry.begin() + 56));
+    fs::resize_file(path, 56 + huge);
+    EXPECT_FALSE(cache.load(k, registry).has_value());
+    EXPECT_TRUE(fs::exists(path));
+}
+
+/// A value whose rebuilding runs out of memory, as a large valid entry may.
+class HeavyData final : public Data {
+public:
+    std::string typeName() const override { return "Heavy"; }
+    std::size_t byteSize() const override { return sizeof(*this); }
+    bool serialize(ByteWriter& out) const override
+    {
+        out.u64(1);
+        return true;
+    }
+};
+
+TEST(DiskCache, RunningOutOfMemoryIsAMissThatKeepsTheEntry)
+{
+    TempDir dir;
+    DiskCache cache(dir.path());
+    Registry registry = coreRegistry();
+    registry.addDataType({"Heavy", "", [](ByteReader&) -> DataPtr { throw std::bad_alloc(); }});
+    const Key k = keyOf(9);
+    OutputMap heavy;
+    heavy["h"] = std::make_shared<HeavyData>();
+    ASSERT_TRUE(cache.store(k, heavy));
+    EXPECT_FALSE(cache.load(k, registry).has_value());
+    EXPECT_TRUE(fs::exists(cache.entryPath(k))) << "a valid entry was deleted";
+}
+
+TEST(DiskCache, AFifoInPlaceOfAnEntryNeitherHangsNorCrashes)
+{
+    TempDir dir;
+    DiskCache cache(dir.path());
+    const Registry registry = coreRegistry();
+    const Key k = keyOf(10);
+    const fs::path path = cache.entryPath(k);
+    fs::create_directories(path.parent_path());
+    ASSERT_EQ(::mkfifo(path.c_str(), 0644), 0);
+    EXPECT_FALSE(cache.load(k, registry).has_value());
+    EXPECT_FALSE(fs::exists(path));
+    ASSERT_TRUE(cache.store(k, allCoreTypes()));
+    EXPECT_TRUE(cache.load(k, registry).has_value());
 }
 
 }  // namespace cg

@@ -2,8 +2,10 @@
 
 #include <unistd.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,6 +14,7 @@
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Plugin.h"
+#include "core/PluginStamp.h"
 #include "core/Registry.h"
 
 namespace cg {
@@ -128,8 +131,47 @@ TEST(Plugin, BadAbiVersionIsRefused)
 TEST(Plugin, MissingEntryPointIsRefused)
 {
     Registry registry = freshRegistry();
-    expectRefused(CLOUDGRAPH_NO_ENTRY_PLUGIN, registry,
-                  "not a CloudGraph plugin: missing entry point 'cloudgraph_plugin_abi_version'");
+    expectRefused(CLOUDGRAPH_NO_ENTRY_PLUGIN, registry, "not a CloudGraph plugin: no ABI stamp");
+}
+
+TEST(Plugin, AnotherAbiIsRefusedBeforeAnyOfItsCodeRuns)
+{
+    Registry registry = freshRegistry();
+    ::unsetenv("CLOUDGRAPH_TEST_PLUGIN_CONSTRUCTOR_RAN");
+    expectRefused(CLOUDGRAPH_CONSTRUCTOR_PLUGIN, registry,
+                  "plugin ABI version " + std::to_string(CLOUDGRAPH_PLUGIN_ABI_VERSION + 1));
+    EXPECT_EQ(std::getenv("CLOUDGRAPH_TEST_PLUGIN_CONSTRUCTOR_RAN"), nullptr)
+        << "the plugin's static constructor ran before its ABI was checked";
+}
+
+TEST(Plugin, EntrySymbolsThatAreDataAreRefusedWithoutACrash)
+{
+    Registry registry = freshRegistry();
+    expectRefused(CLOUDGRAPH_DATA_ENTRY_PLUGIN, registry,
+                  "entry point 'cloudgraph_plugin_abi_version' is not a function");
+}
+
+TEST(Plugin, TheStampReaderRefusesWhatIsNotAWellFormedLibrary)
+{
+    const std::string image = [] {
+        std::ifstream in(CLOUDGRAPH_SAMPLE_PLUGIN, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    }();
+    auto stampOf = [](const std::string& bytes) {
+        const ByteSource read = [&bytes](std::uint64_t offset, void* out, std::size_t size) {
+            if (offset > bytes.size() || size > bytes.size() - offset) return false;
+            std::memcpy(out, bytes.data() + offset, size);
+            return true;
+        };
+        return readPluginStamp(read, bytes.size());
+    };
+    EXPECT_EQ(stampOf(image), CLOUDGRAPH_PLUGIN_ABI_VERSION);
+    EXPECT_THROW(stampOf(image.substr(0, 40)), std::runtime_error);
+    EXPECT_THROW(stampOf(image.substr(0, image.size() / 2)), std::runtime_error);
+    EXPECT_THROW(stampOf("#!/bin/sh\necho hi\n" + std::string(64, ' ')), std::runtime_error);
+    std::string otherClass = image;
+    otherClass[4] = 1;  // EI_CLASS: 32-bit
+    EXPECT_THROW(stampOf(otherClass), std::runtime_error);
 }
 
 TEST(Plugin, FailedRegistrationIsRefusedAndLeavesRegistryUntouched)

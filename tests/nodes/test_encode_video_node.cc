@@ -10,6 +10,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -25,6 +26,7 @@
 #include "nodes/render/RenderNodes.h"
 #include "support/FixtureNodes.h"
 #include "support/TestUtil.h"
+#include "util/FramePattern.h"
 
 extern char** environ;
 
@@ -79,7 +81,7 @@ protected:
 
     /// A 33 x 17 ramp (odd sizes: the encoder pads them) written as frames/f.####.png and
     /// encoded on frame 3 from frame 0.
-    Graph parse(const std::string& videoParams)
+    Graph parse(const std::string& videoParams, const LoadOptions& options = {})
     {
         return parseGraph(R"({"cloudgraph": 1, "nodes": {
             "ramp": {"type": "TestImageSource", "params": {"width": 33, "height": 17}},
@@ -87,7 +89,7 @@ protected:
                       "params": {"file": "frames/f.####.png"}},
             "video": {"type": "EncodeVideo", "inputs": {"frames": "write.files"},
                       "params": )" + videoParams + "}}}",
-                          "test.json", registry);
+                          "test.json", registry, options);
     }
 
     Evaluator evaluator()
@@ -113,11 +115,26 @@ std::size_t filesIn(const fs::path& dir)
 
 }  // namespace
 
-TEST(VideoEncode, FramePathReplacesTheFirstHashRun)
+TEST(FramePattern, FramePathReplacesTheFirstHashRunInTheFileName)
 {
-    EXPECT_EQ(algo::framePath("/o/f.####.png", 42), fs::path("/o/f.0042.png"));
-    EXPECT_EQ(algo::framePath("a_##_b#.png", 7), fs::path("a_07_b#.png"));
-    EXPECT_THROW(algo::framePath("plain.png", 1), std::invalid_argument);
+    EXPECT_EQ(util::framePath("/o/f.####.png", 42), fs::path("/o/f.0042.png"));
+    EXPECT_EQ(util::framePath("a_##_b#.png", 7), fs::path("a_07_b#.png"));
+    EXPECT_EQ(util::framePath("a_##.png", 1234), fs::path("a_1234.png"));  // never truncated
+    EXPECT_EQ(util::framePath("plain.png", 1), fs::path("plain.png"));
+    EXPECT_EQ(util::framePath("d#/f.#.png", 3), fs::path("d#/f.3.png"));
+}
+
+TEST(FramePattern, OutputFileProblemsAreNamed)
+{
+    EXPECT_EQ(util::outputFileProblem("frames/f.####.png"), "");
+    EXPECT_EQ(util::outputFileProblem("f.#########.png"), "");  // 9: the most allowed
+    EXPECT_NE(util::outputFileProblem("f." + std::string(10, '#') + ".png"), "");
+    EXPECT_NE(util::outputFileProblem("f." + std::string(32, '#') + ".png"), "");
+    EXPECT_NE(util::outputFileProblem("dir/"), "");
+    EXPECT_NE(util::outputFileProblem("."), "");
+    EXPECT_NE(util::outputFileProblem("a/.."), "");
+    EXPECT_NE(util::outputFileProblem(""), "");
+    EXPECT_NE(util::outputFileProblem("d##/f.png"), "");
 }
 
 TEST_F(EncodeVideoTest, EncodesTheWrittenFramesIntoAnMp4)
@@ -161,10 +178,45 @@ TEST_F(EncodeVideoTest, OnlyTheLastFrameEncodes)
     EXPECT_FALSE(fs::exists(out / "video/v.mp4"));
 }
 
+/// Sets an environment variable for one scope.
+class ScopedEnvironment {
+public:
+    ScopedEnvironment(const char* name, const char* value) : mName(name)
+    {
+        if (const char* old = std::getenv(name)) mOld = old;
+        ::setenv(name, value, 1);
+    }
+    ~ScopedEnvironment()
+    {
+        if (mOld) ::setenv(mName, mOld->c_str(), 1);
+        else ::unsetenv(mName);
+    }
+
+private:
+    const char* mName;
+    std::optional<std::string> mOld;
+};
+
+TEST_F(EncodeVideoTest, AGraphMayNotNameTheProgramItRunsUnlessTheUserAllowsIt)
+{
+    const std::string params = std::string(kParams) + R"(, "ffmpeg": "./script.sh"})";
+    try {
+        parse(params);
+        FAIL() << "a graph that names a program was accepted";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.where(), "test.json:/nodes/video/params/ffmpeg");
+        EXPECT_NE(e.message().find("--allow-graph-programs"), std::string::npos) << e.what();
+    }
+    LoadOptions trusted;
+    trusted.allowGraphPrograms = true;
+    EXPECT_NO_THROW(parse(params, trusted));
+    EXPECT_NO_THROW(parse(std::string(kParams) + R"(, "ffmpeg": "ffmpeg"})"));  // the default
+}
+
 TEST_F(EncodeVideoTest, MissingFfmpegSaysHowToInstallIt)
 {
-    const Graph g =
-        parse(std::string(kParams) + R"(, "ffmpeg": "/nonexistent/cloudgraph-test-ffmpeg"})");
+    const ScopedEnvironment program("CLOUDGRAPH_FFMPEG", "/nonexistent/cloudgraph-test-ffmpeg");
+    const Graph g = parse(std::string(kParams) + "}");
     Evaluator ev = evaluator();
     try {
         ev.cookFrames(g, 0, 3);
@@ -175,6 +227,7 @@ TEST_F(EncodeVideoTest, MissingFfmpegSaysHowToInstallIt)
         EXPECT_NE(what.find("'video'"), std::string::npos) << what;
         EXPECT_NE(what.find("cloudgraph-test-ffmpeg"), std::string::npos) << what;
         EXPECT_NE(what.find("apt-get install -y ffmpeg"), std::string::npos) << what;
+        EXPECT_NE(what.find("CLOUDGRAPH_FFMPEG"), std::string::npos) << what;
     }
     EXPECT_FALSE(fs::exists(out / "video/v.mp4"));
     EXPECT_EQ(filesIn(out / "video"), 0u);

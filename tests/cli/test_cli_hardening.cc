@@ -1,0 +1,143 @@
+// End-to-end checks of what an outside audit broke: a graph that runs a program, output
+// paths and command-line values that failed late, temporaries left by killed runs.
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "support/TestUtil.h"
+
+namespace cg {
+
+using test::runCli;
+using test::TempDir;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A graph whose EncodeVideo names `program`; the frames come from a text writer.
+std::string graphRunning(const std::string& program)
+{
+    return R"({"cloudgraph": 1, "frames": {"start": 0, "end": 1}, "nodes": {
+        "a": {"type": "RandomField", "params": {"width": 3, "height": 1}},
+        "w": {"type": "WriteArray", "params": {"file": "a.####.txt"}, "inputs": {"values": "a.values"}},
+        "video": {"type": "EncodeVideo", "inputs": {"frames": "w.files"},
+                  "params": {"images": "a.####.txt", "lastFrame": 1, "ffmpeg": ")" +
+           program + R"("}}}})";
+}
+
+}  // namespace
+
+TEST(CliHardening, AGraphThatNamesAProgramIsRefusedAndTheProgramNeverRuns)
+{
+    TempDir dir;
+    const fs::path marker = dir / "ran";
+    test::writeFile(dir / "script.sh", "#!/bin/sh\ntouch '" + marker.string() + "'\n");
+    fs::permissions(dir / "script.sh", fs::perms::owner_all);
+    test::writeFile(dir / "g.json", graphRunning((dir / "script.sh").string()));
+    const std::string graph = (dir / "g.json").string();
+
+    const auto validate = runCli({"validate", graph});
+    EXPECT_EQ(validate.exitCode, 2) << validate.errors;
+    EXPECT_NE(validate.errors.find("/nodes/video/params/ffmpeg"), std::string::npos)
+        << validate.errors;
+    const auto run = runCli({"run", graph, "--out", (dir / "out").string(), "-q"});
+    EXPECT_EQ(run.exitCode, 2) << run.errors;
+    EXPECT_FALSE(fs::exists(marker)) << "the graph's program ran";
+
+    // The user may opt in; then the program the graph names is the one that runs.
+    const auto trusted = runCli({"run", graph, "--out", (dir / "out").string(), "-q",
+                                 "--allow-graph-programs"});
+    EXPECT_TRUE(fs::exists(marker)) << trusted.errors;
+}
+
+TEST(CliHardening, NumericOptionsAreWholeNumbersInRange)
+{
+    TempDir dir;
+    const std::string graph = test::dataPath("good/chain.json").string();
+    const std::vector<std::vector<std::string>> bad = {
+        {"--cache-memory-mb", "-1"}, {"--cache-memory-mb", "5abc"},
+        {"--cache-memory-mb", "99999999999999"}, {"--cache-memory-mb", ""},
+        {"--threads", "0"}, {"--threads", "2x"}, {"--threads", " 2"},
+        {"--frames", "0:x"}, {"--frames", "+0"}, {"--frames", "0:99999999999999999999"}};
+    for (const auto& option : bad) {
+        std::vector<std::string> args = {"run", graph, "--out", (dir / "out").string()};
+        args.insert(args.end(), option.begin(), option.end());
+        const auto r = runCli(args);
+        EXPECT_EQ(r.exitCode, 2) << option[0] << " " << option[1] << ": " << r.errors;
+        EXPECT_NE(r.errors.find(option[0]), std::string::npos) << r.errors;
+    }
+    EXPECT_FALSE(fs::exists(dir / "out"));
+    EXPECT_EQ(runCli({"run", graph, "--out", (dir / "out").string(), "--cache-memory-mb", "64",
+                      "--threads", "2", "-q"})
+                  .exitCode,
+              0);
+}
+
+TEST(CliHardening, OutAndReportLocationsAreCheckedBeforeCooking)
+{
+    TempDir dir;
+    const std::string graph = test::dataPath("good/chain.json").string();
+    test::writeFile(dir / "a-file", "x");
+    const auto outIsFile = runCli({"run", graph, "--out", (dir / "a-file").string()});
+    EXPECT_EQ(outIsFile.exitCode, 2) << outIsFile.errors;
+    EXPECT_NE(outIsFile.errors.find("--out"), std::string::npos) << outIsFile.errors;
+
+    fs::create_directories(dir / "reports");
+    const auto reportIsDir = runCli({"run", graph, "--out", (dir / "out").string(), "--report",
+                                     (dir / "reports").string()});
+    EXPECT_EQ(reportIsDir.exitCode, 2) << reportIsDir.errors;
+    EXPECT_NE(reportIsDir.errors.find("--report"), std::string::npos) << reportIsDir.errors;
+    EXPECT_FALSE(fs::exists(dir / "out")) << "cooked before refusing the report path";
+}
+
+TEST(CliHardening, AReportThatCannotBeWrittenDoesNotHideTheCookError)
+{
+    TempDir dir;
+    test::writeFile(dir / "g.json", R"({"cloudgraph": 1, "nodes": {
+        "a": {"type": "RandomField", "params": {"width": 3, "height": 1}},
+        "b": {"type": "RandomField", "params": {"width": 4, "height": 1}},
+        "sum": {"type": "Sum", "inputs": {"a": "a.values", "b": "b.values"}}}})");
+    // /proc exists and is a directory, but nothing can be created in it, even by root.
+    const std::string report = "/proc/cloudgraph-test/report.json";
+    const auto failed = runCli({"run", (dir / "g.json").string(), "--out",
+                                (dir / "out").string(), "--report", report});
+    EXPECT_EQ(failed.exitCode, 2) << failed.errors;
+    EXPECT_NE(failed.errors.find("'sum'"), std::string::npos) << failed.errors;
+    EXPECT_NE(failed.errors.find("g.json:/nodes/sum"), std::string::npos) << failed.errors;
+
+    const auto ok = runCli({"run", test::dataPath("good/chain.json").string(), "--out",
+                            (dir / "out").string(), "--report", report});
+    EXPECT_EQ(ok.exitCode, 2) << ok.errors;
+    EXPECT_NE(ok.errors.find("--report"), std::string::npos) << ok.errors;
+    EXPECT_EQ(ok.errors.find("internal error"), std::string::npos) << ok.errors;
+}
+
+TEST(CliHardening, ABadLibraryOnThePluginPathIsSkippedWithAWarning)
+{
+    TempDir dir;
+    fs::create_directories(dir / "plugins");
+    fs::copy_file(CLOUDGRAPH_SAMPLE_PLUGIN, dir / "plugins" / "libsample.so");
+    fs::copy_file(CLOUDGRAPH_BAD_ABI_PLUGIN, dir / "plugins" / "libbad-abi.so");
+    test::writeFile(dir / "plugins" / "libnot-elf.so", "not a library");
+    const char* saved = std::getenv("CLOUDGRAPH_PLUGIN_PATH");
+    const std::string savedValue = saved ? saved : "";
+    ::setenv("CLOUDGRAPH_PLUGIN_PATH", (dir / "plugins").c_str(), 1);
+    const auto r = runCli({"nodes", "SampleGain"});
+    if (saved) ::setenv("CLOUDGRAPH_PLUGIN_PATH", savedValue.c_str(), 1);
+    else ::unsetenv("CLOUDGRAPH_PLUGIN_PATH");
+
+    EXPECT_EQ(r.exitCode, 0) << r.errors;
+    EXPECT_NE(r.output.find("SampleGain"), std::string::npos);
+    EXPECT_NE(r.errors.find("libbad-abi.so"), std::string::npos) << r.errors;
+    EXPECT_NE(r.errors.find("libnot-elf.so"), std::string::npos) << r.errors;
+    // Named on the command line, the same library is an error.
+    const auto named = runCli({"nodes", "--plugin", (dir / "plugins" / "libnot-elf.so").string()});
+    EXPECT_EQ(named.exitCode, 2) << named.errors;
+}
+
+}  // namespace cg

@@ -1,0 +1,29 @@
+#include "util/SystemMemory.h"
+
+#include <unistd.h>
+
+#include <fstream>
+#include <string>
+
+namespace cg::util {
+
+std::uint64_t availableMemoryBytes()
+{
+    // Linux: MemAvailable counts reclaimable page cache, unlike _SC_AVPHYS_PAGES.
+    std::ifstream meminfo("/proc/meminfo");
+    std::string key;
+    std::uint64_t kib = 0;
+    while (meminfo >> key >> kib) {
+        if (key == "MemAvailable:") return kib * 1024;
+        meminfo.ignore(64, '\n');
+    }
+#if defined(_SC_PHYS_PAGES)
+    const long pages = ::sysconf(_SC_PHYS_PAGES);
+    const long pageSize = ::sysconf(_SC_PAGESIZE);
+    if (pages > 0 && pageSize > 0)
+        return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(pageSize);
+#endif
+    return 0;
+}
+
+}  // namespace cg::util
