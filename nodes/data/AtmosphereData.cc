@@ -1,8 +1,35 @@
 #include "nodes/data/AtmosphereData.h"
 
 #include "core/Registry.h"
+#include "nodes/data/ValueChecks.h"
 
 namespace cg {
+
+namespace {
+
+constexpr const char* kType = "Atmosphere";
+constexpr double kPerKm = 1e-3;  // as the node converts, so its largest value passes exactly
+
+Atmosphere readAtmosphere(ByteReader& in)
+{
+    using L = AtmosphereLimits;
+    // Consumers step particles with these: each must be finite and one the node could make.
+    Atmosphere a;
+    a.groundTemperature = checks::finiteIn(in.f64(), L::kMinTemperature, L::kMaxTemperature, kType,
+                                           "ground temperature");
+    a.environmentLapse = checks::finiteIn(in.f64(), 0.0, L::kMaxEnvironmentLapsePerKm * kPerKm,
+                                          kType, "environment lapse rate");
+    a.dewPoint =
+        checks::finiteIn(in.f64(), L::kMinTemperature, L::kMaxTemperature, kType, "dew point");
+    a.dryLapse = checks::finiteIn(in.f64(), 0.0, L::kMaxParticleLapsePerKm * kPerKm, kType,
+                                  "dry lapse rate");
+    a.moistLapse = checks::finiteIn(in.f64(), 0.0, L::kMaxParticleLapsePerKm * kPerKm, kType,
+                                    "moist lapse rate");
+    a.gravity = checks::finiteIn(in.f64(), 0.0, L::kMaxGravity, kType, "gravity");
+    return a;
+}
+
+}  // namespace
 
 bool AtmosphereData::serialize(ByteWriter& out) const
 {
@@ -14,16 +41,10 @@ bool AtmosphereData::serialize(ByteWriter& out) const
 
 void registerAtmosphereType(Registry& registry)
 {
-    registry.addDataType({"Atmosphere", "the environment: ground temperature, lapse rates, dew point, g",
+    registry.addDataType({"Atmosphere",
+                          "the environment: ground temperature, lapse rates, dew point, g",
                           [](ByteReader& in) -> DataPtr {
-                              Atmosphere a;
-                              a.groundTemperature = in.f64();
-                              a.environmentLapse = in.f64();
-                              a.dewPoint = in.f64();
-                              a.dryLapse = in.f64();
-                              a.moistLapse = in.f64();
-                              a.gravity = in.f64();
-                              return std::make_shared<AtmosphereData>(a);
+                              return std::make_shared<AtmosphereData>(readAtmosphere(in));
                           }});
 }
 

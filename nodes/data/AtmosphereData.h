@@ -20,6 +20,15 @@ struct Atmosphere {
     double environmentTemperature(double z) const { return groundTemperature - environmentLapse * z; }
 };
 
+/// The ranges the Atmosphere node's parameters allow (lapse rates per kilometre there, per
+/// metre here): a stored Atmosphere outside them is refused. Keep in step with the node.
+struct AtmosphereLimits {
+    static constexpr double kMinTemperature = -80.0, kMaxTemperature = 80.0;  ///< degrees C
+    static constexpr double kMaxEnvironmentLapsePerKm = 20.0;
+    static constexpr double kMaxParticleLapsePerKm = 50.0;  ///< dry and moist
+    static constexpr double kMaxGravity = 100.0;            ///< m/s^2
+};
+
 class AtmosphereData final : public Data {
 public:
     explicit AtmosphereData(const Atmosphere& a) : atmosphere(a) {}

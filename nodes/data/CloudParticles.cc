@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "core/Registry.h"
+#include "nodes/data/ValueChecks.h"
 
 namespace cg {
 
@@ -20,10 +21,26 @@ template <class T>
 algo::UninitArray<T> readArray(ByteReader& in)
 {
     const std::uint64_t n = in.u64();
-    if (n > in.remaining() / sizeof(T)) throw std::runtime_error("CloudParticles: truncated payload");
+    if (n > in.remaining() / sizeof(T)) checks::refuse("CloudParticles", "truncated payload");
     algo::UninitArray<T> a(static_cast<std::size_t>(n));
     in.bytes(a.data(), a.size() * sizeof(T));
     return a;
+}
+
+DataPtr readCloudParticles(ByteReader& in)
+{
+    auto positions = readArray<float>(in);
+    auto levels = readArray<std::uint8_t>(in);
+    auto sources = readArray<std::uint32_t>(in);
+    // Positions may honestly be non-finite (so may the condensation particles they grow
+    // from): the voxelizer refuses those itself. Source ids are provenance only.
+    for (std::size_t i = 0; i < levels.size(); ++i)
+        if (levels[i] > kMaxCloudLevel)
+            checks::refuse("CloudParticles", "particle " + std::to_string(i) + " has level " +
+                                                 std::to_string(levels[i]));
+    // The constructor checks that the arrays agree in length.
+    return std::make_shared<CloudParticlesData>(std::move(positions), std::move(levels),
+                                                std::move(sources));
 }
 
 }  // namespace
@@ -59,14 +76,9 @@ bool CloudParticlesData::serialize(ByteWriter& out) const
 
 void registerCloudParticlesType(Registry& registry)
 {
-    registry.addDataType({"CloudParticles", "cloud particles of one frame: position, level, source id",
-                          [](ByteReader& in) -> DataPtr {
-                              auto positions = readArray<float>(in);
-                              auto levels = readArray<std::uint8_t>(in);
-                              auto sources = readArray<std::uint32_t>(in);
-                              return std::make_shared<CloudParticlesData>(
-                                  std::move(positions), std::move(levels), std::move(sources));
-                          }});
+    registry.addDataType({"CloudParticles",
+                          "cloud particles of one frame: position, level, source id",
+                          readCloudParticles});
 }
 
 }  // namespace cg

@@ -13,6 +13,10 @@ namespace cg {
 
 class Registry;
 
+/// The highest recursive level a cloud particle can have: PrimitiveMapper's maxLevel is at
+/// most this.
+inline constexpr int kMaxCloudLevel = 32;
+
 class CloudParticlesData final : public Data {
 public:
     /// Takes the arrays (GenerateCloud's fresh frame arrays, filled in parallel, never zeroed).

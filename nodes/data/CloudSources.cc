@@ -1,10 +1,83 @@
 #include "nodes/data/CloudSources.h"
 
+#include <limits>
 #include <stdexcept>
 
 #include "core/Registry.h"
+#include "nodes/data/CloudParticles.h"
+#include "nodes/data/ValueChecks.h"
 
 namespace cg {
+
+namespace {
+
+constexpr const char* kType = "CloudSources";
+constexpr std::size_t kStoredSourceBytes = 56;  // seven 8-byte fields
+constexpr std::uint64_t kMaxU32 = std::numeric_limits<std::uint32_t>::max();
+
+/// Reads one record; a field that does not fit its member is refused, not truncated.
+algo::Source readSource(ByteReader& in)
+{
+    algo::Source src;
+    src.level = static_cast<std::uint8_t>(checks::uintUpTo(in.u64(), 255, kType, "level"));
+    src.phase = static_cast<std::uint16_t>(checks::uintUpTo(in.u64(), 65535, kType, "phase"));
+    src.parent = static_cast<std::uint32_t>(checks::uintUpTo(in.u64(), kMaxU32, kType, "parent"));
+    src.parentFluid =
+        static_cast<std::uint32_t>(checks::uintUpTo(in.u64(), kMaxU32, kType, "parent fluid id"));
+    src.startFrame = static_cast<std::int32_t>(
+        checks::intIn(in.u64(), 0, checks::kMaxFrame, kType, "start frame"));
+    const double inf = std::numeric_limits<double>::infinity();
+    src.speed = checks::floatIn(in.f64(), -inf, inf, kType, "speed");
+    src.scale = checks::floatIn(in.f64(), -inf, inf, kType, "scale");
+    return src;
+}
+
+algo::MappingSettings readSettings(ByteReader& in)
+{
+    using L = MappingLimits;
+    algo::MappingSettings s;
+    s.maxLevel = static_cast<int>(checks::intIn(in.u64(), 1, kMaxCloudLevel, kType, "maxLevel"));
+    s.selectionRatio = in.podVector<double>();
+    s.firstStart =
+        static_cast<int>(checks::intIn(in.u64(), -1, L::kMaxFrames, kType, "firstStart"));
+    s.levelDelay = static_cast<int>(checks::intIn(in.u64(), 0, L::kMaxFrames, kType, "levelDelay"));
+    s.windowLength = in.podVector<int>();
+    s.scaleCoefficient =
+        checks::finiteIn(in.f64(), 0.0, L::kMaxCoefficient, kType, "scaleCoefficient");
+    s.speedCoefficient =
+        checks::finiteIn(in.f64(), 0.0, L::kMaxCoefficient, kType, "speedCoefficient");
+    s.metresPerPrimitiveMetre =
+        checks::finiteIn(in.f64(), L::kMinMetres, L::kMaxMetres, kType, "metresPerPrimitiveMetre");
+    // Positive: the primitive time divides by nothing, but a zero step stops every copy.
+    s.timeStep = checks::finiteIn(in.f64(), std::numeric_limits<double>::denorm_min(),
+                                  L::kMaxTimeStep, kType, "time step");
+    s.seed = in.u64();
+    s.maxSources =
+        static_cast<std::uint64_t>(checks::intIn(in.u64(), 1, L::kMaxSources, kType, "maxSources"));
+    s.particlesPerCopy = static_cast<std::uint32_t>(
+        checks::uintUpTo(in.u64(), L::kMaxParticlesPerCopy, kType, "particlesPerCopy"));
+    return s;
+}
+
+DataPtr readCloudSources(ByteReader& in)
+{
+    algo::SourceTable t;
+    const std::uint64_t n = in.u64();
+    if (n > in.remaining() / kStoredSourceBytes)
+        checks::refuse(kType, "record count runs past the end");
+    t.sources.resize(static_cast<std::size_t>(n));
+    for (algo::Source& src : t.sources) src = readSource(in);
+    t.topLevel =
+        static_cast<std::int32_t>(checks::intIn(in.u64(), 1, kMaxCloudLevel, kType, "L_max"));
+    t.levelStart = in.podVector<std::int32_t>();
+    t.condensationTaken = in.podVector<std::uint8_t>();
+    t.cloudTaken = in.podVector<std::uint64_t>();
+    algo::MappingSettings s = readSettings(in);
+    checkSourceTable(t, s);
+    return std::make_shared<CloudSourcesData>(std::move(t), std::move(s));
+}
+
+}  // namespace
 
 std::size_t CloudSourcesData::byteSize() const
 {
@@ -45,46 +118,8 @@ bool CloudSourcesData::serialize(ByteWriter& out) const
 
 void registerCloudSourcesType(Registry& registry)
 {
-    registry.addDataType({"CloudSources", "the mapper's table of source records (Sec. 5.2)",
-                          [](ByteReader& in) -> DataPtr {
-                              algo::SourceTable t;
-                              const std::uint64_t n = in.u64();
-                              if (n > in.remaining() / 56) throw std::runtime_error("CloudSources: bad count");
-                              t.sources.resize(static_cast<std::size_t>(n));
-                              for (algo::Source& src : t.sources) {
-                                  src.level = static_cast<std::uint8_t>(in.u64());
-                                  src.phase = static_cast<std::uint16_t>(in.u64());
-                                  src.parent = static_cast<std::uint32_t>(in.u64());
-                                  src.parentFluid = static_cast<std::uint32_t>(in.u64());
-                                  src.startFrame = static_cast<std::int32_t>(static_cast<std::int64_t>(in.u64()));
-                                  src.speed = static_cast<float>(in.f64());
-                                  src.scale = static_cast<float>(in.f64());
-                              }
-                              t.topLevel = static_cast<std::int32_t>(in.u64());
-                              t.levelStart = in.podVector<std::int32_t>();
-                              t.condensationTaken = in.podVector<std::uint8_t>();
-                              t.cloudTaken = in.podVector<std::uint64_t>();
-                              algo::MappingSettings s;
-                              s.maxLevel = static_cast<int>(in.u64());
-                              s.selectionRatio = in.podVector<double>();
-                              s.firstStart = static_cast<int>(static_cast<std::int64_t>(in.u64()));
-                              s.levelDelay = static_cast<int>(in.u64());
-                              s.windowLength = in.podVector<int>();
-                              s.scaleCoefficient = in.f64();
-                              s.speedCoefficient = in.f64();
-                              s.metresPerPrimitiveMetre = in.f64();
-                              s.timeStep = in.f64();
-                              s.seed = in.u64();
-                              s.maxSources = in.u64();
-                              s.particlesPerCopy = static_cast<std::uint32_t>(in.u64());
-                              for (std::size_t j = 0; j < t.sources.size(); ++j) {
-                                  const algo::Source& src = t.sources[j];
-                                  if (src.level == 0 || src.level > s.maxLevel ||
-                                      (src.level > 1 && src.parent >= j))
-                                      throw std::runtime_error("CloudSources: bad source record");
-                              }
-                              return std::make_shared<CloudSourcesData>(std::move(t), std::move(s));
-                          }});
+    registry.addDataType(
+        {"CloudSources", "the mapper's table of source records (Sec. 5.2)", readCloudSources});
 }
 
 }  // namespace cg

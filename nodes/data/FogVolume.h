@@ -18,7 +18,8 @@ public:
 
     std::string typeName() const override { return "FogVolume"; }
     std::size_t byteSize() const override;
-    /// Through OpenVDB's own stream format (io::Stream), so a stored entry is a valid VDB.
+    /// In FogVolumeCodec's checked format (not OpenVDB's stream format, whose reader crashes
+    /// on mutated bytes); false for a grid that format does not hold exactly.
     bool serialize(ByteWriter& out) const override;
 };
 

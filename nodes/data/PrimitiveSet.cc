@@ -1,10 +1,37 @@
 #include "nodes/data/PrimitiveSet.h"
 
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "core/Registry.h"
+#include "nodes/data/ValueChecks.h"
 
 namespace cg {
+
+namespace {
+
+constexpr const char* kType = "PrimitiveSet";
+
+DataPtr readPrimitiveSet(ByteReader& in)
+{
+    const double frameTime = in.f64();
+    auto counts = in.podVector<std::uint32_t>();
+    auto positions = in.podVector<float>();
+    // Every producer (PrimitiveSim, the .cgp reader) makes at least one frame, a finite frame
+    // time and finite positions; the mapper reads frame count - 1 and divides by the time.
+    if (!std::isfinite(frameTime)) checks::refuse(kType, "frame time is not finite");
+    if (counts.empty()) checks::refuse(kType, "no frames");
+    if (counts.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+        checks::refuse(kType, std::to_string(counts.size()) + " frames do not fit an int");
+    for (std::size_t i = 0; i < positions.size(); ++i)
+        if (!std::isfinite(positions[i]))
+            checks::refuse(kType, "coordinate " + std::to_string(i) + " is not finite");
+    // The constructor checks that the counts never decrease and match the positions.
+    return std::make_shared<PrimitiveSetData>(frameTime, std::move(counts), std::move(positions));
+}
+
+}  // namespace
 
 PrimitiveSetData::PrimitiveSetData(double frameTime_, std::vector<std::uint32_t> counts_,
                                    std::vector<float> positions_)
@@ -12,14 +39,17 @@ PrimitiveSetData::PrimitiveSetData(double frameTime_, std::vector<std::uint32_t>
 {
     if (!(frameTime > 0.0)) throw std::invalid_argument("PrimitiveSet: frame time must be positive");
     mOffsets.reserve(counts.size());
+    // Bounded by the positions as it grows, so a huge sum of counts cannot wrap around.
+    const std::uint64_t particles = positions.size() / 3;
     std::uint64_t total = 0;
     for (std::size_t s = 0; s < counts.size(); ++s) {
         if (s > 0 && counts[s] < counts[s - 1])
             throw std::invalid_argument("PrimitiveSet: N_f(s) decreases at frame " + std::to_string(s));
         mOffsets.push_back(total);
         total += counts[s];
+        if (total > particles) break;
     }
-    if (positions.size() != 3 * total)
+    if (total != particles || positions.size() % 3 != 0)
         throw std::invalid_argument("PrimitiveSet: positions do not match the counts");
 }
 
@@ -57,15 +87,9 @@ bool PrimitiveSetData::serialize(ByteWriter& out) const
 
 void registerPrimitiveSetType(Registry& registry)
 {
-    registry.addDataType({"PrimitiveSet",
-                          "the 3D cloud primitive set: condensed fluid particle positions per frame",
-                          [](ByteReader& in) -> DataPtr {
-                              const double frameTime = in.f64();
-                              auto counts = in.podVector<std::uint32_t>();
-                              auto positions = in.podVector<float>();
-                              return std::make_shared<PrimitiveSetData>(frameTime, std::move(counts),
-                                                                        std::move(positions));
-                          }});
+    registry.addDataType(
+        {"PrimitiveSet", "the 3D cloud primitive set: condensed fluid particle positions per frame",
+         readPrimitiveSet});
 }
 
 }  // namespace cg

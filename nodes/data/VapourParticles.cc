@@ -1,11 +1,79 @@
 #include "nodes/data/VapourParticles.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "core/Registry.h"
+#include "nodes/data/ValueChecks.h"
 
 namespace cg {
+
+namespace {
+
+/// What the emitter guarantees and the statics never lose: ids 0..N-1 in emission order,
+/// emitted cell by cell in row-major order, at finite x, y on the map (corner at the origin).
+/// Heights, velocities and temperatures are not checked: the explicit integrator may
+/// honestly overflow them, and their consumers (condensation's comparison, the voxelizer's
+/// finiteness check, the writers) cope.
+void checkStatics(const VapourStatics& s, const char* type)
+{
+    for (std::size_t i = 0; i < s.id.size(); ++i) {
+        if (s.id[i] != i)
+            checks::refuse(type,
+                           "particle " + std::to_string(i) + " has id " + std::to_string(s.id[i]));
+        if (i > 0 && s.homeCell[i] < s.homeCell[i - 1])
+            checks::refuse(type,
+                           "home cells are not in emission order at particle " + std::to_string(i));
+        if (!(s.x[i] >= 0.0f && s.y[i] >= 0.0f) || !std::isfinite(s.x[i]) || !std::isfinite(s.y[i]))
+            checks::refuse(type, "particle " + std::to_string(i) + " is not on the map");
+    }
+}
+
+std::shared_ptr<const VapourParticlesData> readParticles(ByteReader& in, const char* type)
+{
+    auto statics = std::make_shared<VapourStatics>();
+    statics->id = in.podVector<std::uint32_t>();
+    statics->homeCell = in.podVector<std::uint32_t>();
+    statics->x = in.podVector<float>();
+    statics->y = in.podVector<float>();
+    auto z = in.podVector<float>();
+    auto vz = in.podVector<float>();
+    auto t = in.podVector<float>();
+    const std::size_t n = statics->id.size();
+    if (statics->homeCell.size() != n || statics->x.size() != n || statics->y.size() != n ||
+        z.size() != n || vz.size() != n || t.size() != n)
+        checks::refuse(type, "particle arrays differ in length");
+    checkStatics(*statics, type);
+    return std::make_shared<VapourParticlesData>(std::move(statics), std::move(z), std::move(vz),
+                                                 std::move(t));
+}
+
+/// Condensation frames are -1 (still vapour) or the frame a particle condensed, and the first
+/// condensation frame is the earliest of them (-1 while there is none).
+DataPtr readCondensation(ByteReader& in)
+{
+    constexpr const char* kType = "Condensation";
+    auto particles = readParticles(in, kType);
+    auto frames = in.podVector<std::int32_t>();
+    const auto first = static_cast<std::int32_t>(
+        checks::intIn(in.u64(), -1, checks::kMaxFrame, kType, "first frame"));
+    if (frames.size() != particles->size())
+        checks::refuse(kType, "condensation frames differ in length from the particles");
+    std::int64_t earliest = -1;
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        if (frames[i] < -1 || frames[i] > checks::kMaxFrame)
+            checks::refuse(kType, "particle " + std::to_string(i) + " condensed at frame " +
+                                      std::to_string(frames[i]));
+        if (frames[i] >= 0 && (earliest < 0 || frames[i] < earliest)) earliest = frames[i];
+    }
+    if (first != earliest)
+        checks::refuse(kType, "first condensation frame " + std::to_string(first) +
+                                  " but the earliest is " + std::to_string(earliest));
+    return std::make_shared<CondensationData>(std::move(particles), std::move(frames), first);
+}
+
+}  // namespace
 
 VapourParticlesData::VapourParticlesData(std::shared_ptr<const VapourStatics> statics_,
                                          std::vector<float> z_, std::vector<float> vz_,
@@ -39,16 +107,7 @@ bool VapourParticlesData::serialize(ByteWriter& out) const
 
 std::shared_ptr<const VapourParticlesData> VapourParticlesData::deserialize(ByteReader& in)
 {
-    auto statics = std::make_shared<VapourStatics>();
-    statics->id = in.podVector<std::uint32_t>();
-    statics->homeCell = in.podVector<std::uint32_t>();
-    statics->x = in.podVector<float>();
-    statics->y = in.podVector<float>();
-    auto z = in.podVector<float>();
-    auto vz = in.podVector<float>();
-    auto t = in.podVector<float>();
-    return std::make_shared<VapourParticlesData>(std::move(statics), std::move(z), std::move(vz),
-                                                 std::move(t));
+    return readParticles(in, "VapourParticles");
 }
 
 CondensationData::CondensationData(std::shared_ptr<const VapourParticlesData> particles_,
@@ -87,13 +146,7 @@ void registerVapourParticleTypes(Registry& registry)
     registry.addDataType({"Condensation",
                           "vapour particles with the frame at which each condensed, and the "
                           "first condensation frame",
-                          [](ByteReader& in) -> DataPtr {
-                              auto particles = VapourParticlesData::deserialize(in);
-                              auto frames = in.podVector<std::int32_t>();
-                              const auto first = static_cast<std::int32_t>(static_cast<std::int64_t>(in.u64()));
-                              return std::make_shared<CondensationData>(std::move(particles),
-                                                                        std::move(frames), first);
-                          }});
+                          readCondensation});
 }
 
 }  // namespace cg
