@@ -1,14 +1,14 @@
 // Fuzz target: the primitive-set reader (.cgp, nodes/algo/PrimitiveFile.h). The input is a
 // whole file whose checksums are then made valid, as a forged file's would be, so the fuzzer
-// reaches the index and frame checks behind them. The reader only opens paths, so each input
-// goes through one temporary file per process. Every rejection must be a cg::InputError.
+// reaches the index and frame checks behind them. Every rejection must be a cg::InputError, and
+// a file that opens must yield every position it declares.
+#include <sys/mman.h>
 #include <unistd.h>
 
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -56,15 +56,15 @@ void forgeChecksums(std::vector<unsigned char>& f)
     }
 }
 
-const std::string& tempPath()
+/// The reader only opens paths: each input goes into one memory file per process (no file on
+/// disk to clean up, and fast), opened again by the reader through /proc/self/fd.
+const std::string& memoryFile(const std::vector<unsigned char>& bytes)
 {
-    static const std::string path = [] {
-        const char* dir = std::getenv("TMPDIR");
-        std::string p = std::string(dir && *dir ? dir : "/tmp") + "/cloudgraph-fuzz-cgp-" +
-                        std::to_string(::getpid()) + ".cgp";
-        std::atexit([] { ::unlink(tempPath().c_str()); });
-        return p;
-    }();
+    static const int fd = ::memfd_create("fuzz.cgp", MFD_CLOEXEC);
+    static const std::string path = "/proc/self/fd/" + std::to_string(fd);
+    if (fd < 0 || ::ftruncate(fd, 0) != 0 ||
+        ::pwrite(fd, bytes.data(), bytes.size(), 0) != static_cast<ssize_t>(bytes.size()))
+        std::abort();  // the harness's own failure, not a finding
     return path;
 }
 
@@ -74,19 +74,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 {
     std::vector<unsigned char> file(data, data + size);
     forgeChecksums(file);
-    {
-        std::ofstream out(tempPath(), std::ios::binary | std::ios::trunc);
-        out.write(reinterpret_cast<const char*>(file.data()),
-                  static_cast<std::streamsize>(file.size()));
-        if (!out) std::abort();  // the harness's own failure, not a finding
-    }
+    const std::string& path = memoryFile(file);
     try {
-        cg::algo::PrimitiveFileReader reader(tempPath());
+        cg::algo::PrimitiveFileReader reader(path);
         const std::vector<float> all = reader.readAll();
         std::uint64_t total = 0;
         for (std::uint32_t n : reader.counts()) total += n;
         if (all.size() != 3 * total) std::abort();  // readAll must return every position
-        cg::algo::primitiveFileContentHash(tempPath());
+        cg::algo::primitiveFileContentHash(path);
     } catch (const cg::InputError&) {
     }
     return 0;

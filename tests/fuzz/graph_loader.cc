@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <string>
 
+#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
 #include "core/Error.h"
