@@ -66,6 +66,9 @@ bool TextData::serialize(ByteWriter& out) const
     return true;
 }
 
+// Every bit pattern is a valid Float, Int, FloatArray or Text (NaN included: Statistics of no
+// values makes it), so a stored one is checked only for its length, which ByteReader bounds
+// by the bytes left before anything is allocated.
 void registerCoreDataTypes(Registry& registry)
 {
     registry.addDataType({"Float", "a number",

@@ -9,7 +9,8 @@
 ///            translation within 1e9 m
 ///   f32      background: 0 (a fog volume's)
 ///   u64      metadata count; per entry, names strictly increasing (not "name" or "class":
-///            the grid is always "density", class fog volume):
+///            the grid is always "density", class fog volume; none of the other names OpenVDB
+///            reserves, such as "file_compression", whose types its writer assumes):
 ///              str name, u64 kind, value: 1 bool (u64 0 or 1), 2 int32 (u64, two's
 ///              complement of the int64), 3 int64 (u64), 4 float (f32), 5 double (f64),
 ///              6 string (str)
@@ -24,8 +25,8 @@
 ///
 /// Every value is finite and in [0, 1]; every voxel a tile or leaf covers has coordinates of
 /// magnitude below 2^30; no tile or leaf lies inside a tile of a higher level; the internal
-/// nodes the tiles and leaves need take at most kMaxNodeBytes beyond 32 times the leaves'
-/// bytes (a few bytes of tile must not make megabytes of nodes). The decoder refuses anything
+/// nodes the tiles and leaves need take at most 256 MiB beyond 32 times the leaves' memory
+/// (a few bytes of tile must not make megabytes of nodes). The decoder refuses anything
 /// else, so a mutated entry is a miss to recook, never a crash or an absurd allocation; the
 /// encoder refuses (returns false for) any grid the decoder would refuse.
 
@@ -63,8 +64,8 @@ constexpr std::uint64_t kMaxNodeBytes = std::uint64_t{256} << 20;
 constexpr std::uint64_t kWordsPerMask = Leaf::NodeMaskType::WORD_COUNT;
 constexpr std::size_t kTileBytes = 8 + 3 * 8 + 4 + 8;
 constexpr std::size_t kLeafBytes = 3 * 8 + kWordsPerMask * 8 + Leaf::SIZE * 4;
+constexpr std::size_t kLeafMemory = sizeof(Leaf) + Leaf::SIZE * sizeof(float);  // with its buffer
 constexpr std::size_t kMetaEntryBytes = 3 * 8;  // at least a name length, a kind, a value
-constexpr const char* kReservedMeta[] = {"name", "class"};
 
 enum MetaKind : std::uint64_t { kBool = 1, kInt32, kInt64, kFloat, kDouble, kString };
 
@@ -152,17 +153,30 @@ std::optional<std::string> nodeBytesProblem(const std::vector<Tile>& tiles,
     }
     const std::uint64_t nodeBytes =
         ones.size() * sizeof(Internal1) + twos.size() * sizeof(Internal2);
-    const std::uint64_t budget = kMaxNodeBytes + 32 * leaves.size() * sizeof(Leaf);
+    const std::uint64_t budget = kMaxNodeBytes + 32 * leaves.size() * kLeafMemory;
     if (nodeBytes > budget)
         return "its internal nodes would take " + std::to_string(nodeBytes) + " bytes, over " +
                std::to_string(budget);
     return std::nullopt;
 }
 
-bool reservedMeta(const std::string& name)
+/// "name" and "class": not stored, the decoder sets them.
+bool identityMeta(const std::string& name)
 {
-    return std::any_of(std::begin(kReservedMeta), std::end(kReservedMeta),
-                       [&](const char* r) { return name == r; });
+    return name == openvdb::GridBase::META_GRID_NAME || name == openvdb::GridBase::META_GRID_CLASS;
+}
+
+/// Names OpenVDB gives a meaning (and a type) of its own when it writes or reads a grid: a
+/// forged one could make a writer fail. No producer sets them.
+bool openVdbMeta(const std::string& name)
+{
+    using G = openvdb::GridBase;
+    for (const char* owned : {G::META_GRID_CREATOR, G::META_SAVE_HALF_FLOAT, G::META_IS_LOCAL_SPACE,
+                              G::META_VECTOR_TYPE, G::META_FILE_BBOX_MIN, G::META_FILE_BBOX_MAX,
+                              G::META_FILE_COMPRESSION, G::META_FILE_MEM_BYTES,
+                              G::META_FILE_VOXEL_COUNT, G::META_FILE_DELAYED_LOAD})
+        if (name == owned) return true;
+    return false;
 }
 
 // ---- encoding ------------------------------------------------------------------------------
@@ -176,24 +190,33 @@ void putCoord(ByteWriter& out, const Coord& c)
 bool encodeMeta(const openvdb::FloatGrid& grid, ByteWriter& out)
 {
     std::size_t count = 0;
-    for (auto it = grid.beginMeta(); it != grid.endMeta(); ++it) count += !reservedMeta(it->first);
+    for (auto it = grid.beginMeta(); it != grid.endMeta(); ++it) {
+        if (openVdbMeta(it->first)) return false;
+        count += !identityMeta(it->first);
+    }
     out.u64(count);
     for (auto it = grid.beginMeta(); it != grid.endMeta(); ++it) {  // std::map: names in order
-        if (reservedMeta(it->first)) continue;
+        if (identityMeta(it->first)) continue;
         const openvdb::Metadata& m = *it->second;
         out.str(it->first);
         if (const auto* b = dynamic_cast<const openvdb::BoolMetadata*>(&m)) {
-            out.u64(kBool), out.u64(b->value() ? 1 : 0);
+            out.u64(kBool);
+            out.u64(b->value() ? 1 : 0);
         } else if (const auto* i = dynamic_cast<const openvdb::Int32Metadata*>(&m)) {
-            out.u64(kInt32), out.u64(static_cast<std::uint64_t>(std::int64_t{i->value()}));
+            out.u64(kInt32);
+            out.u64(static_cast<std::uint64_t>(std::int64_t{i->value()}));
         } else if (const auto* l = dynamic_cast<const openvdb::Int64Metadata*>(&m)) {
-            out.u64(kInt64), out.u64(static_cast<std::uint64_t>(l->value()));
+            out.u64(kInt64);
+            out.u64(static_cast<std::uint64_t>(l->value()));
         } else if (const auto* f = dynamic_cast<const openvdb::FloatMetadata*>(&m)) {
-            out.u64(kFloat), putF32(out, f->value());
+            out.u64(kFloat);
+            putF32(out, f->value());
         } else if (const auto* d = dynamic_cast<const openvdb::DoubleMetadata*>(&m)) {
-            out.u64(kDouble), out.f64(d->value());
+            out.u64(kDouble);
+            out.f64(d->value());
         } else if (const auto* s = dynamic_cast<const openvdb::StringMetadata*>(&m)) {
-            out.u64(kString), out.str(s->value());
+            out.u64(kString);
+            out.str(s->value());
         } else {
             return false;  // a kind this format does not hold
         }
@@ -283,7 +306,7 @@ void decodeMeta(ByteReader& in, openvdb::FloatGrid& grid)
     std::string previous;
     for (std::uint64_t k = 0; k < count; ++k) {
         std::string name = in.str();
-        if (name.empty() || (k > 0 && name <= previous) || reservedMeta(name))
+        if (name.empty() || (k > 0 && name <= previous) || identityMeta(name) || openVdbMeta(name))
             refuse("metadata name '" + name + "' is empty, out of order or reserved");
         switch (in.u64()) {
             case kBool:

@@ -13,7 +13,8 @@ namespace cg {
 /// volume this format holds exactly: named "density", class fog volume, background 0, a
 /// linear transform (finite, affine, non-singular, voxels of 1e-3 m to 1e6 m), values finite
 /// in [0, 1], voxels within +-2^30, metadata of kinds bool, int32, int64, float, double or
-/// string, internal nodes taking at most kMaxNodeBytes beyond 32 times the leaves' bytes.
+/// string (none under the names OpenVDB reserves), internal nodes taking at most 256 MiB
+/// beyond 32 times the leaves' memory.
 bool encodeFogVolume(const openvdb::FloatGrid& grid, ByteWriter& out);
 
 /// Rebuilds what encodeFogVolume wrote: the same active voxels, values, tiles, transform and

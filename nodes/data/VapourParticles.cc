@@ -43,7 +43,7 @@ std::shared_ptr<const VapourParticlesData> readParticles(ByteReader& in, const c
     const std::size_t n = statics->id.size();
     if (statics->homeCell.size() != n || statics->x.size() != n || statics->y.size() != n ||
         z.size() != n || vz.size() != n || t.size() != n)
-        checks::refuse(type, "particle arrays differ in length");
+        checks::refuse(type, "particle arrays differ in length");  // before checkStatics reads them
     checkStatics(*statics, type);
     return std::make_shared<VapourParticlesData>(std::move(statics), std::move(z), std::move(vz),
                                                  std::move(t));
@@ -58,8 +58,6 @@ DataPtr readCondensation(ByteReader& in)
     auto frames = in.podVector<std::int32_t>();
     const auto first = static_cast<std::int32_t>(
         checks::intIn(in.u64(), -1, checks::kMaxFrame, kType, "first frame"));
-    if (frames.size() != particles->size())
-        checks::refuse(kType, "condensation frames differ in length from the particles");
     std::int64_t earliest = -1;
     for (std::size_t i = 0; i < frames.size(); ++i) {
         if (frames[i] < -1 || frames[i] > checks::kMaxFrame)
@@ -70,6 +68,7 @@ DataPtr readCondensation(ByteReader& in)
     if (first != earliest)
         checks::refuse(kType, "first condensation frame " + std::to_string(first) +
                                   " but the earliest is " + std::to_string(earliest));
+    // The constructor checks that there is one frame per particle.
     return std::make_shared<CondensationData>(std::move(particles), std::move(frames), first);
 }
 

@@ -328,6 +328,9 @@ TEST(CachedValueDecoding, CloudParticlesRoundTripAndRefuseBadLevelsAndLengths)
                   concat({podBytes(positions), podBytes(std::vector<std::uint8_t>{1, 2}),
                           podBytes(std::vector<std::uint32_t>{0})}),
                   "arrays differ in length");
+    ByteWriter huge;  // a count checked before allocating
+    huge.u64(std::uint64_t{1} << 60);
+    expectRefused("CloudParticles", huge.buffer(), "truncated payload");
 }
 
 // ---- VapourParticles and Condensation ------------------------------------------------------
@@ -395,8 +398,8 @@ TEST(CachedValueDecoding, VapourParticlesRoundTripAndRefuseBrokenStatics)
     forged([](VapourFields& g) { g.x[4] = -1.0f; }, "particle 4 is not on the map");
     forged([](VapourFields& g) { g.y[4] = kNaN; }, "particle 4 is not on the map");
     forged([](VapourFields& g) { g.x[4] = kInf; }, "particle 4 is not on the map");
-    forged([](VapourFields& g) { g.vz.pop_back(); }, "arrays differ in length");
-    forged([](VapourFields& g) { g.homeCell.pop_back(); }, "arrays differ in length");
+    forged([](VapourFields& g) { g.vz.pop_back(); }, "particle arrays differ in length");
+    forged([](VapourFields& g) { g.homeCell.pop_back(); }, "particle arrays differ in length");
 }
 
 Bytes condensationBytes(const VapourFields& f, const std::vector<std::int32_t>& frames,
@@ -719,6 +722,14 @@ TEST(CachedValueDecoding, CloudSourcesFitTheirInputsOrAreRefused)
             s.table.sources[s.first(2)].parent = static_cast<std::uint32_t>(s.first(2));
         },
         "parent does not precede it");
+    expectMisfit(
+        [](MapperScene& s) { s.table.sources[s.table.sources[s.first(2)].parent].speed = -1.0f; },
+        "primitive time is negative");
+    const MapperScene scene;
+    const PrimitiveSetData noFrames(1.0, {}, {});
+    EXPECT_THROW(checkSourcesFit(CloudSourcesData(scene.table, scene.settings), *scene.condensation,
+                                 noFrames),
+                 std::runtime_error);
 }
 
 // ---- FogVolume ----------------------------------------------------------------------------
@@ -890,6 +901,7 @@ TEST(CachedValueDecoding, FogVolumeEncoderRefusesGridsItCannotHold)
     background->setName("density");
     background->setGridClass(openvdb::GRID_FOG_VOLUME);
     EXPECT_TRUE(refused(background));
+    EXPECT_TRUE(refused(changed([](FloatGrid& g) { g.setCreator("someone"); })));  // OpenVDB's name
 }
 
 /// Builds FogVolume bytes field by field, valid by default, so a test can forge one field.
@@ -1012,6 +1024,11 @@ TEST(CachedValueDecoding, FogVolumeRefusesForgedHeaders)
             f.meta[1] = [](ByteWriter& w) { w.str("w"), w.u64(2), w.u64(std::uint64_t{1} << 31); };
         },
         "int32 2147483648 is outside");
+    expectFogRefused(
+        [](F& f) {
+            f.meta[0] = [](ByteWriter& w) { w.str("file_compression"), w.u64(3), w.u64(1); };
+        },
+        "'file_compression' is empty, out of order or reserved");
 }
 
 TEST(CachedValueDecoding, FogVolumeRefusesForgedTilesAndLeaves)
