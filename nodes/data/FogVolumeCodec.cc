@@ -115,10 +115,20 @@ std::optional<std::string> matrixProblem(const openvdb::Mat4d& m)
     return std::nullopt;
 }
 
+bool valueOk(float v) { return v >= 0.0f && v <= 1.0f; }  // NaN is not
+
 std::optional<std::string> valueProblem(float v)
 {
-    if (!(v >= 0.0f && v <= 1.0f)) return "value " + std::to_string(v) + " is outside [0, 1]";
+    if (!valueOk(v)) return "value " + std::to_string(v) + " is outside [0, 1]";
     return std::nullopt;
+}
+
+/// The first of a leaf's values outside [0, 1], or nullptr.
+const float* firstBadValue(const float* values)
+{
+    const float* end = values + Leaf::SIZE;
+    const float* bad = std::find_if_not(values, end, valueOk);
+    return bad == end ? nullptr : bad;
 }
 
 /// Every voxel of the cube [origin, origin + side) within +-2^30, origin a multiple of side.
@@ -248,9 +258,8 @@ std::optional<std::vector<const Leaf*>> collectLeaves(const Tree& tree)
     std::vector<const Leaf*> leaves;
     for (auto it = tree.cbeginLeaf(); it; ++it) {
         const Leaf& leaf = *it;
-        if (cubeProblem(leaf.origin(), Leaf::DIM)) return std::nullopt;
-        for (openvdb::Index i = 0; i < Leaf::SIZE; ++i)
-            if (valueProblem(leaf.getValue(i))) return std::nullopt;
+        if (cubeProblem(leaf.origin(), Leaf::DIM) || firstBadValue(leaf.buffer().data()))
+            return std::nullopt;
         leaves.push_back(&leaf);
     }
     std::sort(leaves.begin(), leaves.end(),
@@ -385,13 +394,11 @@ std::vector<std::unique_ptr<Leaf>> decodeLeaves(ByteReader& in, const std::vecto
         Leaf::NodeMaskType mask;
         for (openvdb::Index w = 0; w < kWordsPerMask; ++w)
             mask.getWord<openvdb::Index64>(w) = in.u64();
-        std::array<float, Leaf::SIZE> values;
-        in.bytes(values.data(), sizeof values);
-        for (float v : values)
-            if (auto p = valueProblem(v)) refuse("leaf " + *p);
         auto leaf = std::make_unique<Leaf>(origin, 0.0f);
-        for (openvdb::Index i = 0; i < Leaf::SIZE; ++i) leaf->setValueOnly(i, values[i]);
         leaf->setValueMask(mask);
+        float* values = leaf->buffer().data();
+        in.bytes(values, Leaf::SIZE * sizeof(float));
+        if (const float* bad = firstBadValue(values)) refuse("leaf " + *valueProblem(*bad));
         leaves.push_back(std::move(leaf));
     }
     return leaves;
@@ -433,7 +440,7 @@ bool encodeFogVolume(const openvdb::FloatGrid& grid, ByteWriter& out)
         putCoord(out, leaf->origin());
         for (openvdb::Index w = 0; w < kWordsPerMask; ++w)
             out.u64(leaf->getValueMask().getWord<openvdb::Index64>(w));
-        for (openvdb::Index i = 0; i < Leaf::SIZE; ++i) putF32(out, leaf->getValue(i));
+        out.bytes(leaf->buffer().data(), Leaf::SIZE * sizeof(float));  // as f32 one by one
     }
     return true;
 }
