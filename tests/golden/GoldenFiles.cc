@@ -1,0 +1,102 @@
+#include "golden/GoldenFiles.h"
+
+#include <cstdint>
+#include <fstream>
+#include <map>
+#include <string>
+
+#include "nodes/algo/MapImage.h"
+#include "nodes/algo/PngFile.h"
+
+namespace cg::golden {
+
+namespace {
+
+/// WriteImage's 8-bit RGB frames (mean code value per channel) or WriteMap's 16-bit grey
+/// previews (mean value).
+void png(Stats& s, const std::string& path)
+{
+    algo::PngPixels px;
+    try {
+        px = algo::readPng(path, 3, 8, 1u << 14);
+    } catch (const std::runtime_error&) {
+        const algo::MapImage grey = algo::readPng16(path);
+        double sum = 0.0;
+        for (float v : grey.values) sum += v;
+        s["width"] = {Kind::Count, static_cast<double>(grey.nx)};
+        s["height"] = {Kind::Count, static_cast<double>(grey.ny)};
+        s["mean"] = {Kind::Mean, grey.values.empty() ? 0.0 : sum / static_cast<double>(grey.values.size())};
+        return;
+    }
+    s["width"] = {Kind::Count, static_cast<double>(px.width)};
+    s["height"] = {Kind::Count, static_cast<double>(px.height)};
+    double sums[3] = {};
+    for (std::size_t i = 0; i < px.bytes.size(); ++i) sums[i % 3] += px.bytes[i];
+    const double pixels = static_cast<double>(px.bytes.size() / 3);
+    const char* channels[] = {"mean_r", "mean_g", "mean_b"};
+    for (int c = 0; c < 3; ++c) s[channels[c]] = {Kind::Mean, pixels > 0 ? sums[c] / pixels : 0.0};
+}
+
+/// Every grid by name; of fog volumes, what writing and reading back must keep (the rest is
+/// the Voxelizer's, recorded from its output). Half floats come back widened.
+void vdb(Stats& s, const std::string& path)
+{
+    const char* kept[] = {"active_voxels", "value_sum", "value_max", "voxel_size"};
+    openvdb::io::File file(path);
+    file.open();
+    std::int64_t grids = 0;
+    for (auto it = file.beginName(); it != file.endName(); ++it, ++grids) {
+        const openvdb::GridBase::Ptr base = file.readGrid(it.gridName());
+        const auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+        if (!grid) continue;
+        const Stats all = gridStats(*grid);
+        for (const char* name : kept) s[it.gridName() + "_" + name] = all.at(name);
+    }
+    file.close();
+    s["grids"] = {Kind::Count, static_cast<double>(grids)};
+}
+
+/// The vertex count from the header: what Blender or Houdini will load.
+void ply(Stats& s, const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    for (std::string line; std::getline(in, line) && line != "end_header";)
+        if (line.rfind("element vertex ", 0) == 0)
+            s["vertices"] = {Kind::Count, static_cast<double>(std::stoll(line.substr(15)))};
+}
+
+void pfm(Stats& s, const std::string& path)
+{
+    const algo::MapImage map = algo::readPfm(path);
+    double sum = 0.0;
+    for (float v : map.values) sum += v;
+    s["nx"] = {Kind::Count, static_cast<double>(map.nx)};
+    s["ny"] = {Kind::Count, static_cast<double>(map.ny)};
+    s["mean"] = {Kind::Mean, map.values.empty() ? 0.0 : sum / static_cast<double>(map.values.size())};
+}
+
+}  // namespace
+
+Stats fileStats(const std::filesystem::path& outDir)
+{
+    Stats all;
+    std::map<std::string, std::int64_t> counts;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(outDir)) {
+        if (!e.is_regular_file()) continue;
+        const std::string dir = e.path().parent_path().lexically_relative(outDir).generic_string();
+        const std::string ext = e.path().extension().string();
+        const std::string where = "files/" + (dir.empty() ? "." : dir) + "/";
+        ++counts[where + (ext.empty() ? "none" : ext.substr(1))];
+        Stats s;
+        const std::string path = e.path().string();
+        if (ext == ".png") png(s, path);
+        if (ext == ".vdb") vdb(s, path);
+        if (ext == ".ply") ply(s, path);
+        if (ext == ".pfm") pfm(s, path);
+        for (const auto& [name, stat] : s) all[where + e.path().filename().string() + "/" + name] = stat;
+    }
+    for (const auto& [name, n] : counts) all[name] = {Kind::Count, static_cast<double>(n)};
+    return all;
+}
+
+}  // namespace cg::golden
