@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "core/Registry.h"
+#include "util/LittleEndian.h"
 
 namespace cg {
 
@@ -17,9 +18,7 @@ std::uint64_t ByteReader::u64()
 {
     unsigned char b[8];
     bytes(b, 8);
-    std::uint64_t v = 0;
-    for (int i = 7; i >= 0; --i) v = (v << 8) | b[i];
-    return v;
+    return util::getU64(b);
 }
 
 double ByteReader::f64()

@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "util/LittleEndian.h"
+
 namespace cg {
 
 /// Little-endian byte sink for the disk cache.
@@ -23,7 +25,7 @@ public:
     void u64(std::uint64_t v)
     {
         unsigned char b[8];
-        for (int i = 0; i < 8; ++i) b[i] = static_cast<unsigned char>(v >> (8 * i));
+        util::putU64(b, v);
         bytes(b, 8);
     }
     void f64(double v)

@@ -38,6 +38,7 @@
 #include "core/Error.h"
 #include "core/Registry.h"
 #include "util/SystemMemory.h"
+#include "util/LittleEndian.h"
 
 namespace cg {
 
@@ -54,26 +55,10 @@ constexpr std::uint64_t kMaxEntryBytes = 64ull << 30;
 /// Records are small JSON explanations; a larger file is not one of ours.
 constexpr std::uint64_t kMaxRecordBytes = 16ull << 20;
 
-void putU32(unsigned char* p, std::uint32_t v)
-{
-    for (int i = 0; i < 4; ++i) p[i] = static_cast<unsigned char>(v >> (8 * i));
-}
-void putU64(unsigned char* p, std::uint64_t v)
-{
-    for (int i = 0; i < 8; ++i) p[i] = static_cast<unsigned char>(v >> (8 * i));
-}
-std::uint32_t getU32(const unsigned char* p)
-{
-    std::uint32_t v = 0;
-    for (int i = 3; i >= 0; --i) v = (v << 8) | p[i];
-    return v;
-}
-std::uint64_t getU64(const unsigned char* p)
-{
-    std::uint64_t v = 0;
-    for (int i = 7; i >= 0; --i) v = (v << 8) | p[i];
-    return v;
-}
+using util::getU32;
+using util::getU64;
+using util::putU32;
+using util::putU64;
 
 /// Bytes that are not a valid entry: it is removed and recooked. Other failures (I/O, out
 /// of memory) leave the entry alone, as it may well be valid.

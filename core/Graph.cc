@@ -9,6 +9,7 @@
 
 #include "core/Error.h"
 #include "util/FramePattern.h"
+#include "util/InputFile.h"
 #include "core/JsonParse.h"
 
 namespace cg {
@@ -23,6 +24,15 @@ void checkParamRole(const ParamDecl& decl, const ParamValue& value, const LoadOp
                                     paramToString(decl.defaultValue) +
                                     "' or given by the environment (see the node's docs); "
                                     "pass --allow-graph-programs to trust this graph");
+    }
+    if (decl.role == ParamRole::InputFile) {
+        // Checked when the graph is loaded, so `validate` refuses what `run` could not read.
+        const auto* file = std::get_if<std::string>(&value);
+        if (!file) return;
+        if (const std::string problem = util::inputFileProblem(*file, options.allocationLimitBytes);
+            !problem.empty())
+            throw InputError(where, "input file '" + *file + "' " + problem);
+        return;
     }
     if (decl.role != ParamRole::OutputPath) return;
     const auto* path = std::get_if<std::string>(&value);

@@ -13,6 +13,7 @@
 
 #include "core/NodeDecl.h"
 #include "core/Param.h"
+#include "util/SystemMemory.h"
 
 namespace cg {
 
@@ -39,7 +40,9 @@ struct FrameRange {
 
 /// Limits applied while loading untrusted graphs.
 struct LoadOptions {
-    std::uint64_t allocationLimitBytes = 16ull << 30;  ///< most one node may allocate
+    /// The most one node may allocate: util::nodeAllocationLimitBytes() (a quarter of the
+    /// machine's memory, at most 16 GiB).
+    std::uint64_t allocationLimitBytes = util::nodeAllocationLimitBytes();
     int maxJsonDepth = 64;
     std::size_t maxFileBytes = 64u << 20;
     /// Lets OutputPath parameters be absolute or climb out with "..".

@@ -1,4 +1,5 @@
 #include "core/Hash.h"
+#include "util/LittleEndian.h"
 
 #include <cstring>
 
@@ -60,7 +61,7 @@ Hasher& Hasher::str(std::string_view s)
 Hasher& Hasher::u64(std::uint64_t v)
 {
     unsigned char b[8];
-    for (int i = 0; i < 8; ++i) b[i] = static_cast<unsigned char>(v >> (8 * i));
+    util::putU64(b, v);
     return bytes(b, sizeof b);
 }
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs CloudGraph's build dependencies from Debian 12 packages, non-interactively.
 # Returns at once when everything is already installed.
+# Usage: scripts/install-deps.sh [--tests]   (--tests: also what only the test suite needs)
 set -euo pipefail
 
 packages=(
@@ -11,6 +12,12 @@ packages=(
     ccache  # rebuilds and the sanitizer build reuse compiled objects
     ffmpeg  # EncodeVideo runs the ffmpeg program (H.264 via libx264)
 )
+if [ "${1:-}" = "--tests" ]; then
+    packages+=(
+        clang libclang-rt-14-dev  # the sanitizer build and the libFuzzer targets (CI)
+        blender  # ctest -L blender follows the user guide's Blender steps (Debian 12: 3.4)
+    )
+fi
 
 missing=()
 for p in "${packages[@]}"; do

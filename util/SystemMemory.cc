@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <string>
 
@@ -17,6 +18,11 @@ std::uint64_t availableMemoryBytes()
         if (key == "MemAvailable:") return kib * 1024;
         meminfo.ignore(64, '\n');
     }
+    return physicalMemoryBytes();
+}
+
+std::uint64_t physicalMemoryBytes()
+{
 #if defined(_SC_PHYS_PAGES)
     const long pages = ::sysconf(_SC_PHYS_PAGES);
     const long pageSize = ::sysconf(_SC_PAGESIZE);
@@ -24,6 +30,13 @@ std::uint64_t availableMemoryBytes()
         return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(pageSize);
 #endif
     return 0;
+}
+
+std::uint64_t nodeAllocationLimitBytes()
+{
+    constexpr std::uint64_t kMostForOneNode = 16ull << 30;
+    const std::uint64_t physical = physicalMemoryBytes();
+    return physical == 0 ? kMostForOneNode : std::min(kMostForOneNode, physical / 4);
 }
 
 }  // namespace cg::util

@@ -1,4 +1,5 @@
 #include "nodes/algo/CloudPly.h"
+#include "util/LittleEndian.h"
 
 #include <cstring>
 #include <fstream>
@@ -9,10 +10,7 @@ namespace cg::algo {
 
 namespace {
 
-void putU32(unsigned char* p, std::uint32_t v)
-{
-    for (int b = 0; b < 4; ++b) p[b] = static_cast<unsigned char>(v >> (8 * b));
-}
+using util::putU32;
 
 }  // namespace
 

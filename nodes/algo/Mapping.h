@@ -20,6 +20,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "util/HugePages.h"
+
 namespace cg::algo {
 
 /// One source record j: what Eq. 10-12 and 16 need to place its cluster at any frame.
@@ -128,13 +130,6 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
                         const CondensationView& c, const MapView& map, const PrimitiveView& p,
                         const MappingSettings& s);
 
-/// Asks the kernel to back [p, p + bytes) with transparent huge pages (madvise MADV_HUGEPAGE,
-/// Linux; elsewhere nothing): first touching a fresh frame array then faults once per 2 MB
-/// instead of once per 4 KB. Advice only: failure is ignored.
-void adviseHugePages(void* p, std::size_t bytes);
-/// Arrays from this size on get adviseHugePages.
-inline constexpr std::size_t kHugePageAdviceBytes = std::size_t{8} << 20;
-
 /// A heap array of a trivial type whose elements are left uninitialised on allocation: a
 /// frame-sized output is first touched by the parallel writers that fill it, not zero-filled
 /// on one thread first (what std::vector::resize does; for a 4.6 M-particle frame that
@@ -150,7 +145,8 @@ public:
     UninitArray() = default;
     explicit UninitArray(std::size_t n) : mData(n == 0 ? nullptr : new T[n]), mSize(n)
     {
-        if (n * sizeof(T) >= kHugePageAdviceBytes) adviseHugePages(mData.get(), n * sizeof(T));
+        if (n * sizeof(T) >= util::kHugePageAdviceBytes)
+            util::adviseHugePages(mData.get(), n * sizeof(T));
     }
     explicit UninitArray(const std::vector<T>& v) : UninitArray(v.size()) { std::copy(v.begin(), v.end(), data()); }
 

@@ -1,4 +1,5 @@
 #include "nodes/algo/PlyWriter.h"
+#include "util/LittleEndian.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -14,21 +15,8 @@ namespace {
 
 constexpr std::size_t kRecordsPerChunk = 1 << 15;  // 1 MiB of records per write
 
-void putU32(unsigned char* p, std::uint32_t v)
-{
-    // Byte by byte, so the file is little-endian on any host.
-    p[0] = static_cast<unsigned char>(v);
-    p[1] = static_cast<unsigned char>(v >> 8);
-    p[2] = static_cast<unsigned char>(v >> 16);
-    p[3] = static_cast<unsigned char>(v >> 24);
-}
-
-void putFloat(unsigned char* p, float v)
-{
-    std::uint32_t bits;
-    std::memcpy(&bits, &v, sizeof bits);
-    putU32(p, bits);
-}
+using util::putU32;
+const auto putFloat = util::putF32;
 
 void putInt(unsigned char* p, std::int32_t v) { putU32(p, static_cast<std::uint32_t>(v)); }
 

@@ -9,6 +9,8 @@
 #include "core/AtomicFile.h"
 #include "core/Error.h"
 #include "core/Hash.h"
+#include "util/InputFile.h"
+#include "util/LittleEndian.h"
 
 namespace cg::algo {
 
@@ -16,50 +18,14 @@ namespace {
 
 constexpr char kMagic[8] = {'C', 'G', 'P', 'R', 'I', 'M', '\r', '\n'};
 
-// Little-endian encoding whatever the host order.
-void putU32(std::string& b, std::uint32_t v)
-{
-    for (int k = 0; k < 4; ++k) b.push_back(static_cast<char>((v >> (8 * k)) & 0xffu));
-}
-void putU64(std::string& b, std::uint64_t v)
-{
-    for (int k = 0; k < 8; ++k) b.push_back(static_cast<char>((v >> (8 * k)) & 0xffu));
-}
-void putF32(std::string& b, float f)
-{
-    std::uint32_t v;
-    std::memcpy(&v, &f, 4);
-    putU32(b, v);
-}
-void putF64(std::string& b, double f)
-{
-    std::uint64_t v;
-    std::memcpy(&v, &f, 8);
-    putU64(b, v);
-}
-std::uint32_t getU32(const unsigned char* p)
-{
-    return std::uint32_t{p[0]} | std::uint32_t{p[1]} << 8 | std::uint32_t{p[2]} << 16 |
-           std::uint32_t{p[3]} << 24;
-}
-std::uint64_t getU64(const unsigned char* p)
-{
-    return std::uint64_t{getU32(p)} | std::uint64_t{getU32(p + 4)} << 32;
-}
-float getF32(const unsigned char* p)
-{
-    const std::uint32_t v = getU32(p);
-    float f;
-    std::memcpy(&f, &v, 4);
-    return f;
-}
-double getF64(const unsigned char* p)
-{
-    const std::uint64_t v = getU64(p);
-    double f;
-    std::memcpy(&f, &v, 8);
-    return f;
-}
+using util::appendF32;
+using util::appendF64;
+using util::appendU32;
+using util::appendU64;
+using util::getF32;
+using util::getF64;
+using util::getU32;
+using util::getU64;
 
 }  // namespace
 
@@ -94,23 +60,23 @@ void writePrimitiveFile(const std::filesystem::path& path, double frameTime,
 
     std::string head;
     head.append(kMagic, 8);
-    putU32(head, kPrimitiveFileVersion);
-    putU32(head, static_cast<std::uint32_t>(counts.size()));
-    putF64(head, frameTime);
-    putU32(head, kPrimitiveUnitsMetres);
-    putU32(head, 0);
-    for (float v : lo) putF32(head, v);
-    for (float v : hi) putF32(head, v);
+    appendU32(head, kPrimitiveFileVersion);
+    appendU32(head, static_cast<std::uint32_t>(counts.size()));
+    appendF64(head, frameTime);
+    appendU32(head, kPrimitiveUnitsMetres);
+    appendU32(head, 0);
+    for (float v : lo) appendF32(head, v);
+    for (float v : hi) appendF32(head, v);
     std::string index;
     std::uint64_t offset = kPrimitiveHeaderBytes + kPrimitiveIndexEntryBytes * counts.size();
     for (std::uint32_t n : counts) {
-        putU64(index, offset);
-        putU32(index, n);
-        putU32(index, 0);
+        appendU64(index, offset);
+        appendU32(index, n);
+        appendU32(index, 0);
         offset += 8 + 12 * std::uint64_t{n} + 8;
     }
     std::string checked = head + index;
-    putU64(head, checksum64(checked.data(), checked.size()));
+    appendU64(head, checksum64(checked.data(), checked.size()));
 
     AtomicOutput out(path);
     {
@@ -121,11 +87,11 @@ void writePrimitiveFile(const std::filesystem::path& path, double frameTime,
         std::size_t first = 0;
         for (std::size_t s = 0; s < counts.size() && f; ++s) {
             block.clear();
-            putU32(block, static_cast<std::uint32_t>(s));
-            putU32(block, counts[s]);
+            appendU32(block, static_cast<std::uint32_t>(s));
+            appendU32(block, counts[s]);
             for (std::size_t k = 0; k < 3 * std::size_t{counts[s]}; ++k)
-                putF32(block, positions[3 * first + k]);
-            putU64(block, checksum64(block.data(), block.size()));
+                appendF32(block, positions[3 * first + k]);
+            appendU64(block, checksum64(block.data(), block.size()));
             f.write(block.data(), static_cast<std::streamsize>(block.size()));
             first += counts[s];
         }
@@ -137,6 +103,9 @@ void writePrimitiveFile(const std::filesystem::path& path, double frameTime,
 
 PrimitiveFileReader::PrimitiveFileReader(const std::filesystem::path& path) : mPath(path)
 {
+    if (const std::string problem = util::inputFileProblem(path, kMaxPrimitiveFileBytes);
+        !problem.empty())
+        throw InputError(path.string(), "cannot read the primitive file: it " + problem);
     std::error_code ec;
     const auto size = std::filesystem::file_size(path, ec);
     if (ec) throw InputError(path.string(), "cannot read the primitive file: " + ec.message());
@@ -254,6 +223,9 @@ std::vector<float> PrimitiveFileReader::readAll()
 
 std::uint64_t primitiveFileContentHash(const std::filesystem::path& path)
 {
+    if (const std::string problem = util::inputFileProblem(path, kMaxPrimitiveFileBytes);
+        !problem.empty())
+        throw InputError(path.string(), "cannot read the primitive file: it " + problem);
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path.string(), "cannot open the primitive file");
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

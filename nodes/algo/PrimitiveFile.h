@@ -32,6 +32,8 @@ constexpr std::uint32_t kPrimitiveFileVersion = 1;
 constexpr std::uint32_t kPrimitiveUnitsMetres = 1;
 constexpr std::size_t kPrimitiveHeaderBytes = 64;
 constexpr std::size_t kPrimitiveIndexEntryBytes = 16;
+/// Larger files are refused before reading: a primitive set of the paper's size is ~100 MB.
+constexpr std::uint64_t kMaxPrimitiveFileBytes = 16ull << 30;
 
 /// Writes a primitive set atomically (temporary file beside `path`, then rename). `counts` and
 /// `positions` as in PrimitiveSetData. Throws std::invalid_argument on inconsistent sizes and

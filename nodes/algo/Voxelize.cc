@@ -11,13 +11,16 @@
 #include <utility>
 #include <vector>
 
+#if defined(__SSE2__)
 #include <emmintrin.h>
-#include <sys/mman.h>
+#endif
 
 #include <openvdb/tools/Filter.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+
+#include "util/HugePages.h"
 
 namespace cg::algo {
 
@@ -148,7 +151,7 @@ public:
         bytes = (bytes + align - 1) / align * align;  // aligned_alloc wants a multiple
         mData = static_cast<T*>(std::aligned_alloc(align, bytes));
         if (!mData) throw std::bad_alloc();
-        if (align == kHuge) ::madvise(mData, bytes, MADV_HUGEPAGE);  // a hint; may fail
+        if (align == kHuge) util::adviseHugePages(mData, bytes);
     }
     ~Scratch() { std::free(mData); }
     Scratch(Scratch&& other) noexcept : mData(other.mData) { other.mData = nullptr; }
@@ -471,14 +474,18 @@ std::unique_ptr<LeafT> makeLeaf(const float* acc, const openvdb::Coord& brick,
 {
     // Eight voxels along z at a time (SSE2): the mask bits of a row come from one movemask.
     // Voxel (x, y, z) is bit 8 y + z of the mask's word x.
+    // Elsewhere a scalar loop gives the same bits.
     LeafT::NodeMaskType mask;
     alignas(64) float values[LeafT::SIZE];
+#if defined(__SSE2__)
     const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+#endif
     for (int x = 0; x < 8; ++x) {
         std::uint64_t word = 0;
         for (int y = 0; y < 8; ++y) {
             const float* row = acc + accIndex(offset.x() + x, offset.y() + y, offset.z());
             float* out = values + (x << 6) + (y << 3);
+#if defined(__SSE2__)
             for (int h = 0; h < 2; ++h) {
                 __m128 v = _mm_loadu_ps(row + 4 * h);
                 const __m128 on = _mm_cmpgt_ps(v, zero);  // false for NaN
@@ -486,6 +493,13 @@ std::unique_ptr<LeafT> makeLeaf(const float* acc, const openvdb::Coord& brick,
                 _mm_storeu_ps(out + 4 * h, _mm_and_ps(on, v));
                 word |= std::uint64_t(_mm_movemask_ps(on)) << (8 * y + 4 * h);
             }
+#else
+            for (int z = 0; z < 8; ++z) {
+                const bool on = row[z] > 0.0f;  // false for NaN
+                out[z] = on ? (clamp ? std::min(row[z], 1.0f) : row[z]) : 0.0f;
+                word |= std::uint64_t(on) << (8 * y + z);
+            }
+#endif
         }
         mask.template getWord<std::uint64_t>(static_cast<openvdb::Index>(x)) = word;
     }
@@ -534,6 +548,32 @@ openvdb::FloatGrid::Ptr voxelizeWith(const float* xyz, std::size_t count, const 
 }
 
 }  // namespace
+
+std::uint64_t voxelizeMemoryBound(std::size_t count, const double extentVoxels[3],
+                                  double radiusVoxels)
+{
+    // In doubles: the point is to refuse sizes whose products overflow 64-bit integers.
+    // The level above the leaves: 128^3 voxels.
+    using Internal1 = openvdb::FloatTree::RootNodeType::ChildNodeType::ChildNodeType;
+    const double n = static_cast<double>(count);
+    const double span = 2.0 * radiusVoxels + 1.0;
+    double bricksPerSplat = 1.0, leavesPerSplat = 1.0, boundsLeaves = 1.0;
+    double nodesPerSplat = 1.0, boundsNodes = 1.0;
+    for (int a = 0; a < 3; ++a) {
+        bricksPerSplat *= std::ceil(span / kBrick) + 1.0;
+        leavesPerSplat *= std::ceil(span / LeafT::DIM) + 1.0;
+        boundsLeaves *= std::ceil((extentVoxels[a] + span) / LeafT::DIM) + 1.0;
+        nodesPerSplat *= std::ceil(span / Internal1::DIM) + 1.0;
+        boundsNodes *= std::ceil((extentVoxels[a] + span) / Internal1::DIM) + 1.0;
+    }
+    const double entries = n * bricksPerSplat * 2.0 * sizeof(WideEntry);  // entries + scratch
+    const double leafBytes = sizeof(LeafT) + LeafT::SIZE * sizeof(float);
+    const double leaves = std::min(n * leavesPerSplat, boundsLeaves) * leafBytes;
+    const double nodes = std::min(n * nodesPerSplat, boundsNodes) * sizeof(Internal1);
+    const double total = entries + leaves + nodes;
+    return total >= 1.8e19 ? std::numeric_limits<std::uint64_t>::max()
+                           : static_cast<std::uint64_t>(total);
+}
 
 VoxelKernel voxelKernelFromName(const std::string& name)
 {
@@ -605,6 +645,18 @@ openvdb::FloatGrid::Ptr voxelizeParticles(const float* xyz, std::size_t count,
         }
     }
     if (checkCancelled) checkCancelled();
+    if (settings.maxBytes != 0 && count != 0) {
+        const double extent[3] = {double(all.hi[0]) - all.lo[0], double(all.hi[1]) - all.lo[1],
+                                  double(all.hi[2]) - all.lo[2]};
+        const std::uint64_t bound = voxelizeMemoryBound(count, extent, k.rv);
+        if (bound > settings.maxBytes)
+            throw VoxelizeTooLarge(
+                "voxelize: " + std::to_string(count) + " particles with a radius of " +
+                std::to_string(k.rv) + " voxels would need up to " +
+                std::to_string(bound >> 20) + " MiB, over the limit of " +
+                std::to_string(settings.maxBytes >> 20) +
+                " MiB; use larger voxels (voxelSize) or a smaller radius");
+    }
 
     openvdb::FloatGrid::Ptr grid;
     if (count == 0) {

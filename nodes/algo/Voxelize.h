@@ -11,7 +11,9 @@
 /// index order within one task. No engine includes.
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
+#include <stdexcept>
 #include <string>
 
 #include <openvdb/openvdb.h>
@@ -42,7 +44,22 @@ struct VoxelizeSettings {
     /// convention: 1 = fully dense). A voxel at distance r gets density * w(r).
     double density = 0.25;
     bool clamp = true;                    ///< clamp summed values to [0, 1] (fog volume)
+    /// Refuse (VoxelizeTooLarge) when the estimated peak memory exceeds this; 0: no limit.
+    std::uint64_t maxBytes = 0;
 };
+
+/// The splat would need more memory than VoxelizeSettings::maxBytes: bad settings (voxels
+/// too small for the particles' spacing, or too many particles), said before any work.
+class VoxelizeTooLarge : public std::invalid_argument {
+public:
+    using std::invalid_argument::invalid_argument;
+};
+
+/// An upper bound of the voxelizer's peak memory for `count` particles whose index-space
+/// bounds (positions / voxel size) span `extentVoxels` per axis: the binned entries and
+/// their sort scratch, plus every leaf that the splats or the bounds allow, whichever is less.
+std::uint64_t voxelizeMemoryBound(std::size_t count, const double extentVoxels[3],
+                                  double radiusVoxels);
 
 /// Voxelizes `count` particles whose positions are `xyz` (x, y, z per particle, metres) into a
 /// FloatGrid named "density" of class GRID_FOG_VOLUME with a linear transform of the voxel

@@ -1,13 +1,15 @@
 // Condensation: vapour particles colder than the dew point become condensation particles
 // (pseudocode lines 9-14); records when each condensed and when the first one did.
 
-#include <algorithm>
+#include <optional>
+#include <stdexcept>
 
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
+#include "nodes/algo/Condensation.h"
 #include "nodes/atmosphere/AtmosphereNodes.h"
 #include "nodes/data/AtmosphereData.h"
 #include "nodes/data/VapourParticles.h"
@@ -23,27 +25,20 @@ public:
         const auto particles = ctx.input<VapourParticlesData>("particles");
         const double dewPoint = ctx.input<AtmosphereData>("atmosphere")->atmosphere.dewPoint;
         const auto previous = ctx.previous<CondensationData>("condensation");
-        const std::size_t n = particles->size();
-
-        std::vector<std::int32_t> frames(n, -1);
-        std::int32_t first = -1;
-        if (previous) {
-            if (previous->condensedFrame.size() != n)
-                throw InputError(ctx.nodeId(), "the particle count changed during the simulation");
-            frames = previous->condensedFrame;
-            first = previous->firstFrame;
+        std::optional<algo::CondensationState> before;
+        if (previous) before = algo::CondensationState{previous->condensedFrame, previous->firstFrame, 0};
+        algo::CondensationState now;
+        try {
+            now = algo::condenseStep(before ? &*before : nullptr, particles->temperature.data(),
+                                     particles->size(), dewPoint,
+                                     static_cast<std::int32_t>(ctx.frame()));
+        } catch (const std::invalid_argument& e) {
+            throw InputError(ctx.nodeId(), e.what());
         }
-        // Condensation is one-way: a condensation particle never turns back into vapour.
-        const auto frame = static_cast<std::int32_t>(ctx.frame());
-        std::size_t count = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-            if (frames[i] < 0 && particles->temperature[i] < dewPoint) frames[i] = frame;
-            if (frames[i] >= 0) ++count;
-        }
-        if (first < 0 && count > 0) first = frame;
-        ctx.setOutput("condensation", std::make_shared<CondensationData>(particles, std::move(frames), first));
-        ctx.setOutput("firstFrame", std::make_shared<IntData>(first));
-        ctx.setOutput("count", std::make_shared<IntData>(static_cast<std::int64_t>(count)));
+        ctx.setOutput("firstFrame", std::make_shared<IntData>(now.firstFrame));
+        ctx.setOutput("count", std::make_shared<IntData>(static_cast<std::int64_t>(now.count)));
+        ctx.setOutput("condensation", std::make_shared<CondensationData>(
+                                          particles, std::move(now.condensedFrame), now.firstFrame));
     }
 };
 

@@ -53,6 +53,17 @@ void registerPrimitiveLoadNode(Registry& registry)
             h.str("unreadable").str(file);
         }
     };
+    d.validate = [](const ParamSet& p, const ParamChecker& check) {
+        // The header and frame index, so that `validate` refuses a foreign or truncated file;
+        // the frames' checksums are checked when they are read.
+        const std::string& file = p.getString("file");
+        if (file.empty()) return;
+        try {
+            algo::PrimitiveFileReader reader(file);
+        } catch (const InputError& e) {
+            check.fail("file", e.what());
+        }
+    };
     d.create = [] { return std::make_unique<PrimitiveLoadNode>(); };
     // The contract test has no file to give it; tests/nodes/test_primitive_nodes.cc covers it.
     d.quickParams = {{"__skipCook", "true"}};

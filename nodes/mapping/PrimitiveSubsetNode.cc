@@ -1,41 +1,19 @@
 // PrimitiveSubset: every k-th particle of a primitive set, so each mapped copy carries fewer
 // cloud particles (see docs/mapper.md, "A caution on counts").
 
-#include <algorithm>
 #include <cstdint>
 #include <vector>
 
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
+#include "nodes/algo/PrimitiveSubset.h"
 #include "nodes/data/PrimitiveSet.h"
 #include "nodes/mapping/MappingNodes.h"
 
 namespace cg {
 
 namespace {
-
-/// Keeps ids 0, k, 2k, ... of `full`. Ids appear in order, so frame s keeps
-/// ceil(N_f(s) / k) particles and the subset is again a primitive set (stable ids in order of
-/// appearance, N_f non-decreasing); each kept particle follows its physical trajectory.
-std::shared_ptr<PrimitiveSetData> everyKth(const PrimitiveSetData& full, std::uint32_t k)
-{
-    std::vector<std::uint32_t> counts;
-    counts.reserve(full.counts.size());
-    std::uint64_t total = 0;
-    for (std::uint32_t n : full.counts) {
-        counts.push_back((n + k - 1) / k);
-        total += counts.back();
-    }
-    std::vector<float> positions;
-    positions.reserve(3 * total);
-    for (int s = 0; s < full.frames(); ++s) {
-        const float* frame = full.frame(s);
-        for (std::uint32_t id = 0; id < full.count(s); id += k)
-            positions.insert(positions.end(), frame + 3 * std::size_t{id}, frame + 3 * std::size_t{id} + 3);
-    }
-    return std::make_shared<PrimitiveSetData>(full.frameTime, std::move(counts), std::move(positions));
-}
 
 class PrimitiveSubsetNode final : public Node {
 public:
@@ -45,8 +23,16 @@ public:
         // k = ceil(N_f(last) / K), so about K particles remain at the last frame.
         const auto target = static_cast<std::uint64_t>(ctx.params().getInt("particles"));
         const std::uint64_t last = full->frames() > 0 ? full->count(full->frames() - 1) : 0;
-        const auto k = static_cast<std::uint32_t>(std::max<std::uint64_t>(1, (last + target - 1) / target));
-        ctx.setOutput("primitive", k == 1 ? full : everyKth(*full, k));
+        const std::uint32_t k = algo::subsetStride(last, target);
+        if (k == 1) {
+            ctx.setOutput("primitive", full);
+            return;
+        }
+        std::vector<std::uint32_t> counts;
+        std::vector<float> positions;
+        algo::everyKthParticle(full->counts, full->positions, k, counts, positions);
+        ctx.setOutput("primitive", std::make_shared<PrimitiveSetData>(full->frameTime, std::move(counts),
+                                                                      std::move(positions)));
     }
 };
 

@@ -12,6 +12,7 @@
 #include "nodes/data/CloudParticles.h"
 #include "nodes/data/FogVolume.h"
 #include "nodes/volume/VolumeNodes.h"
+#include "util/SystemMemory.h"
 
 namespace cg {
 
@@ -29,11 +30,14 @@ public:
         s.kernel = algo::voxelKernelFromName(p.getString("kernel"));
         s.density = p.getFloat("density");
         s.clamp = p.getBool("clamp");
+        s.maxBytes = util::nodeAllocationLimitBytes();
 
         openvdb::FloatGrid::Ptr grid;
         try {
             grid = algo::voxelizeParticles(particles->positions.data(), particles->size(), s,
                                            [&] { ctx.checkCancelled(); });
+        } catch (const algo::VoxelizeTooLarge& e) {
+            throw InputError(ctx.nodeId() + "/params/voxelSize", e.what());
         } catch (const std::invalid_argument& e) {
             throw InputError(ctx.nodeId(), e.what());
         }

@@ -340,3 +340,53 @@ TEST(Voxelize, RefusesBadInput)
 }
 
 }  // namespace cg
+
+namespace cg {
+
+namespace {
+
+/// `count` particles spread uniformly over a cube of `size` metres (a cloud's spacing).
+std::vector<float> spreadParticles(std::size_t count, float size)
+{
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.0f, size);
+    std::vector<float> xyz(3 * count);
+    for (float& v : xyz) v = u(rng);
+    return xyz;
+}
+
+}  // namespace
+
+TEST(VoxelizeGuard, AbsurdlySmallVoxelsAreRefusedBeforeAnyWork)
+{
+    // The audit's case: 4,382 cloud particles over kilometres, 1 cm voxels, a 32-voxel radius
+    // (4.8 GB and a 2.4 GB VDB when it was let through).
+    const std::vector<float> xyz = spreadParticles(4382, 4000.0f);
+    algo::VoxelizeSettings s;
+    s.voxelSize = 0.01;
+    s.radius = 0.32;
+    s.maxBytes = 4ull << 30;
+    EXPECT_THROW(algo::voxelizeParticles(xyz.data(), 4382, s), algo::VoxelizeTooLarge);
+    // The same particles at a cloud's resolution pass.
+    s.voxelSize = 40.0;
+    s.radius = 160.0;
+    EXPECT_NO_THROW(algo::voxelizeParticles(xyz.data(), 4382, s));
+}
+
+TEST(VoxelizeGuard, TheMemoryBoundIsAnUpperBoundOfTheGrid)
+{
+    for (const double radius : {1.0, 4.0, 12.0}) {
+        const std::vector<float> xyz = spreadParticles(3000, 200.0f);
+        algo::VoxelizeSettings s;
+        s.voxelSize = 1.0;
+        s.radius = radius;
+        const auto grid = algo::voxelizeParticles(xyz.data(), 3000, s);
+        const double extent[3] = {200.0, 200.0, 200.0};
+        EXPECT_GE(algo::voxelizeMemoryBound(3000, extent, radius), grid->memUsage())
+            << "radius " << radius;
+    }
+    const double huge[3] = {2e6, 2e6, 2e6};
+    EXPECT_GT(algo::voxelizeMemoryBound(std::size_t(1) << 40, huge, 32.0), std::uint64_t{1} << 50);
+}
+
+}  // namespace cg

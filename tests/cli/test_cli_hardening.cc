@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -138,6 +140,31 @@ TEST(CliHardening, ABadLibraryOnThePluginPathIsSkippedWithAWarning)
     // Named on the command line, the same library is an error.
     const auto named = runCli({"nodes", "--plugin", (dir / "plugins" / "libnot-elf.so").string()});
     EXPECT_EQ(named.exitCode, 2) << named.errors;
+}
+
+TEST(CliHardening, InputFilesThatCannotBeReadAreRefusedByValidateAndRun)
+{
+    TempDir dir;
+    ASSERT_EQ(::mkfifo((dir / "fifo").c_str(), 0644), 0);
+    fs::create_directories(dir / "a-directory");
+    test::writeFile(dir / "corrupt.cgp", "CGPRIM\r\n but not really a primitive file at all......"
+                                         "................................................");
+    for (const std::string& file : std::vector<std::string>{"/dev/zero", (dir / "fifo").string(),
+                                   (dir / "a-directory").string(), (dir / "missing.cgp").string(),
+                                   (dir / "corrupt.cgp").string()}) {
+        test::writeFile(dir / "g.json", R"({"cloudgraph": 1, "nodes": {
+            "load": {"type": "PrimitiveLoad", "params": {"file": ")" + file + R"("}}}})");
+        for (const std::string command : {"validate", "run"}) {
+            std::vector<std::string> args = {command, (dir / "g.json").string()};
+            if (command == "run") args.insert(args.end(), {"--out", (dir / "out").string()});
+            const auto r = runCli(args);
+            EXPECT_EQ(r.exitCode, 2) << command << " " << file << ": " << r.errors;
+            EXPECT_NE(r.errors.find("g.json:/nodes/load/params/file"), std::string::npos)
+                << r.errors;
+            EXPECT_NE(r.errors.find(file), std::string::npos) << r.errors;
+            EXPECT_EQ(r.errors.find("internal error"), std::string::npos) << r.errors;
+        }
+    }
 }
 
 }  // namespace cg

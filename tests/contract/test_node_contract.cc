@@ -118,6 +118,9 @@ TEST_P(NodeContract, EveryParameterChangesTheKey)
     Evaluator ev(builtinRegistry(), {});
     const Key base = ev.key(g, "node", 0);
     for (const ParamDecl& p : decl->params) {
+        // An input file's key is its content, and load refuses a file that is not of the
+        // node's format: each reader's own tests cover it (e.g. PrimitiveLoad's).
+        if (p.role == ParamRole::InputFile) continue;
         const nlohmann::json original = paramToJson(p.defaultValue);
         g.setParam("node", p.name, otherValue(p));
         EXPECT_NE(ev.key(g, "node", 0), base) << "parameter " << p.name << " is not in the key";

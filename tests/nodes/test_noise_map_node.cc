@@ -122,6 +122,22 @@ TEST_F(NoiseMapNodeTest, AbsurdSizeIsRefusedAtLoad)
                  InputError);
 }
 
+TEST_F(NoiseMapNodeTest, AMapThatCannotFitInAQuarterOfTheMachineIsRefusedAtLoad)
+{
+    // The audit's 24000^2 map (16 GB of FFT arrays) on a 24 GiB machine, whose limit is 6 GiB.
+    LoadOptions machineOf24GiB;
+    machineOf24GiB.allocationLimitBytes = util::nodeAllocationLimitBytes();
+    EXPECT_LE(machineOf24GiB.allocationLimitBytes, std::uint64_t{16} << 30);
+    machineOf24GiB.allocationLimitBytes = 6ull << 30;
+    EXPECT_THROW(parseGraph(R"({"cloudgraph": 1, "nodes": {
+            "noise": {"type": "NoiseMap", "params": {"width": 24000, "height": 24000}}}})",
+                            "t.json", registry, machineOf24GiB),
+                 InputError);
+    EXPECT_NO_THROW(parseGraph(R"({"cloudgraph": 1, "nodes": {
+            "noise": {"type": "NoiseMap", "params": {"width": 4096, "height": 4096}}}})",
+                               "t.json", registry, machineOf24GiB));
+}
+
 TEST_F(NoiseMapNodeTest, WriteMapWritesPfmAndPngPerFrame)
 {
     test::TempDir out;

@@ -1,0 +1,37 @@
+// condenseStep (pseudocode lines 9-14): below the dew point a particle condenses, for good;
+// the first condensation frame and the count follow.
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <vector>
+
+#include "nodes/algo/Condensation.h"
+
+namespace cg {
+
+TEST(Condensation, ParticlesBelowTheDewPointCondenseAndNeverTurnBack)
+{
+    const double dewPoint = 5.0;
+    const std::vector<float> warm = {10.0f, 6.0f, 20.0f};
+    const algo::CondensationState f0 = algo::condenseStep(nullptr, warm.data(), 3, dewPoint, 0);
+    EXPECT_EQ(f0.count, 0u);
+    EXPECT_EQ(f0.firstFrame, -1);
+    EXPECT_EQ(f0.condensedFrame, (std::vector<std::int32_t>{-1, -1, -1}));
+
+    const std::vector<float> cooler = {4.9f, 5.0f, 20.0f};  // 5.0 is not below the dew point
+    const algo::CondensationState f1 = algo::condenseStep(&f0, cooler.data(), 3, dewPoint, 1);
+    EXPECT_EQ(f1.condensedFrame, (std::vector<std::int32_t>{1, -1, -1}));
+    EXPECT_EQ(f1.firstFrame, 1);
+    EXPECT_EQ(f1.count, 1u);
+
+    const std::vector<float> rewarmed = {30.0f, -1.0f, 20.0f};
+    const algo::CondensationState f2 = algo::condenseStep(&f1, rewarmed.data(), 3, dewPoint, 2);
+    EXPECT_EQ(f2.condensedFrame, (std::vector<std::int32_t>{1, 2, -1}));
+    EXPECT_EQ(f2.firstFrame, 1);
+    EXPECT_EQ(f2.count, 2u);
+
+    EXPECT_THROW(algo::condenseStep(&f2, rewarmed.data(), 2, dewPoint, 3), std::invalid_argument);
+}
+
+}  // namespace cg
