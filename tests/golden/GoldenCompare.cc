@@ -50,15 +50,19 @@ std::string format(double v)
 }
 
 /// "0080/voxelize.volume/active_voxels" -> "frame 80, node 'voxelize' output 'volume':
-/// active_voxels"; other names are given as they are.
+/// active_voxels"; "files/figure6/frame.0080.png/mean_r" -> "file 'figure6/frame.0080.png':
+/// mean_r"; "files/figure6/*.png" -> "files 'figure6/*.png' written".
 std::string describe(const std::string& name)
 {
     const std::size_t a = name.find('/');
     const std::size_t b = name.rfind('/');
+    if (a == std::string::npos || a == b) return name;
+    if (name.compare(0, a, "files") == 0) {
+        if (name[b + 1] == '*') return "files '" + name.substr(a + 1) + "' written";
+        return "file '" + name.substr(a + 1, b - a - 1) + "': " + name.substr(b + 1);
+    }
     const std::size_t dot = name.find('.', a + 1);
-    if (a == std::string::npos || a == b || dot == std::string::npos || dot > b ||
-        name.compare(0, a, "files") == 0)
-        return name;
+    if (dot == std::string::npos || dot > b) return name;
     return "frame " + std::to_string(std::atoi(name.substr(0, a).c_str())) + ", node '" +
            name.substr(a + 1, dot - a - 1) + "' output '" + name.substr(dot + 1, b - dot - 1) +
            "': " + name.substr(b + 1);

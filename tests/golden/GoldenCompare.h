@@ -27,8 +27,8 @@ nlohmann::json toJson(const std::string& graphFile, const std::vector<int>& fram
 void writeExpected(const std::filesystem::path& file, const nlohmann::json& expected);
 
 /// One message per statistic that differs, is missing or is new; empty when all match.
-/// Statistic names are "<frame>/<node>.<port>/<statistic>" or "files/<dir>/<ext>"; messages
-/// spell them out, e.g. "frame 80, node 'voxelize' output 'volume': active_voxels is 1240,
+/// Statistic names are "<frame>/<node>.<port>/<statistic>", "files/<dir>/*.<ext>" or
+/// "files/<dir>/<file>/<statistic>"; messages spell them out, e.g. "frame 80, node 'voxelize' output 'volume': active_voxels is 1240,
 /// expected 1234 (exact)".
 std::vector<std::string> compare(const Stats& actual, const nlohmann::json& expectedStats);
 

@@ -86,7 +86,7 @@ Stats fileStats(const std::filesystem::path& outDir)
         const std::string dir = e.path().parent_path().lexically_relative(outDir).generic_string();
         const std::string ext = e.path().extension().string();
         const std::string where = "files/" + (dir.empty() ? "." : dir) + "/";
-        ++counts[where + (ext.empty() ? "none" : ext.substr(1))];
+        ++counts[where + "*" + ext];
         Stats s;
         const std::string path = e.path().string();
         if (ext == ".png") png(s, path);

@@ -9,7 +9,7 @@
 
 namespace cg::golden {
 
-/// "files/<dir>/<ext>" counts and "files/<dir>/<name>/<stat>" per file read back, for
+/// "files/<dir>/*.<ext>" counts and "files/<dir>/<name>/<stat>" per file read back, for
 /// everything under `outDir`.
 Stats fileStats(const std::filesystem::path& outDir);
 

@@ -13,8 +13,8 @@ namespace cg::golden {
 /// Loads graphs/<spec.name>.json through the library, shrinks it, applies `overrides`
 /// ("node.param=value", as --set takes them), cooks spec.frames into a temporary output
 /// directory and returns, for every frame, the statistics of every output that changed since
-/// the last recorded frame ("<frame>/<node>.<port>/<stat>"), plus the files written per
-/// directory and extension ("files/<dir>/<ext>").
+/// the last recorded frame ("<frame>/<node>.<port>/<stat>"), plus the files written
+/// (GoldenFiles.h).
 Stats runGolden(const GoldenSpec& spec, const std::vector<std::string>& overrides = {});
 
 /// Where the shipped graphs and the expected files are (from the build).

@@ -26,16 +26,31 @@ void smallPrimitive(Graph& g, const std::string& node)
     set(g, node, "sourceHumidity", 1.0);
 }
 
-/// The figure graphs share one wiring: a map half as wide on cells twice as large (same
-/// ground, a quarter of the vapour), the small primitive, voxels twice as large and a
-/// thumbnail render. Mapper settings, camera and lighting stay as shipped.
-void smallFigure(Graph& g, int width, int height, double cellSize, double voxelSize)
+const ParamSet& paramsOf(const Graph& g, const std::string& node) { return g.nodes()[g.indexOf(node)].params; }
+
+/// Halves the map's resolution on cells twice as large: the same ground, a quarter of the
+/// vapour.
+void coarserMap(Graph& g)
 {
-    set(g, "noise", "width", width / 2);
-    set(g, "noise", "height", height / 2);
-    set(g, "noise", "cellSize", cellSize * 2);
+    const ParamSet& p = paramsOf(g, "noise");
+    set(g, "noise", "cellSize", p.getFloat("cellSize") * 2);
+    set(g, "noise", "width", p.getInt("width") / 2);
+    set(g, "noise", "height", p.getInt("height") / 2);
+}
+
+/// Voxels twice as large (an eighth of them); the radius in metres stays.
+void coarserVoxels(Graph& g, const std::string& node)
+{
+    set(g, node, "voxelSize", paramsOf(g, node).getFloat("voxelSize") * 2);
+}
+
+/// The figure graphs share one wiring: a coarser map, the small primitive, coarser voxels and
+/// a thumbnail render. Mapper settings, camera and lighting stay as shipped.
+void smallFigure(Graph& g)
+{
+    coarserMap(g);
     smallPrimitive(g, "primitive");
-    set(g, "voxelize", "voxelSize", voxelSize * 2);
+    coarserVoxels(g, "voxelize");
     set(g, "render", "width", 96);
     set(g, "render", "height", 64);
 }
@@ -43,11 +58,14 @@ void smallFigure(Graph& g, int width, int height, double cellSize, double voxelS
 std::vector<GoldenSpec> makeSpecs()
 {
     const std::vector<std::string> video = {"video"};  // runs ffmpeg; its MP4 bytes are ffmpeg's
+    // Figure frames: 61 is the last frame before condensation (every vapour particle of every
+    // figure graph condenses at 62), 150 has mapped levels 1-2 (t_s[2] = 112, Figure 5: 162),
+    // 300 levels up to 5 and the frame the VDB (every 100) and PLY (every 20) writers write.
+    const std::vector<int> figureFrames = {61, 150, 300};
     return {
-        {"atmosphere", {0, 100, 200}, [](Graph& g) {
-             set(g, "noise", "width", 32);
-             set(g, "noise", "height", 32);
-         }, {}},
+        // 0 writes the map; 91 is the last frame before condensation (92); the particles are
+        // written every 10 frames, so 150 and 290 but not 91.
+        {"atmosphere", {0, 91, 150, 290}, coarserMap, {}},
         {"cumulus_still", {0}, [](Graph& g) {
              set(g, "cloud", "voxelSize", 30.0);
              set(g, "render", "width", 80);
@@ -57,20 +75,21 @@ std::vector<GoldenSpec> makeSpecs()
              set(g, "field", "width", 64);
              set(g, "field", "height", 64);
          }, {}},
-        {"figure1_cloudscape", {100, 200, 300}, [](Graph& g) { smallFigure(g, 300, 300, 50, 40); }, video},
-        {"figure5_progress", {100, 200, 300}, [](Graph& g) {
-             smallFigure(g, 300, 125, 50, 80);
-             set(g, "vapourVolume", "voxelSize", 160.0);
+        {"figure1_cloudscape", figureFrames, smallFigure, video},
+        {"figure5_progress", figureFrames, [](Graph& g) {
+             smallFigure(g);
+             coarserVoxels(g, "vapourVolume");  // CombineVolumes needs the same grid
          }, video},
-        {"figure6_towering_cumulus", {100, 200, 300}, [](Graph& g) { smallFigure(g, 64, 64, 100, 40); }, video},
-        {"figure7a_beta33", {100, 200, 300}, [](Graph& g) { smallFigure(g, 150, 100, 50, 40); }, video},
-        {"figure7b_beta27", {100, 200, 300}, [](Graph& g) { smallFigure(g, 200, 100, 50, 40); }, video},
-        {"figure8_cumulonimbus", {100, 200, 300}, [](Graph& g) { smallFigure(g, 300, 100, 50, 80); }, video},
-        {"figure9_sparse", {100, 200, 300}, [](Graph& g) { smallFigure(g, 300, 300, 50, 40); }, video},
+        {"figure6_towering_cumulus", figureFrames, smallFigure, video},
+        {"figure7a_beta33", figureFrames, smallFigure, video},
+        {"figure7b_beta27", figureFrames, smallFigure, video},
+        {"figure8_cumulonimbus", figureFrames, smallFigure, video},
+        {"figure9_sparse", figureFrames, smallFigure, video},
         {"primitive", {0}, [](Graph& g) { smallPrimitive(g, "sim"); }, {}},
+        // The primitive's middle and last frames (PrimitiveFrame plays frame s at frame s).
         {"primitive_render", {20, 39}, [](Graph& g) {
              smallPrimitive(g, "sim");
-             set(g, "voxelize", "voxelSize", 16.0);
+             coarserVoxels(g, "voxelize");
              set(g, "render", "width", 40);
              set(g, "render", "height", 50);
          }, {}},
