@@ -16,7 +16,8 @@
 ///   property int home_cell
 ///   end_header
 ///
-/// followed by N records of 32 bytes, every value little-endian whatever the host order.
+/// followed by N records of 32 bytes, every value little-endian whatever the host order,
+/// written by writeBinaryPly (PlyFile.h).
 
 #include <cstddef>
 #include <cstdint>
