@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "nodes/algo/CloudPly.h"
 #include "nodes/algo/PlyWriter.h"
 #include "support/TestUtil.h"
 
@@ -42,7 +43,8 @@ std::uint32_t leU32(const unsigned char* b)
            static_cast<std::uint32_t>(b[2]) << 16 | static_cast<std::uint32_t>(b[3]) << 24;
 }
 
-/// Reads a binary_little_endian PLY with one vertex element of float and int properties.
+/// Reads a binary_little_endian PLY with one vertex element of float, int, uint and uchar
+/// properties.
 PlyFile readPly(const std::filesystem::path& path)
 {
     std::ifstream in(path, std::ios::binary);
@@ -61,7 +63,8 @@ PlyFile readPly(const std::filesystem::path& path)
         } else if (keyword == "property") {
             std::string type, name;
             words >> type >> name;
-            if (type != "float" && type != "int") throw std::runtime_error("type " + type);
+            if (type != "float" && type != "int" && type != "uint" && type != "uchar")
+                throw std::runtime_error("type " + type);
             ply.properties.emplace_back(type, name);
         } else if (keyword == "end_header") {
             break;
@@ -70,19 +73,28 @@ PlyFile readPly(const std::filesystem::path& path)
     if (ply.headerLines.empty() || ply.headerLines.back() != "end_header")
         throw std::runtime_error("no end_header");
 
-    const std::size_t recordBytes = 4 * ply.properties.size();
+    std::size_t recordBytes = 0;
+    for (const auto& property : ply.properties) recordBytes += property.first == "uchar" ? 1 : 4;
     std::vector<unsigned char> record(recordBytes);
     for (std::size_t i = 0; i < ply.count; ++i) {
         if (!in.read(reinterpret_cast<char*>(record.data()),
                      static_cast<std::streamsize>(recordBytes)))
             throw std::runtime_error("truncated at record " + std::to_string(i));
         std::vector<double> values;
-        for (std::size_t p = 0; p < ply.properties.size(); ++p) {
-            const std::uint32_t bits = leU32(record.data() + 4 * p);
-            if (ply.properties[p].first == "float") {
+        const unsigned char* at = record.data();
+        for (const auto& property : ply.properties) {
+            if (property.first == "uchar") {
+                values.push_back(*at++);
+                continue;
+            }
+            const std::uint32_t bits = leU32(at);
+            at += 4;
+            if (property.first == "float") {
                 float f;
                 std::memcpy(&f, &bits, sizeof f);
                 values.push_back(f);
+            } else if (property.first == "uint") {
+                values.push_back(bits);
             } else {
                 values.push_back(static_cast<std::int32_t>(bits));
             }
@@ -217,6 +229,30 @@ TEST(PlyWriter, ErrorsNameTheFile)
     algo::PlyParticleView missing = a.view(true);
     missing.temperature = nullptr;
     EXPECT_THROW(algo::writeParticlesPly(dir / "m.ply", missing), std::invalid_argument);
+}
+
+TEST(PlyWriter, CloudParticlesCarryLevelAndSourceInA17ByteRecord)
+{
+    test::TempDir dir;
+    const std::vector<float> xyz = {1.5f, -2.0f, 300.25f, 4.0f, 5.0f, 6.0f};
+    const std::vector<std::uint8_t> levels = {1, 5};
+    const std::vector<std::uint32_t> sources = {7, 0xFFFFFFF0u};
+    algo::writeCloudPly(dir / "c.ply", 2, xyz.data(), levels.data(), sources.data(), "frame 3");
+    const PlyFile ply = readPly(dir / "c.ply");
+    EXPECT_EQ(ply.headerLines.at(2), "comment CloudGraph frame 3");
+    ASSERT_EQ(ply.count, 2u);
+    const std::vector<std::pair<std::string, std::string>> expected = {
+        {"float", "x"}, {"float", "y"}, {"float", "z"}, {"uchar", "level"}, {"uint", "source"}};
+    EXPECT_EQ(ply.properties, expected);
+    for (std::size_t i = 0; i < 2; ++i) {
+        EXPECT_EQ(ply.value(i, "x"), xyz[3 * i]);
+        EXPECT_EQ(ply.value(i, "y"), xyz[3 * i + 1]);
+        EXPECT_EQ(ply.value(i, "z"), xyz[3 * i + 2]);
+        EXPECT_EQ(ply.value(i, "level"), levels[i]);
+        EXPECT_EQ(ply.value(i, "source"), sources[i]);
+    }
+    algo::writeCloudPly(dir / "e.ply", 0, nullptr, nullptr, nullptr);
+    EXPECT_EQ(readPly(dir / "e.ply").count, 0u);
 }
 
 }  // namespace cg
