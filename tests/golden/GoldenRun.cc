@@ -57,8 +57,9 @@ Stats runGolden(const GoldenSpec& spec, const std::vector<std::string>& override
     Registry registry;
     registerBuiltinNodes(registry);
     Graph g = loadGraph(graphsDir() / (spec.name + ".json"), registry);
-    if (spec.frames.empty() || !std::is_sorted(spec.frames.begin(), spec.frames.end()))
-        throw std::invalid_argument(spec.name + ": frames must be ascending and not empty");
+    if (spec.frames.empty() || !std::is_sorted(spec.frames.begin(), spec.frames.end()) ||
+        spec.frames.front() < g.frames.start || spec.frames.back() > g.frames.end)
+        throw std::invalid_argument(spec.name + ": the recorded frames must be ascending, inside the graph's range");
     spec.shrink(g);
     for (const std::string& o : overrides) applySetOverride(g, o);
     g.frames.end = spec.frames.back();  // the small version's range: nothing after it cooks
