@@ -41,18 +41,19 @@ struct MappingLimits {
 /// made, checking everything the mapping algorithm relies on that they hold alone: settings
 /// in the node's ranges; records in order of their start frames, each with its level in
 /// 1..L_max, its parent an earlier record of the level below, finite A >= 1 and R >= 0 within
-/// Eq. 16's reach; the
-/// taken-candidate sets exactly those of the records (selection's probing relies on a free
-/// candidate); t_s[L] per level. O(records + candidates taken).
+/// Eq. 16's reach; the taken-candidate sets exactly those of the records (selection's probing
+/// relies on a free candidate); t_s[L] per level. O(records + candidates taken).
 void checkSourceTable(const algo::SourceTable& table, const algo::MappingSettings& s);
 
-/// Throws std::runtime_error unless the table can be read against these inputs: every level-1
-/// record's parent is a condensation particle that had condensed when the record started, and
-/// every deeper record's parent fluid particle exists in the primitive when it started (so at
-/// every later frame). The deserializer cannot check this (the inputs are other values):
-/// consumers of a stored table (PrimitiveMapper's previous frame, GenerateCloud) call it.
-void checkSourcesFit(const CloudSourcesData& sources, const CondensationData& condensation,
-                     const PrimitiveSetData& primitive);
+/// Throws std::runtime_error unless `table`, mapped with settings `s`, can be read against
+/// these inputs: every level-1 record's parent is a condensation particle that had condensed
+/// when the record started, and every deeper record's parent fluid particle exists in the
+/// primitive when it started (so at every later frame). The deserializer cannot check this
+/// (the inputs are other values): consumers of a stored table call it before mapping, with
+/// the settings they map with (GenerateCloud the table's own; PrimitiveMapper, stepping from
+/// its previous frame, its parameters'). O(records).
+void checkSourcesFit(const algo::SourceTable& table, const algo::MappingSettings& s,
+                     const CondensationData& condensation, const PrimitiveSetData& primitive);
 
 void registerCloudSourcesType(Registry& registry);
 

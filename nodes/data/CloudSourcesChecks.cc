@@ -156,11 +156,9 @@ void checkSourceTable(const algo::SourceTable& t, const algo::MappingSettings& s
     checkCloudTaken(t);
 }
 
-void checkSourcesFit(const CloudSourcesData& sources, const CondensationData& condensation,
-                     const PrimitiveSetData& primitive)
+void checkSourcesFit(const algo::SourceTable& t, const algo::MappingSettings& s,
+                     const CondensationData& condensation, const PrimitiveSetData& primitive)
 {
-    const algo::SourceTable& t = sources.table;
-    const algo::MappingSettings& s = sources.settings;
     algo::PrimitiveView p;
     p.counts = primitive.counts.data();
     p.frameCount = primitive.frames();

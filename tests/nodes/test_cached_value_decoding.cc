@@ -522,7 +522,8 @@ TEST(CachedValueDecoding, CloudSourcesRoundTripAMapperRun)
         EXPECT_EQ(back->settings.selectionRatio, scene.settings.selectionRatio);
         EXPECT_EQ(back->settings.windowLength, scene.settings.windowLength);
         EXPECT_EQ(back->settings.seed, scene.settings.seed);
-        EXPECT_NO_THROW(checkSourcesFit(*back, *scene.condensation, scene.primitive));
+        EXPECT_NO_THROW(
+            checkSourcesFit(back->table, back->settings, *scene.condensation, scene.primitive));
     }
 }
 
@@ -681,7 +682,7 @@ TEST(CachedValueDecoding, CloudSourcesFitTheirInputsOrAreRefused)
         MapperScene s;
         change(s);
         try {
-            checkSourcesFit(CloudSourcesData(s.table, s.settings), *s.condensation, s.primitive);
+            checkSourcesFit(s.table, s.settings, *s.condensation, s.primitive);
             ADD_FAILURE() << "accepted: " << why;
         } catch (const std::runtime_error& e) {
             EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
@@ -727,8 +728,7 @@ TEST(CachedValueDecoding, CloudSourcesFitTheirInputsOrAreRefused)
         "primitive time is negative");
     const MapperScene scene;
     const PrimitiveSetData noFrames(1.0, {}, {});
-    EXPECT_THROW(checkSourcesFit(CloudSourcesData(scene.table, scene.settings), *scene.condensation,
-                                 noFrames),
+    EXPECT_THROW(checkSourcesFit(scene.table, scene.settings, *scene.condensation, noFrames),
                  std::runtime_error);
 }
 
@@ -886,6 +886,8 @@ TEST(CachedValueDecoding, FogVolumeEncoderRefusesGridsItCannotHold)
     EXPECT_TRUE(refused(changed(
         [](FloatGrid& g) { g.insertMeta("v", openvdb::Vec3DMetadata(openvdb::Vec3d(1.0))); })));
     EXPECT_TRUE(refused(changed([](FloatGrid& g) { g.tree().setValueOff(Coord(0, 0, 0), kNaN); })));
+    EXPECT_TRUE(
+        refused(changed([](FloatGrid& g) { g.tree().addTile(1, Coord(800, 0, 0), 2.0f, true); })));
     EXPECT_TRUE(
         refused(changed([](FloatGrid& g) { g.tree().setValueOn(Coord(1 << 30, 0, 0), 0.5f); })));
     EXPECT_TRUE(refused(
