@@ -21,6 +21,8 @@ public:
         const auto sources = ctx.input<CloudSourcesData>("sources");
         const auto condensation = ctx.input<CondensationData>("condensation");
         const auto primitive = ctx.input<PrimitiveSetData>("primitive");
+        // A table read from a disk cache must index these inputs before anything reads them.
+        checkSourcesFit(sources->table, sources->settings, *condensation, *primitive);
         const PrimitiveViewHolder prim(*primitive);
         std::uint64_t total = 0;
         for (auto c : algo::cloudCounts(sources->table, ctx.frame(), prim.view, sources->settings)) total += c;

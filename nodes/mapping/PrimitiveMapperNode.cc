@@ -43,6 +43,8 @@ public:
         const auto primitive = ctx.input<PrimitiveSetData>("primitive");
         const auto previous = ctx.previous<CloudSourcesData>("sources");
         const algo::MappingSettings settings = settingsFrom(ctx);
+        // The previous table may come from a disk cache: it must index these inputs.
+        if (previous) checkSourcesFit(previous->table, settings, *condensation, *primitive);
         const PrimitiveViewHolder prim(*primitive);
         algo::SourceTable table = algo::stepSources(
             previous ? previous->table : algo::SourceTable{}, ctx.frame(), condensation->firstFrame,
