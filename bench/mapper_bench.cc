@@ -11,7 +11,7 @@
 //   - the real selection (algo::stepSources) over 612 frames, 4 levels, which reaches about
 //     4.5 million cloud particles at the last frame (the paper's Figure 5: 4,534,381).
 //
-// Only the library's generators are measured (nodes/algo/Mapping.h):
+// Only the library's generators are measured (algo/mapping/Mapping.h):
 //   BM_Figure5/0   the whole 612-frame run: selection + positions of every frame from
 //                  algo::forEachCloudChunk (4,096-particle chunks in a reused per-thread 48 KB
 //                  buffer), counted, as a streaming consumer (voxelizer, PLY writer) takes them;
@@ -51,8 +51,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "nodes/algo/CounterRandom.h"
-#include "nodes/algo/Mapping.h"
+#include "algo/CounterRandom.h"
+#include "algo/mapping/Mapping.h"
 
 // ---------------------------------------------------------------------------------------------
 // Counting allocator: live heap bytes (malloc_usable_size) and their high-water mark, so the

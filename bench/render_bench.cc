@@ -15,9 +15,9 @@
 
 #include <openvdb/io/File.h>
 
-#include "nodes/algo/RenderVolume.h"
-#include "nodes/algo/SyntheticCumulus.h"
-#include "nodes/algo/Voxelize.h"
+#include "algo/render/RenderVolume.h"
+#include "algo/render/SyntheticCumulus.h"
+#include "algo/volume/Voxelize.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// SPH speed (nodes/algo/Sph*): neighbour search for 16k and 1M particles against a plain
+// SPH speed (algo/fluid/Sph*): neighbour search for 16k and 1M particles against a plain
 // reference measured in the same run, and the time of one solver sub-step from 16k to 1M
 // fluid particles (the basis of "hybrid vs simulating every particle physically").
 //
@@ -16,8 +16,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
-#include "nodes/algo/SphGrid.h"
-#include "nodes/algo/SphSolver.h"
+#include "algo/fluid/SphGrid.h"
+#include "algo/fluid/SphSolver.h"
 
 namespace {
 

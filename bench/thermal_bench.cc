@@ -11,7 +11,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "nodes/algo/Thermal.h"
+#include "algo/atmosphere/Thermal.h"
 
 namespace {
 

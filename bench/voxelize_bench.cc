@@ -24,7 +24,7 @@
 #include <openvdb/points/PointRasterizeTrilinear.h>
 #include <openvdb/tools/ParticlesToLevelSet.h>
 
-#include "nodes/algo/Voxelize.h"
+#include "algo/volume/Voxelize.h"
 
 namespace {
 

@@ -10,6 +10,7 @@
 
 #include "core/Error.h"
 #include "core/Plugin.h"
+#include "formats/FormatError.h"
 #include "nodes/Builtin.h"
 
 namespace cg::cli {
@@ -121,6 +122,9 @@ int guarded(const std::function<int()>& body)
     try {
         return body();
     } catch (const InputError& e) {
+        spdlog::error("{}", e.what());
+        return kExitBadInput;
+    } catch (const formats::FormatError& e) {  // a file read outside any node (`info`)
         spdlog::error("{}", e.what());
         return kExitBadInput;
     } catch (const CookError& e) {

@@ -5,7 +5,7 @@
 #include "cli/Commands.h"
 #include "cli/Common.h"
 #include "core/Error.h"
-#include "nodes/algo/PrimitiveFile.h"
+#include "formats/PrimitiveFile.h"
 
 namespace cg::cli {
 
@@ -17,7 +17,7 @@ int infoCommand(const Args& args)
         if (opts.positionals().size() != 1)
             throw InputError("command line", "usage: cloudgraph info FILE");
         const std::string& file = opts.positionals()[0];
-        algo::PrimitiveFileReader reader(file);
+        formats::PrimitiveFileReader reader(file);
         // Read every frame too, so the checksums of the whole file are verified.
         std::uint64_t total = 0;
         for (int s = 0; s < reader.frames(); ++s) {
@@ -27,7 +27,7 @@ int infoCommand(const Args& args)
         const float* lo = reader.boundsMin();
         const float* hi = reader.boundsMax();
         std::printf("%s: CloudGraph primitive set, format version %u\n", file.c_str(),
-                    algo::kPrimitiveFileVersion);
+                    formats::kPrimitiveFileVersion);
         std::printf("  frames:      %d (Delta s = %g s, %g s in all)\n", reader.frames(),
                     reader.frameTime(), reader.frameTime() * (reader.frames() - 1));
         std::printf("  units:       metres, relative to the cloud origin\n");

@@ -11,7 +11,7 @@
 #include "cli/Commands.h"
 #include "cli/Common.h"
 #include "cli/ProgressBar.h"
-#include "core/AtomicFile.h"
+#include "util/AtomicFile.h"
 #include "core/Error.h"
 #include "core/Evaluator.h"
 #include "core/Graph.h"
@@ -31,7 +31,7 @@ void writeReport(const std::string& path, const nlohmann::json& report)
     try {
         const std::filesystem::path p(path);
         if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
-        writeFileAtomically(p, report.dump(2));
+        util::writeFileAtomically(p, report.dump(2));
     } catch (const std::exception& e) {
         throw InputError("--report " + path, std::string("cannot write the report: ") + e.what());
     }

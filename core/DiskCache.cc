@@ -15,7 +15,7 @@
 ///                   u64 data length, data bytes (Data::serialize through ByteWriter)
 ///
 /// Entries are written to tmp/ under a unique name, fsynced and renamed into objects/ (by
-/// AtomicOutput), so readers (which only look in objects/) see no entry or a whole one. A
+/// util::AtomicOutput), so readers (which only look in objects/) see no entry or a whole one. A
 /// temp file left by a killed writer is never read, and removed when the cache is next opened.
 
 #include "core/DiskCache.h"
@@ -33,7 +33,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "core/AtomicFile.h"
+#include "util/AtomicFile.h"
 #include "core/Data.h"
 #include "core/Error.h"
 #include "core/Registry.h"
@@ -218,7 +218,7 @@ DiskCache::DiskCache(fs::path root) : mRoot(std::move(root))
     if (::access((mRoot / "tmp").c_str(), W_OK | X_OK) != 0)
         throw InputError(mRoot.string(),
                          std::string("cannot write cache directory: ") + std::strerror(errno));
-    removeOrphanedTemporaries(mRoot / "tmp");
+    util::removeOrphanedTemporaries(mRoot / "tmp");
 }
 
 fs::path DiskCache::entryPath(const Key& key) const
@@ -387,7 +387,7 @@ bool DiskCache::writeAtomically(const fs::path& target, const void* data,
     try {
         std::error_code ec;
         fs::create_directories(target.parent_path(), ec);
-        writeFileAtomically(target, std::string_view(static_cast<const char*>(data), size),
+        util::writeFileAtomically(target, std::string_view(static_cast<const char*>(data), size),
                             mRoot / "tmp");
         return true;
     } catch (const std::exception& e) {

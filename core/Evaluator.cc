@@ -11,7 +11,7 @@
 #include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
 
-#include "core/AtomicFile.h"
+#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Hash.h"
@@ -360,7 +360,7 @@ void removeOrphansWhereWritersWrite(const Graph& graph, const std::vector<std::s
             dirs.insert((file.is_relative() ? outDir / file : file).parent_path());
         }
     }
-    for (const auto& dir : dirs) removeOrphanedTemporaries(dir);
+    for (const auto& dir : dirs) util::removeOrphanedTemporaries(dir);
 }
 
 }  // namespace

@@ -21,7 +21,6 @@ namespace {
 
 /// Section name tables are small; a larger one is not from a library we can load.
 constexpr std::uint64_t kMaxNameTableBytes = 1u << 20;
-constexpr std::uint32_t kMaxSections = 1u << 16;
 
 #if defined(__ELF__)
 #if defined(__x86_64__)
@@ -60,7 +59,7 @@ std::optional<std::int32_t> readPluginStamp(const ByteSource& read, std::uint64_
     if (eh.e_type != ET_DYN) bad("not a shared library");
     if (kMachine != EM_NONE && eh.e_machine != kMachine)
         bad("built for another architecture (ELF machine " + std::to_string(eh.e_machine) + ")");
-    if (eh.e_shentsize != sizeof(Elf64_Shdr) || eh.e_shnum == 0 || eh.e_shnum > kMaxSections ||
+    if (eh.e_shentsize != sizeof(Elf64_Shdr) || eh.e_shnum == 0 ||
         eh.e_shstrndx >= eh.e_shnum)
         bad("malformed ELF section header table");
 

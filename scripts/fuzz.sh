@@ -20,10 +20,7 @@ for f in "$root"/tests/fuzz/*.cc; do
     [ "$which" = all ] || [ "$which" = "$t" ] && targets+=("$t")
 done
 [ ${#targets[@]} -gt 0 ] || { echo "fuzz: no target '$which' in tests/fuzz/" >&2; exit 2; }
-command -v clang++ >/dev/null ||
-    { echo "fuzz: needs clang and libFuzzer (Debian: clang libclang-rt-14-dev)" >&2; exit 1; }
-
-"$root/scripts/install-deps.sh"
+"$root/scripts/install-deps.sh" --tests  # clang and the libFuzzer runtime
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
     -DCMAKE_CXX_COMPILER=clang++ -DCLOUDGRAPH_WERROR=ON -DCLOUDGRAPH_SANITIZE=ON \
     -DCLOUDGRAPH_FUZZ=ON > /dev/null

@@ -41,18 +41,24 @@ void registerAtmosphereNode(Registry& registry)
             "rates of Eq. 8, and gravity (Eq. 6). The defaults put the cloud base of the default "
             "VapourEmitter at 1.4 km.";
     d.outputs = {port("atmosphere", "Atmosphere", "the environment, for ThermalIntegrator and Condensation")};
+    using L = AtmosphereLimits;  // the ranges a stored Atmosphere is checked against
     d.params = {
         floatParam("groundTemperature", 20.0, "degC",
-                   "T_sl_max of Eq. 9: environment temperature at the ground (value ours)", -80, 80),
+                   "T_sl_max of Eq. 9: environment temperature at the ground (value ours)",
+                   L::kMinTemperature, L::kMaxTemperature),
         floatParam("environmentLapseRate", 6.4, "degC/km",
-                   "C_e of Eq. 9: environment cooling with height (paper: 6.4)", 0, 20),
+                   "C_e of Eq. 9: environment cooling with height (paper: 6.4)", 0,
+                   L::kMaxEnvironmentLapsePerKm),
         floatParam("dewPoint", 16.0, "degC",
-                   "T_dp of Eq. 8: a particle colder than this condenses (value ours)", -80, 80),
+                   "T_dp of Eq. 8: a particle colder than this condenses (value ours)",
+                   L::kMinTemperature, L::kMaxTemperature),
         floatParam("dryLapseRate", 10.0, "degC/km",
-                   "C of Eq. 8 while T_v >= T_dp: dry particle cooling (paper: 10)", 0, 50),
+                   "C of Eq. 8 while T_v >= T_dp: dry particle cooling (paper: 10)", 0,
+                   L::kMaxParticleLapsePerKm),
         floatParam("moistLapseRate", 6.0, "degC/km",
-                   "C of Eq. 8 once T_v < T_dp: moist particle cooling (paper: 6)", 0, 50),
-        floatParam("gravity", 9.81, "m/s^2", "g of Eq. 6", 0, 100),
+                   "C of Eq. 8 once T_v < T_dp: moist particle cooling (paper: 6)", 0,
+                   L::kMaxParticleLapsePerKm),
+        floatParam("gravity", 9.81, "m/s^2", "g of Eq. 6", 0, L::kMaxGravity),
     };
     d.create = [] { return std::make_unique<AtmosphereNode>(); };
     registry.addNode(std::move(d));

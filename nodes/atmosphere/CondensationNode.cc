@@ -9,7 +9,7 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/Condensation.h"
+#include "algo/atmosphere/Condensation.h"
 #include "nodes/atmosphere/AtmosphereNodes.h"
 #include "nodes/data/AtmosphereData.h"
 #include "nodes/data/VapourParticles.h"

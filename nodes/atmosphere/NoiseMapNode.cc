@@ -7,7 +7,7 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/NoiseMap.h"
+#include "algo/atmosphere/NoiseMap.h"
 #include "nodes/atmosphere/AtmosphereNodes.h"
 #include "nodes/data/Map2D.h"
 

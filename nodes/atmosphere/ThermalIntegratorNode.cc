@@ -3,7 +3,7 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/Thermal.h"
+#include "algo/atmosphere/Thermal.h"
 #include "nodes/atmosphere/AtmosphereNodes.h"
 #include "nodes/data/AtmosphereData.h"
 #include "nodes/data/VapourParticles.h"

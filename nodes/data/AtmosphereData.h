@@ -20,8 +20,9 @@ struct Atmosphere {
     double environmentTemperature(double z) const { return groundTemperature - environmentLapse * z; }
 };
 
-/// The ranges the Atmosphere node's parameters allow (lapse rates per kilometre there, per
-/// metre here): a stored Atmosphere outside them is refused. Keep in step with the node.
+/// The ranges of the Atmosphere node's parameters (lapse rates per kilometre there, per metre
+/// in Atmosphere): the node declares them from here, and a stored Atmosphere outside them is
+/// refused.
 struct AtmosphereLimits {
     static constexpr double kMinTemperature = -80.0, kMaxTemperature = 80.0;  ///< degrees C
     static constexpr double kMaxEnvironmentLapsePerKm = 20.0;

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/Data.h"
-#include "nodes/algo/Mapping.h"
+#include "algo/mapping/Mapping.h"
 
 namespace cg {
 

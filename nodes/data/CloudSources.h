@@ -3,7 +3,7 @@
 /// their clusters, so cloud particles can be generated from it at any frame.
 
 #include "core/Data.h"
-#include "nodes/algo/Mapping.h"
+#include "algo/mapping/Mapping.h"
 
 namespace cg {
 
@@ -25,8 +25,8 @@ public:
     bool serialize(ByteWriter& out) const override;
 };
 
-/// The ranges PrimitiveMapper's parameters allow: stored settings outside them are refused.
-/// Keep in step with the node's declaration.
+/// The ranges of PrimitiveMapper's parameters: the node declares them from here, and stored
+/// settings outside them are refused.
 struct MappingLimits {
     static constexpr std::size_t kMaxListSize = 32;      ///< selectionRatio, windowLength
     static constexpr std::int64_t kMaxFrames = 1000000;  ///< firstStart, levelDelay, windows

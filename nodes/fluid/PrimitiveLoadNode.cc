@@ -1,11 +1,12 @@
-// PrimitiveLoad: a stored primitive-set file (format in nodes/algo/PrimitiveFile.h).
+// PrimitiveLoad: a stored primitive-set file (format in formats/PrimitiveFile.h).
 
 #include "core/Error.h"
 #include "core/Hash.h"
 #include "core/Node.h"
 #include "core/Registry.h"
+#include "formats/FormatError.h"
+#include "formats/PrimitiveFile.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/PrimitiveFile.h"
 #include "nodes/data/PrimitiveSet.h"
 #include "nodes/fluid/FluidNodes.h"
 
@@ -20,10 +21,15 @@ public:
         const std::string& file = ctx.params().getString("file");
         if (file.empty())
             throw InputError(ctx.nodeId(), "PrimitiveLoad: parameter 'file' is empty");
-        algo::PrimitiveFileReader reader(file);
-        std::vector<float> positions = reader.readAll();
-        ctx.setOutput("primitive", std::make_shared<PrimitiveSetData>(
-                                       reader.frameTime(), reader.counts(), std::move(positions)));
+        try {
+            formats::PrimitiveFileReader reader(file);
+            std::vector<float> positions = reader.readAll();
+            ctx.setOutput("primitive",
+                          std::make_shared<PrimitiveSetData>(reader.frameTime(), reader.counts(),
+                                                             std::move(positions)));
+        } catch (const formats::FormatError& e) {
+            throw InputError(e.where(), e.message());  // a bad file is bad input: exit 2
+        }
     }
 };
 
@@ -48,8 +54,8 @@ void registerPrimitiveLoadNode(Registry& registry)
         // fails at cook time with its reason; until then its path stands in for the content.
         const std::string& file = p.getString("file");
         try {
-            h.str("content").u64(algo::primitiveFileContentHash(file));
-        } catch (const InputError&) {
+            h.str("content").u64(formats::primitiveFileContentHash(file));
+        } catch (const formats::FormatError&) {
             h.str("unreadable").str(file);
         }
     };
@@ -59,8 +65,8 @@ void registerPrimitiveLoadNode(Registry& registry)
         const std::string& file = p.getString("file");
         if (file.empty()) return;
         try {
-            algo::PrimitiveFileReader reader(file);
-        } catch (const InputError& e) {
+            formats::PrimitiveFileReader reader(file);
+        } catch (const formats::FormatError& e) {
             check.fail("file", e.what());
         }
     };

@@ -5,7 +5,7 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/PrimitiveScene.h"
+#include "algo/fluid/PrimitiveScene.h"
 #include "nodes/data/PrimitiveSet.h"
 #include "nodes/fluid/FluidNodes.h"
 

@@ -1,13 +1,13 @@
 // WritePrimitive (the .cgp file) and WritePrimitivePly (a frame range as PLY point clouds).
 
-#include "core/AtomicFile.h"
+#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/PrimitiveFile.h"
-#include "nodes/algo/PrimitivePly.h"
+#include "formats/PrimitiveFile.h"
+#include "formats/PrimitivePly.h"
 #include "nodes/data/PrimitiveSet.h"
 #include "nodes/fluid/FluidNodes.h"
 
@@ -21,7 +21,7 @@ public:
     {
         const auto prim = ctx.input<PrimitiveSetData>("primitive");
         const auto path = ctx.outputPath("file");
-        algo::writePrimitiveFile(path, prim->frameTime, prim->counts, prim->positions);
+        formats::writePrimitiveFile(path, prim->frameTime, prim->counts, prim->positions);
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));
     }
 };
@@ -41,9 +41,9 @@ public:
         const auto pattern = ctx.outputPath("file");
         std::string written;
         for (int s = first; s <= last; s += every) {
-            const auto path = algo::primitiveFramePath(pattern, s);
-            AtomicOutput out(path);
-            algo::writePrimitiveFramePly(out.tempPath(), prim->frame(s), prim->count(s), s,
+            const auto path = formats::primitiveFramePath(pattern, s);
+            util::AtomicOutput out(path);
+            formats::writePrimitiveFramePly(out.tempPath(), prim->frame(s), prim->count(s), s,
                                          [&ctx] { ctx.checkCancelled(); });
             out.commit();
             written += (written.empty() ? "" : "\n") + path.string();

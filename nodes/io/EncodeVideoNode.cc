@@ -7,13 +7,13 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/AtomicFile.h"
+#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/VideoEncode.h"
+#include "formats/VideoEncode.h"
 #include "nodes/io/IoNodes.h"
 
 namespace cg {
@@ -43,7 +43,7 @@ public:
             return;
         }
         const auto first = static_cast<int>(p.getInt("firstFrame"));
-        algo::VideoEncodeSettings s;
+        formats::VideoEncodeSettings s;
         s.program = encoderProgram(p.getString("ffmpeg"));
         s.firstFrame = first < 0 ? ctx.startFrame() : first;
         s.lastFrame = last;
@@ -59,10 +59,10 @@ public:
                    std::filesystem::path(images).filename();
 
         const std::filesystem::path path = ctx.outputPath("file");
-        AtomicOutput out(path);
+        util::AtomicOutput out(path);
         try {
-            algo::encodeVideo(s, out.tempPath(), [&ctx] { ctx.checkCancelled(); });
-        } catch (const algo::ProgramNotFound& e) {
+            formats::encodeVideo(s, out.tempPath(), [&ctx] { ctx.checkCancelled(); });
+        } catch (const formats::ProgramNotFound& e) {
             throw InputError(ctx.nodeId(),
                              std::string(e.what()) +
                                  ": EncodeVideo needs the ffmpeg program; install it (Debian/"

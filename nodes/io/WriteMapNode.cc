@@ -5,12 +5,12 @@
 #include <memory>
 #include <string>
 
-#include "core/AtomicFile.h"
+#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/MapImage.h"
+#include "formats/MapImage.h"
 #include "nodes/data/Map2D.h"
 #include "nodes/io/IoNodes.h"
 #include "nodes/io/WriterSupport.h"
@@ -40,11 +40,11 @@ public:
         const std::filesystem::path pngPath = previewPath(pfmPath);
 
         // Both files are written in full before either is committed.
-        AtomicOutput pfm(pfmPath);
-        AtomicOutput png(pngPath);
-        algo::writePfm(pfm.tempPath().string(), map->nx, map->ny, map->values);
+        util::AtomicOutput pfm(pfmPath);
+        util::AtomicOutput png(pngPath);
+        formats::writePfm(pfm.tempPath().string(), map->nx, map->ny, map->values);
         ctx.checkCancelled();
-        algo::writePng16(png.tempPath().string(), map->nx, map->ny, map->values);
+        formats::writePng16(png.tempPath().string(), map->nx, map->ny, map->values);
         ctx.checkCancelled();
         pfm.commit();
         png.commit();

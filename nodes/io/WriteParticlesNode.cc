@@ -5,13 +5,13 @@
 #include <string>
 #include <vector>
 
-#include "core/AtomicFile.h"
+#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/PlyWriter.h"
+#include "formats/PlyWriter.h"
 #include "nodes/data/VapourParticles.h"
 #include "nodes/io/IoNodes.h"
 #include "nodes/io/WriterSupport.h"
@@ -43,7 +43,7 @@ public:
         }
 
         const VapourStatics& s = *particles->statics;
-        algo::PlyParticleView view;
+        formats::PlyParticleView view;
         view.count = particles->size();
         view.x = s.x.data();
         view.y = s.y.data();
@@ -55,8 +55,8 @@ public:
         view.homeCell = s.homeCell.data();
 
         const auto path = ctx.outputPath("file");
-        AtomicOutput out(path);
-        algo::writeParticlesPly(
+        util::AtomicOutput out(path);
+        formats::writeParticlesPly(
             out.tempPath(), view,
             "vapour particles, frame " + std::to_string(ctx.frame()) + "; state 1 = condensed",
             [&ctx] { ctx.checkCancelled(); });

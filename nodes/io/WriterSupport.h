@@ -3,6 +3,7 @@
 
 #include "core/CoreData.h"
 #include "core/Node.h"
+#include "core/NodeDecl.h"
 
 namespace cg {
 
@@ -15,5 +16,15 @@ inline bool writesThisFrame(CookContext& ctx)
     ctx.setOutput("files", std::make_shared<TextData>(""));
     return false;
 }
+
+/// Adds firstFrame and skipEmpty to a writer of file sequences (WriteVDB, WritePoints), so
+/// that its files are a numbered sequence from the first frame with something in it.
+void addSequenceParams(NodeDecl& decl);
+
+/// writesThisFrame for a writer with addSequenceParams: frames firstFrame, firstFrame + every,
+/// ..., except empty ones (`empty`: this frame's value has nothing in it) under skipEmpty. It
+/// reads this frame and the parameters only, never earlier frames, so a frame's file does not
+/// depend on which frames a run cooks.
+bool writesSequenceFrame(CookContext& ctx, bool empty);
 
 }  // namespace cg

@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "nodes/algo/Mapping.h"
+#include "algo/mapping/Mapping.h"
 #include "nodes/data/Map2D.h"
 #include "nodes/data/PrimitiveSet.h"
 #include "nodes/data/VapourParticles.h"

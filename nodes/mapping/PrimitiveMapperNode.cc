@@ -7,6 +7,7 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
+#include "nodes/data/CloudParticles.h"
 #include "nodes/data/CloudSources.h"
 #include "nodes/mapping/MappingNodes.h"
 #include "nodes/mapping/MappingViews.h"
@@ -95,6 +96,7 @@ void registerPrimitiveMapperNode(Registry& registry)
     d.outputs = {port("sources", "CloudSources", "the table of source records at this frame"),
                  port("cloudCount", "Int", "cloud particles of all levels at this frame (Eq. 13)"),
                  port("summary", "Text", "\"frame t: L1=N_c[1] ... total= sources= Lmax=\"")};
+    using L = MappingLimits;  // the ranges a stored source table is checked against
     ParamDecl ratios;
     ratios.name = "selectionRatio";
     ratios.type = ParamType::FloatList;
@@ -102,37 +104,44 @@ void registerPrimitiveMapperNode(Registry& registry)
     ratios.min = 0.0;
     ratios.max = 1.0;
     ratios.minSize = 1;
-    ratios.maxSize = 32;
+    ratios.maxSize = L::kMaxListSize;
     ratios.doc = "M[L] of Eq. 14, per level; the last value repeats (paper: 0.2 in Fig. 6)";
     ParamDecl windows;
     windows.name = "windowLength";
     windows.type = ParamType::IntList;
     windows.defaultValue = std::vector<std::int64_t>{100, 60};
     windows.min = 0.0;
-    windows.max = 1e6;
+    windows.max = static_cast<double>(L::kMaxFrames);
     windows.minSize = 1;
-    windows.maxSize = 32;
+    windows.maxSize = L::kMaxListSize;
     windows.units = "frames";
     windows.doc = "t_e[L] - t_s[L], per level; the last value repeats (paper, Fig. 6: 100 for "
                   "L = 1, 60 after)";
     d.params = {
-        intParam("maxLevel", 5, "", "cap on L_max, the highest recursive level (paper: 4 and 5)", 1, 32),
+        intParam("maxLevel", 5, "", "cap on L_max, the highest recursive level (paper: 4 and 5)", 1,
+                 kMaxCloudLevel),
         ratios,
-        intParam("firstStart", -1, "frame", "t_s[1]; -1 takes the first condensation frame", -1, 1e6),
-        intParam("levelDelay", 50, "frames", "chi: t_s[L] = t_s[L-1] + chi (paper, Fig. 6: 50)", 0, 1e6),
+        intParam("firstStart", -1, "frame", "t_s[1]; -1 takes the first condensation frame", -1,
+                 L::kMaxFrames),
+        intParam("levelDelay", 50, "frames", "chi: t_s[L] = t_s[L-1] + chi (paper, Fig. 6: 50)", 0,
+                 L::kMaxFrames),
         windows,
-        floatParam("scaleCoefficient", 1.5, "", "R0 of Eq. 16: R = R0 fNoise (paper: 1.5)", 0, 1e3),
-        floatParam("speedCoefficient", 2.0, "", "A0 of Eq. 16: A = 1 + A0 fNoise (paper: 2.0)", 0, 1e3),
+        floatParam("scaleCoefficient", 1.5, "", "R0 of Eq. 16: R = R0 fNoise (paper: 1.5)", 0,
+                   L::kMaxCoefficient),
+        floatParam("speedCoefficient", 2.0, "", "A0 of Eq. 16: A = 1 + A0 fNoise (paper: 2.0)", 0,
+                   L::kMaxCoefficient),
         floatParam("metresPerPrimitiveMetre", 1.0, "m/m",
-                   "global scale of every mapped primitive copy (value ours)", 1e-6, 1e6),
+                   "global scale of every mapped primitive copy (value ours)", L::kMinMetres,
+                   L::kMaxMetres),
         intParam("seed", 0, "", "keys the random selection", 0),
         intParam("maxSources", 1 << 24, "sources",
-                 "selection stops at this many sources, a memory guard (value ours)", 1, 1e9),
+                 "selection stops at this many sources, a memory guard (value ours)", 1,
+                 L::kMaxSources),
         intParam("particlesPerCopy", 0, "particles",
                  "K (ours): each copy carries about K of the primitive's particles, ids o_j, "
                  "o_j + k, ... (k = ceil(N_f(last) / K), phase o_j drawn per source, so copies "
                  "differ); keeps deep recursions near the paper's counts; 0 = all (the paper)",
-                 0, 1 << 30),
+                 0, L::kMaxParticlesPerCopy),
     };
     d.create = [] { return std::make_unique<PrimitiveMapperNode>(); };
     registry.addNode(std::move(d));

@@ -7,7 +7,7 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/PrimitiveSubset.h"
+#include "algo/mapping/PrimitiveSubset.h"
 #include "nodes/data/PrimitiveSet.h"
 #include "nodes/mapping/MappingNodes.h"
 

@@ -1,11 +1,11 @@
 // WriteCloudParticles: cloud particles per frame as binary little-endian PLY.
 
-#include "core/AtomicFile.h"
+#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/CloudPly.h"
+#include "formats/CloudPly.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/io/WriterSupport.h"
 #include "nodes/mapping/MappingNodes.h"
@@ -21,8 +21,8 @@ public:
         if (!writesThisFrame(ctx)) return;
         const auto cloud = ctx.input<CloudParticlesData>("particles");
         const auto path = ctx.outputPath("file");
-        AtomicOutput out(path);
-        algo::writeCloudPly(out.tempPath(), cloud->size(), cloud->positions.data(),
+        util::AtomicOutput out(path);
+        formats::writeCloudPly(out.tempPath(), cloud->size(), cloud->positions.data(),
                             cloud->levels.data(), cloud->sources.data(),
                             "cloud particles, frame " + std::to_string(ctx.frame()),
                             [&ctx] { ctx.checkCancelled(); });

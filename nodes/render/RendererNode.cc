@@ -10,7 +10,7 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/RenderVolume.h"
+#include "algo/render/RenderVolume.h"
 #include "nodes/data/FogVolume.h"
 #include "nodes/data/Image.h"
 #include "nodes/render/RenderNodes.h"

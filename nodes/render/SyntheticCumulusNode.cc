@@ -5,7 +5,7 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/SyntheticCumulus.h"
+#include "algo/render/SyntheticCumulus.h"
 #include "nodes/data/FogVolume.h"
 #include "nodes/render/RenderNodes.h"
 

@@ -5,13 +5,14 @@
 #include <memory>
 #include <string>
 
-#include "core/AtomicFile.h"
+#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/ExrFile.h"
-#include "nodes/algo/RenderPng.h"
+#include "formats/ExrFile.h"
+#include "formats/PngFile.h"
+#include "algo/render/Display.h"
 #include "nodes/data/Image.h"
 #include "nodes/io/WriterSupport.h"
 #include "nodes/render/RenderNodes.h"
@@ -34,9 +35,9 @@ public:
         if (!writesThisFrame(ctx)) return;
         const auto image = ctx.input<ImageData>("image");
         const std::filesystem::path path = ctx.outputPath("file");
-        AtomicOutput out(path);
+        util::AtomicOutput out(path);
         if (isExr(path.string())) {
-            algo::writeExrRgba32(out.tempPath().string(), image->width, image->height, image->rgba);
+            formats::writeExrRgba32(out.tempPath().string(), image->width, image->height, image->rgba);
         } else {
             algo::DisplaySettings display;
             display.exposure = ctx.params().getFloat("exposure");
@@ -46,7 +47,7 @@ public:
             const std::vector<std::uint8_t> rgb =
                 algo::displayRgb8(image->rgba, image->width, image->height, display);
             ctx.checkCancelled();
-            algo::writePngRgb8(out.tempPath().string(), image->width, image->height, rgb);
+            formats::writePngRgb8(out.tempPath().string(), image->width, image->height, rgb);
         }
         out.commit();
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));

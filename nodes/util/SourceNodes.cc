@@ -7,7 +7,7 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/CounterRandom.h"
+#include "algo/CounterRandom.h"
 #include "nodes/util/UtilNodes.h"
 
 namespace cg {

@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <string>
 
-#include "core/AtomicFile.h"
+#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Node.h"
 #include "core/Registry.h"
@@ -31,7 +31,7 @@ public:
             text.append(buf, static_cast<std::size_t>(n));
         }
         const auto path = ctx.outputPath("file");
-        writeFileAtomically(path, text);
+        util::writeFileAtomically(path, text);
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));
     }
 };
@@ -43,7 +43,7 @@ public:
         if (!writesThisFrame(ctx)) return;
         const auto in = ctx.input<TextData>("text");
         const auto path = ctx.outputPath("file");
-        writeFileAtomically(path, in->value);
+        util::writeFileAtomically(path, in->value);
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));
     }
 };

@@ -9,7 +9,7 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/CombineVolumes.h"
+#include "algo/volume/CombineVolumes.h"
 #include "nodes/data/FogVolume.h"
 #include "nodes/volume/VolumeNodes.h"
 

@@ -8,7 +8,7 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/Voxelize.h"
+#include "algo/volume/Voxelize.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/data/FogVolume.h"
 #include "nodes/volume/VolumeNodes.h"

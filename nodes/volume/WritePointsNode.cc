@@ -7,13 +7,13 @@
 
 #include <openvdb/io/File.h>
 
-#include "core/AtomicFile.h"
+#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/PointsGrid.h"
+#include "formats/PointsGrid.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/io/WriterSupport.h"
 #include "nodes/volume/VolumeNodes.h"
@@ -26,21 +26,21 @@ class WritePointsNode final : public Node {
 public:
     void cook(CookContext& ctx) override
     {
-        if (!writesThisFrame(ctx)) return;
         const auto particles = ctx.input<CloudParticlesData>("particles");
+        if (!writesSequenceFrame(ctx, /*empty=*/particles->size() == 0)) return;
         const ParamSet& p = ctx.params();
         if (particles->positions.size() != 3 * particles->size() ||
             particles->sources.size() != particles->size())
             throw InputError(ctx.nodeId(), "input 'particles' has arrays of different lengths");
 
-        algo::PointsGridSettings s;
+        formats::PointsGridSettings s;
         s.voxelSize = p.getFloat("voxelSize");
         s.pointsPerVoxel = static_cast<int>(p.getInt("pointsPerVoxel"));
-        s.precision = p.getString("precision") == "float" ? algo::PointPrecision::Float
-                                                          : algo::PointPrecision::Fixed16;
+        s.precision = p.getString("precision") == "float" ? formats::PointPrecision::Float
+                                                          : formats::PointPrecision::Fixed16;
         openvdb::points::PointDataGrid::Ptr grid;
         try {
-            grid = algo::makeParticlePointsGrid(particles->positions.data(),
+            grid = formats::makeParticlePointsGrid(particles->positions.data(),
                                                 particles->levels.data(),
                                                 particles->sources.data(), particles->size(), s);
         } catch (const std::invalid_argument& e) {
@@ -51,7 +51,7 @@ public:
         ctx.checkCancelled();
 
         const std::filesystem::path path = ctx.outputPath("file");
-        AtomicOutput out(path);  // OpenVDB truncates and writes in place: write beside, rename
+        util::AtomicOutput out(path);  // OpenVDB truncates and writes in place: write beside, rename
         {
             openvdb::io::File file(out.tempPath().string());
             openvdb::MetaMap fileMeta;
@@ -75,8 +75,12 @@ void registerWritePointsNode(Registry& registry)
         "which Houdini, vdb_print and OpenVDB's point tools read. Each point carries int32 "
         "'level' (recursive level) and int64 'source' (id of the source record); metadata: "
         "frame, units ('metres'). #### in the name becomes the frame number; the file is "
-        "written beside the target and renamed, so it appears whole or not at all.",
+        "written beside the target and renamed, so it appears whole or not at all. Writes "
+        "frames firstFrame, firstFrame + every, ... and, with skipEmpty, only those with a "
+        "particle, as WriteVDB does.",
         port("particles", "CloudParticles", "the particles to write"), "points.####.vdb");
+    d.version = 2;  // firstFrame and skipEmpty: no file for a frame without particles
+    addSequenceParams(d);  // empty: no particle
     d.params.push_back(floatParam(
         "voxelSize", 0.0, "m",
         "voxel edge of the point grid (points are bucketed per voxel); 0 = automatic, about "

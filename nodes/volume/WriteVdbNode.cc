@@ -5,13 +5,14 @@
 
 #include <openvdb/io/File.h>
 
-#include "core/AtomicFile.h"
+#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
 #include "nodes/data/FogVolume.h"
+#include "nodes/io/WriterSupport.h"
 #include "nodes/volume/VolumeNodes.h"
 
 namespace cg {
@@ -31,26 +32,12 @@ std::uint32_t compressionFlags(const std::string& choice, const std::string& nod
            (blosc ? openvdb::io::COMPRESS_BLOSC : openvdb::io::COMPRESS_ZIP);
 }
 
-/// Whether this frame is written: frames firstFrame, firstFrame + every, ... whose grid has an
-/// active voxel (unless skipEmpty is off). It reads this frame's grid and the parameters only,
-/// never earlier frames, so a frame's file does not depend on which frames a run cooks.
-bool writesThisFrame(CookContext& ctx, const openvdb::FloatGrid& grid)
-{
-    const auto& p = ctx.params();
-    const auto first = p.getInt("firstFrame") < 0 ? ctx.startFrame() : p.getInt("firstFrame");
-    const bool scheduled = ctx.frame() >= first && (ctx.frame() - first) % p.getInt("every") == 0;
-    const bool skipped = p.getBool("skipEmpty") && !grid.cbeginValueOn();  // no active voxel
-    if (scheduled && !skipped) return true;
-    ctx.setOutput("files", std::make_shared<TextData>(""));
-    return false;
-}
-
 class WriteVdbNode final : public Node {
 public:
     void cook(CookContext& ctx) override
     {
         const auto volume = ctx.input<FogVolumeData>("volume");
-        if (!writesThisFrame(ctx, *volume->grid)) return;
+        if (!writesSequenceFrame(ctx, /*empty=*/!volume->grid->cbeginValueOn())) return;
         const std::uint32_t flags = compressionFlags(ctx.params().getString("compression"),
                                                      ctx.nodeId());
         // A shallow copy shares the (immutable) tree; only its save flag differs.
@@ -59,7 +46,7 @@ public:
         grid->setSaveFloatAsHalf(ctx.params().getBool("halfFloat"));
 
         const std::filesystem::path path = ctx.outputPath("file");
-        AtomicOutput out(path);  // OpenVDB truncates and writes in place: write beside, rename
+        util::AtomicOutput out(path);  // OpenVDB truncates and writes in place: write beside, rename
         {
             openvdb::io::File file(out.tempPath().string());
             file.setCompression(flags);
@@ -90,15 +77,7 @@ void registerWriteVdbNode(Registry& registry)
         "vanish mid-run).",
         port("volume", "FogVolume", "the volume to write"), "density.####.vdb");
     d.version = 2;  // skips empty grids: 'files' is empty on frames it wrote before
-    for (auto& p : d.params)
-        if (p.name == "every")
-            p.doc = "write frames firstFrame, firstFrame + every, ...; skip the rest";
-    d.params.push_back(intParam(
-        "firstFrame", -1, "frame",
-        "first frame to write, from which 'every' counts; -1 = the graph's start", -1));
-    d.params.push_back(boolParam(
-        "skipEmpty", true,
-        "write no file for a grid without active voxels (e.g. before the cloud forms)"));
+    addSequenceParams(d);  // empty: a grid without active voxels
     d.params.push_back(boolParam(
         "halfFloat", false, "store values as 16-bit half floats (half the size, ~3 digits)"));
     d.params.push_back(stringParam(

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "nodes/algo/Condensation.h"
+#include "algo/atmosphere/Condensation.h"
 
 namespace cg {
 

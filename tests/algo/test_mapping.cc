@@ -12,7 +12,7 @@
 
 #include <tbb/global_control.h>
 
-#include "nodes/algo/Mapping.h"
+#include "algo/mapping/Mapping.h"
 
 namespace cg::algo {
 

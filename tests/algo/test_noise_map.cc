@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "nodes/algo/NoiseMap.h"
+#include "algo/atmosphere/NoiseMap.h"
 
 namespace cg {
 

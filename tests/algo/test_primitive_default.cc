@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "nodes/algo/PrimitiveScene.h"
+#include "algo/fluid/PrimitiveScene.h"
 
 namespace cg::algo {
 

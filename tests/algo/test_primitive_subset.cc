@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "nodes/algo/PrimitiveSubset.h"
+#include "algo/mapping/PrimitiveSubset.h"
 
 namespace cg {
 

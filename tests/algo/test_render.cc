@@ -8,9 +8,9 @@
 
 #include <tbb/global_control.h>
 
-#include "nodes/algo/Phase.h"
-#include "nodes/algo/RenderVolume.h"
-#include "nodes/algo/ToneMap.h"
+#include "algo/render/Phase.h"
+#include "algo/render/RenderVolume.h"
+#include "algo/render/ToneMap.h"
 
 namespace cg {
 

@@ -1,4 +1,4 @@
-// Physics of the SPH solver (nodes/algo/Sph*): kernel, neighbour search, rest, buoyancy,
+// Physics of the SPH solver (algo/fluid/Sph*): kernel, neighbour search, rest, buoyancy,
 // conduction, adiabatic cooling and latent heat.
 
 #include <gtest/gtest.h>
@@ -8,10 +8,10 @@
 #include <random>
 #include <set>
 
-#include "nodes/algo/SphGrid.h"
-#include "nodes/algo/SphKernel.h"
-#include "nodes/algo/SphSolver.h"
-#include "nodes/algo/SphThermo.h"
+#include "algo/fluid/SphGrid.h"
+#include "algo/fluid/SphKernel.h"
+#include "algo/fluid/SphSolver.h"
+#include "algo/fluid/SphThermo.h"
 
 namespace cg::algo {
 

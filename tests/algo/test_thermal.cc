@@ -7,7 +7,7 @@
 
 #include <tbb/global_control.h>
 
-#include "nodes/algo/Thermal.h"
+#include "algo/atmosphere/Thermal.h"
 
 namespace cg::algo {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "nodes/algo/VapourEmission.h"
+#include "algo/atmosphere/VapourEmission.h"
 
 namespace cg {
 

@@ -16,7 +16,7 @@
 
 #include <openvdb/tools/Count.h>
 
-#include "nodes/algo/Voxelize.h"
+#include "algo/volume/Voxelize.h"
 
 namespace cg {
 

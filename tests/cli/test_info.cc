@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "nodes/algo/PrimitiveFile.h"
+#include "formats/PrimitiveFile.h"
 #include "support/TestUtil.h"
 
 namespace cg {
@@ -10,7 +10,7 @@ namespace cg {
 TEST(InfoCommand, SummarisesAPrimitiveFileAndRefusesADamagedOne)
 {
     test::TempDir dir;
-    algo::writePrimitiveFile(dir / "p.cgp", 2.0, {1, 2}, {0, 0, 1, 0, 0, 2, 3, 4, 5});
+    formats::writePrimitiveFile(dir / "p.cgp", 2.0, {1, 2}, {0, 0, 1, 0, 0, 2, 3, 4, 5});
     const auto ok = test::runCli({"info", (dir / "p.cgp").string()});
     EXPECT_EQ(ok.exitCode, 0) << ok.errors;
     EXPECT_NE(ok.output.find("frames:      2"), std::string::npos) << ok.output;

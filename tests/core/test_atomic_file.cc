@@ -1,4 +1,4 @@
-// AtomicOutput: nothing partial under the final name, fsync failures reported, and the temp
+// util::AtomicOutput: nothing partial under the final name, fsync failures reported, and the temp
 // files of killed writers removed at the next run while live writers' files stay.
 
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <string>
 
-#include "core/AtomicFile.h"
+#include "util/AtomicFile.h"
 #include "support/TestUtil.h"
 
 namespace cg {
@@ -45,24 +45,24 @@ fs::path asIfWrittenBy(const fs::path& live, pid_t pid)
 TEST(AtomicFile, CommitReplacesTheTargetAndAnAbandonedWriteLeavesNothing)
 {
     test::TempDir dir;
-    writeFileAtomically(dir / "a.txt", "first");
-    writeFileAtomically(dir / "a.txt", "second");
+    util::writeFileAtomically(dir / "a.txt", "first");
+    util::writeFileAtomically(dir / "a.txt", "second");
     EXPECT_EQ(test::readFile(dir / "a.txt"), "second");
     {
-        AtomicOutput out(dir / "b.txt");
+        util::AtomicOutput out(dir / "b.txt");
         test::writeFile(out.tempPath(), "partial");
     }
     EXPECT_FALSE(fs::exists(dir / "b.txt"));
     std::size_t files = 0;
     for (const auto& e : fs::directory_iterator(dir.path())) files += e.is_regular_file();
     EXPECT_EQ(files, 1u);
-    EXPECT_THROW(writeFileAtomically(dir / "missing-dir" / "c.txt", "x"), std::runtime_error);
+    EXPECT_THROW(util::writeFileAtomically(dir / "missing-dir" / "c.txt", "x"), std::runtime_error);
 }
 
 TEST(AtomicFile, OrphansOfDeadWritersAreRemovedAndLiveWritersKeepTheirs)
 {
     test::TempDir dir;
-    AtomicOutput live(dir / "frame.0001.png");
+    util::AtomicOutput live(dir / "frame.0001.png");
     test::writeFile(live.tempPath(), "being written");
     const fs::path orphan = asIfWrittenBy(live.tempPath(), deadPid());
     test::writeFile(orphan, "killed mid-write");
@@ -75,7 +75,7 @@ TEST(AtomicFile, OrphansOfDeadWritersAreRemovedAndLiveWritersKeepTheirs)
     test::writeFile(dir / "frame.0000.png", "an output");
     test::writeFile(dir / ".hidden-user-file", "not ours");
 
-    EXPECT_EQ(removeOrphanedTemporaries(dir.path()), 2u);
+    EXPECT_EQ(util::removeOrphanedTemporaries(dir.path()), 2u);
     EXPECT_FALSE(fs::exists(orphan));
     EXPECT_FALSE(fs::exists(foreignOld));
     EXPECT_TRUE(fs::exists(live.tempPath()));
@@ -96,7 +96,7 @@ TEST(AtomicFile, TheNextRunRemovesTheTemporariesOfAKilledRun)
     for (const auto& e : fs::recursive_directory_iterator(dir / "out"))
         if (e.is_regular_file()) written = e.path();
     ASSERT_FALSE(written.empty());
-    AtomicOutput probe(written);
+    util::AtomicOutput probe(written);
     const fs::path orphan = asIfWrittenBy(probe.tempPath(), deadPid());
     test::writeFile(orphan, "killed mid-write");
     ASSERT_EQ(test::runCli({"run", graph, "--out", (dir / "out").string(), "-q"}).exitCode, 0);

@@ -1,7 +1,7 @@
-// Fuzz target: the primitive-set reader (.cgp, nodes/algo/PrimitiveFile.h). The input is a
+// Fuzz target: the primitive-set reader (.cgp, formats/PrimitiveFile.h). The input is a
 // whole file whose checksums are then made valid, as a forged file's would be, so the fuzzer
-// reaches the index and frame checks behind them. Every rejection must be a cg::InputError, and
-// a file that opens must yield every position it declares.
+// reaches the index and frame checks behind them. Every rejection must be a
+// cg::formats::FormatError, and a file that opens must yield every position it declares.
 #include <sys/mman.h>
 #include <unistd.h>
 
@@ -12,14 +12,14 @@
 #include <string>
 #include <vector>
 
-#include "core/Error.h"
+#include "formats/FormatError.h"
 #include "core/Hash.h"
-#include "nodes/algo/PrimitiveFile.h"
+#include "formats/PrimitiveFile.h"
 
 namespace {
 
-using cg::algo::kPrimitiveHeaderBytes;
-using cg::algo::kPrimitiveIndexEntryBytes;
+using cg::formats::kPrimitiveHeaderBytes;
+using cg::formats::kPrimitiveIndexEntryBytes;
 
 constexpr std::size_t kHeaderChecksumAt = 56;
 
@@ -76,13 +76,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     forgeChecksums(file);
     const std::string& path = memoryFile(file);
     try {
-        cg::algo::PrimitiveFileReader reader(path);
+        cg::formats::PrimitiveFileReader reader(path);
         const std::vector<float> all = reader.readAll();
         std::uint64_t total = 0;
         for (std::uint32_t n : reader.counts()) total += n;
         if (all.size() != 3 * total) std::abort();  // readAll must return every position
-        cg::algo::primitiveFileContentHash(path);
-    } catch (const cg::InputError&) {
+        cg::formats::primitiveFileContentHash(path);
+    } catch (const cg::formats::FormatError&) {
     }
     return 0;
 }

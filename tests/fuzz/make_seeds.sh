@@ -56,4 +56,12 @@ for cache, suffix in zip(sys.argv[2::2], sys.argv[3::2]):
     for name, payload in best.items():
         open(f'{out}/{name}{suffix}.payload', 'wb').write(payload)
 PY
+# plugin_stamp: the test plugins (stamped, wrong ABI, no entry), stripped (~14 KB each; the
+# section headers the reader parses sit at the end of the file).
+rm -rf "$corpus/plugin_stamp" && mkdir -p "$corpus/plugin_stamp"
+plugins="$(dirname "$cli")/../plugins"
+for p in sample bad_abi no_entry; do
+    strip -o "$corpus/plugin_stamp/$p.so" "$plugins/libcloudgraph_${p}_plugin.so"
+done
+
 ls -l "$corpus"/*

@@ -5,8 +5,8 @@
 #include <map>
 #include <string>
 
-#include "nodes/algo/MapImage.h"
-#include "nodes/algo/PngFile.h"
+#include "formats/MapImage.h"
+#include "formats/PngFile.h"
 
 namespace cg::golden {
 
@@ -16,11 +16,11 @@ namespace {
 /// previews (mean value).
 void png(Stats& s, const std::string& path)
 {
-    algo::PngPixels px;
+    formats::PngPixels px;
     try {
-        px = algo::readPng(path, 3, 8, 1u << 14);
+        px = formats::readPng(path, 3, 8, 1u << 14);
     } catch (const std::runtime_error&) {
-        const algo::MapImage grey = algo::readPng16(path);
+        const formats::MapImage grey = formats::readPng16(path);
         double sum = 0.0;
         for (float v : grey.values) sum += v;
         s["width"] = {Kind::Count, static_cast<double>(grey.nx)};
@@ -91,7 +91,7 @@ void ply(Stats& s, const std::string& path)
 
 void pfm(Stats& s, const std::string& path)
 {
-    const algo::MapImage map = algo::readPfm(path);
+    const formats::MapImage map = formats::readPfm(path);
     double sum = 0.0;
     for (float v : map.values) sum += v;
     s["nx"] = {Kind::Count, static_cast<double>(map.nx)};

@@ -23,9 +23,9 @@
 
 #include "core/CoreData.h"
 #include "core/Registry.h"
-#include "nodes/algo/Mapping.h"
-#include "nodes/algo/VapourEmission.h"
-#include "nodes/algo/Voxelize.h"
+#include "algo/mapping/Mapping.h"
+#include "algo/atmosphere/VapourEmission.h"
+#include "algo/volume/Voxelize.h"
 #include "nodes/data/AtmosphereData.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/data/CloudSources.h"

@@ -20,7 +20,7 @@
 #include "core/Evaluator.h"
 #include "core/Graph.h"
 #include "core/Registry.h"
-#include "nodes/algo/VideoEncode.h"
+#include "formats/VideoEncode.h"
 #include "nodes/data/DataTypes.h"
 #include "nodes/io/IoNodes.h"
 #include "nodes/render/RenderNodes.h"

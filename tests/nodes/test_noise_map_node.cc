@@ -16,8 +16,8 @@
 #include "core/Evaluator.h"
 #include "core/Graph.h"
 #include "core/Registry.h"
-#include "nodes/algo/MapImage.h"
-#include "nodes/algo/NoiseMap.h"
+#include "formats/MapImage.h"
+#include "algo/atmosphere/NoiseMap.h"
 #include "nodes/atmosphere/AtmosphereNodes.h"
 #include "nodes/data/DataTypes.h"
 #include "nodes/data/Map2D.h"
@@ -157,11 +157,11 @@ TEST_F(NoiseMapNodeTest, WriteMapWritesPfmAndPngPerFrame)
         const auto png = out / (std::string("maps/density.") + frame + ".png");
         ASSERT_TRUE(std::filesystem::exists(pfm)) << pfm;
         ASSERT_TRUE(std::filesystem::exists(png)) << png;
-        const algo::MapImage a = algo::readPfm(pfm.string());
+        const formats::MapImage a = formats::readPfm(pfm.string());
         EXPECT_EQ(a.nx, 40);
         EXPECT_EQ(a.ny, 30);
         EXPECT_EQ(a.values, map->values);
-        const algo::MapImage b = algo::readPng16(png.string());
+        const formats::MapImage b = formats::readPng16(png.string());
         ASSERT_EQ(b.values.size(), map->values.size());
         for (std::size_t i = 0; i < b.values.size(); ++i)
             ASSERT_LE(std::abs(b.values[i] - map->values[i]), 1.0f / 65535.0f) << i;
@@ -207,8 +207,8 @@ TEST_F(NoiseMapNodeTest, WriteMapPreviewNameNeverCollides)
     options.outDir = out.path();
     Evaluator ev(registry, options);
     ev.cookFrames(g, 1, 1);
-    EXPECT_EQ(algo::readPfm((out / "m.png").string()).nx, 8);
-    EXPECT_EQ(algo::readPng16((out / "m.png.png").string()).nx, 8);
+    EXPECT_EQ(formats::readPfm((out / "m.png").string()).nx, 8);
+    EXPECT_EQ(formats::readPng16((out / "m.png.png").string()).nx, 8);
 }
 
 }  // namespace cg

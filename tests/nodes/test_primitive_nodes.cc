@@ -13,7 +13,7 @@
 #include "core/Graph.h"
 #include "core/Registry.h"
 #include "nodes/Builtin.h"
-#include "nodes/algo/PrimitiveFile.h"
+#include "formats/PrimitiveFile.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/data/PrimitiveSet.h"
 #include "support/TestUtil.h"
@@ -103,7 +103,7 @@ TEST(PrimitiveNodes, PrimitiveFrameIsTheFrameScaledAndOffsetHeldAtTheEnds)
     const std::vector<float> positions{1, 2, 3, 4, 5, 6,  // frame 1
                                        1.5f, 2, 3.5f, 4, 5.5f, 6, -7, 8, 9.25f};  // frame 2
     test::TempDir dir;
-    algo::writePrimitiveFile(dir / "p.cgp", 2.0, counts, positions);
+    formats::writePrimitiveFile(dir / "p.cgp", 2.0, counts, positions);
     const Graph g = parseGraph(R"({"cloudgraph": 1, "frames": {"start": 0, "end": 40}, "nodes": {
         "load": {"type": "PrimitiveLoad", "params": {"file": ")" + (dir / "p.cgp").string() + R"("}},
         "frame": {"type": "PrimitiveFrame", "inputs": {"primitive": "load.primitive"},

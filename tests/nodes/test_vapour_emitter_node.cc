@@ -18,7 +18,7 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "nodes/algo/VapourEmission.h"
+#include "algo/atmosphere/VapourEmission.h"
 #include "nodes/atmosphere/AtmosphereNodes.h"
 #include "nodes/data/DataTypes.h"
 #include "nodes/data/Map2D.h"

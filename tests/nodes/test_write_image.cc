@@ -11,9 +11,10 @@
 #include "core/Evaluator.h"
 #include "core/Graph.h"
 #include "core/Registry.h"
-#include "nodes/algo/ExrFile.h"
-#include "nodes/algo/RenderPng.h"
-#include "nodes/algo/ToneMap.h"
+#include "formats/ExrFile.h"
+#include "formats/PngFile.h"
+#include "algo/render/Display.h"
+#include "algo/render/ToneMap.h"
 #include "nodes/data/DataTypes.h"
 #include "nodes/render/RenderNodes.h"
 #include "support/FixtureNodes.h"
@@ -34,10 +35,10 @@ protected:
     }
 
     /// Cooks frame 42 of TestImageSource (a 16 x 8 ramp v = x / 16) into WriteImage.
-    algo::Rgb8Image write(const std::string& params)
+    formats::Rgb8Image write(const std::string& params)
     {
         cook(params, "frames/cloud.0042.png");
-        return algo::readPngRgb8((out / "frames/cloud.0042.png").string());
+        return formats::readPngRgb8((out / "frames/cloud.0042.png").string());
     }
 
     /// Cooks frame 42 into WriteImage and checks that it reports `written` (relative to out).
@@ -66,7 +67,7 @@ protected:
 
 TEST_F(WriteImageTest, WritesAnSrgbPngThatReadsBack)
 {
-    const algo::Rgb8Image img = write(
+    const formats::Rgb8Image img = write(
         R"({"file": "frames/cloud.####.png", "toneMap": "clamp", "dither": false})");
     ASSERT_EQ(img.width, 16);
     ASSERT_EQ(img.height, 8);
@@ -91,7 +92,7 @@ TEST_F(WriteImageTest, WritesAnSrgbPngThatReadsBack)
 TEST_F(WriteImageTest, ExposureToneMapAndDitherStayClose)
 {
     // One stop up through ACES with dither: within one code value of the undithered mapping.
-    const algo::Rgb8Image img =
+    const formats::Rgb8Image img =
         write(R"({"file": "frames/cloud.####.png", "exposure": 1.0, "toneMap": "aces"})");
     ASSERT_EQ(img.width, 16);
     for (int x = 0; x < 16; ++x) {
@@ -107,7 +108,7 @@ TEST_F(WriteImageTest, ExrKeepsTheLinearValuesExactly)
 {
     // Exposure and tone map are for display: the EXR holds the radiance unchanged.
     cook(R"({"file": "frames/cloud.####.exr", "exposure": 3.0, "toneMap": "aces"})", "frames/cloud.0042.exr");
-    const algo::ExrRgbaImage img = algo::readExrRgba((out / "frames/cloud.0042.exr").string());
+    const formats::ExrRgbaImage img = formats::readExrRgba((out / "frames/cloud.0042.exr").string());
     ASSERT_EQ(img.width, 16);
     ASSERT_EQ(img.height, 8);
     for (int y = 0; y < 8; ++y)
@@ -145,7 +146,7 @@ TEST(ExrFile, ReadingAFileThatIsNotExrNamesIt)
     test::TempDir dir;
     test::writeFile(dir / "bad.exr", "not an exr");
     try {
-        algo::readExrRgba((dir / "bad.exr").string());
+        formats::readExrRgba((dir / "bad.exr").string());
         FAIL();
     } catch (const std::runtime_error& e) {
         EXPECT_NE(std::string(e.what()).find("bad.exr"), std::string::npos);

@@ -27,7 +27,7 @@
 #include "core/Evaluator.h"
 #include "core/Graph.h"
 #include "core/Registry.h"
-#include "nodes/algo/PointsGrid.h"
+#include "formats/PointsGrid.h"
 #include "nodes/data/DataTypes.h"
 #include "nodes/volume/VolumeNodes.h"
 #include "support/FixtureNodes.h"
@@ -107,18 +107,18 @@ void expectRoundTrip(const Cloud& c, const pts::PointDataGrid& grid, double tole
 TEST(PointsGrid, KeepsEveryParticleAndItsAttributes)
 {
     const Cloud c = makeCloud();
-    algo::PointsGridSettings s;
+    formats::PointsGridSettings s;
     s.voxelSize = 2.0;
-    const auto fixed = algo::makeParticlePointsGrid(c.xyz.data(), c.levels.data(),
+    const auto fixed = formats::makeParticlePointsGrid(c.xyz.data(), c.levels.data(),
                                                     c.sources.data(), c.levels.size(), s);
     EXPECT_EQ(fixed->getName(), "points");
     EXPECT_EQ(fixed->voxelSize(), openvdb::Vec3d(2.0));
     // 16-bit offsets in a 2 m voxel: 2 m / 2^16 = 3e-5 m, plus float rounding at ~1.5 km.
     expectRoundTrip(c, *fixed, 2.0 / 65536.0 + 2e-4);
 
-    s.precision = algo::PointPrecision::Float;
+    s.precision = formats::PointPrecision::Float;
     s.voxelSize = 0.0;  // automatic
-    const auto exact = algo::makeParticlePointsGrid(c.xyz.data(), c.levels.data(),
+    const auto exact = formats::makeParticlePointsGrid(c.xyz.data(), c.levels.data(),
                                                     c.sources.data(), c.levels.size(), s);
     EXPECT_GT(exact->voxelSize()[0], 0.0);
     expectRoundTrip(c, *exact, 2e-4);
@@ -126,12 +126,12 @@ TEST(PointsGrid, KeepsEveryParticleAndItsAttributes)
 
 TEST(PointsGrid, EmptyAndNonFiniteInput)
 {
-    const auto empty = algo::makeParticlePointsGrid(nullptr, nullptr, nullptr, 0, {});
+    const auto empty = formats::makeParticlePointsGrid(nullptr, nullptr, nullptr, 0, {});
     EXPECT_EQ(pts::pointCount(empty->tree()), 0u);
     const float bad[3] = {0.0f, std::nanf(""), 0.0f};
     const std::uint8_t level = 1;
     const std::uint32_t source = 0;
-    EXPECT_THROW(algo::makeParticlePointsGrid(bad, &level, &source, 1, {}), std::invalid_argument);
+    EXPECT_THROW(formats::makeParticlePointsGrid(bad, &level, &source, 1, {}), std::invalid_argument);
 }
 
 namespace {
@@ -146,10 +146,13 @@ protected:
         registerWritePointsNode(registry);
     }
 
-    Graph parse(const std::string& writeParams)
+    /// `cloudParams`: {"radius": 1, "spacing": 100} gives no particle at all (the lattice's
+    /// only point, (-1, -1, -1), lies outside the ball).
+    Graph parse(const std::string& writeParams,
+                const std::string& cloudParams = R"({"radius": 12, "spacing": 2})")
     {
         return parseGraph(R"({"cloudgraph": 1, "nodes": {
-            "cloud": {"type": "TestCloudSource", "params": {"radius": 12, "spacing": 2}},
+            "cloud": {"type": "TestCloudSource", "params": )" + cloudParams + R"(},
             "write": {"type": "WritePoints", "inputs": {"particles": "cloud.particles"},
                       "params": )" + writeParams + "}}}",
                           "test.json", registry);
@@ -268,6 +271,28 @@ TEST_F(WritePointsTest, EveryNthFrameOnly)
     EXPECT_FALSE(write(g, 0).empty());
     EXPECT_TRUE(write(g, 1).empty());
     EXPECT_FALSE(fs::exists(out / "e.0001.vdb"));
+}
+
+TEST_F(WritePointsTest, FramesWithoutParticlesWriteNoFileUnlessAsked)
+{
+    const std::string empty = R"({"radius": 1, "spacing": 100})";
+    EXPECT_TRUE(write(parse(R"({"file": "a.####.vdb"})", empty), 3).empty());
+    EXPECT_FALSE(fs::exists(out / "a.0003.vdb"));
+
+    const fs::path path = write(parse(R"({"file": "b.####.vdb", "skipEmpty": false})", empty), 3);
+    EXPECT_EQ(path, out / "b.0003.vdb");
+    const auto grid = readBack(path);
+    ASSERT_TRUE(grid);
+    EXPECT_EQ(pts::pointCount(grid->tree()), 0u);
+}
+
+TEST_F(WritePointsTest, FirstFrameAnchorsEvery)
+{
+    const Graph g = parse(R"({"file": "f.####.vdb", "every": 2, "firstFrame": 5})");
+    EXPECT_TRUE(write(g, 4).empty());  // before firstFrame
+    EXPECT_FALSE(write(g, 5).empty());
+    EXPECT_TRUE(write(g, 6).empty());
+    EXPECT_FALSE(write(g, 7).empty());
 }
 
 }  // namespace cg

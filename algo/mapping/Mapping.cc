@@ -1,0 +1,406 @@
+#include "algo/mapping/Mapping.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <unordered_set>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "algo/CounterRandom.h"
+
+
+namespace cg::algo {
+
+float MapView::at(double x, double y) const
+{
+    const int ix = static_cast<int>(std::clamp(std::floor(x / cellSize), 0.0, nx - 1.0));
+    const int iy = static_cast<int>(std::clamp(std::floor(y / cellSize), 0.0, ny - 1.0));
+    return values[static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(ix)];
+}
+
+double selectionRatio(const MappingSettings& s, int level)
+{
+    const auto i = static_cast<std::size_t>(level - 1);
+    return s.selectionRatio.empty() ? 0.0 : s.selectionRatio[std::min(i, s.selectionRatio.size() - 1)];
+}
+
+int windowLength(const MappingSettings& s, int level)
+{
+    const auto i = static_cast<std::size_t>(level - 1);
+    return s.windowLength.empty() ? 0 : s.windowLength[std::min(i, s.windowLength.size() - 1)];
+}
+
+double primitiveTime(const Source& src, int frame, const MappingSettings& s, const PrimitiveView& p)
+{
+    return src.speed * static_cast<double>(frame - src.startFrame) * s.timeStep / p.frameTime;
+}
+
+std::uint32_t copyStride(const MappingSettings& s, const PrimitiveView& p)
+{
+    if (s.particlesPerCopy == 0 || p.frameCount == 0) return 1;
+    const std::uint64_t last = p.counts[p.frameCount - 1];
+    const std::uint64_t k = (last + s.particlesPerCopy - 1) / s.particlesPerCopy;
+    return static_cast<std::uint32_t>(std::clamp<std::uint64_t>(k, 1, 65536));
+}
+
+std::uint32_t clusterSize(const Source& src, int frame, const MappingSettings& s, const PrimitiveView& p)
+{
+    if (frame < src.startFrame || p.frameCount == 0) return 0;
+    const double t = std::floor(primitiveTime(src, frame, s, p));
+    const int index = t >= p.frameCount - 1 ? p.frameCount - 1 : static_cast<int>(t);
+    const std::uint32_t n = p.counts[index];
+    const std::uint32_t k = copyStride(s, p);
+    return n > src.phase ? (n - src.phase + k - 1) / k : 0;
+}
+
+void primitivePosition(const PrimitiveView& p, std::uint32_t i, double s, float out[3])
+{
+    const double whole = std::floor(s);
+    if (whole >= p.frameCount - 1) {
+        const float* q = p.frames[p.frameCount - 1] + 3 * static_cast<std::size_t>(i);
+        out[0] = q[0], out[1] = q[1], out[2] = q[2];
+        return;
+    }
+    const int f = static_cast<int>(whole);
+    const auto w = static_cast<float>(s - whole);
+    const float* a = p.frames[f] + 3 * static_cast<std::size_t>(i);
+    const float* b = p.frames[f + 1] + 3 * static_cast<std::size_t>(i);
+    for (int k = 0; k < 3; ++k) out[k] = a[k] + w * (b[k] - a[k]);
+}
+
+std::vector<float> sourceOrigins(const SourceTable& table, int frame, const CondensationView& c,
+                                 const PrimitiveView& p, const MappingSettings& s)
+{
+    // Parents precede children in the table, so one pass in order suffices.
+    std::vector<float> origins(3 * table.sources.size());
+    for (std::size_t j = 0; j < table.sources.size(); ++j) {
+        const Source& src = table.sources[j];
+        float* o = &origins[3 * j];
+        if (frame < src.startFrame) continue;  // not started yet: no cluster, no origin
+        if (src.level == 1) {  // Eq. 12, L = 1: the condensation particle itself
+            o[0] = c.x[src.parent], o[1] = c.y[src.parent], o[2] = c.z[src.parent];
+            continue;
+        }
+        // Eq. 12, L >= 2: the parent cloud particle, placed by Eq. 10.
+        const Source& parent = table.sources[src.parent];
+        const float* po = &origins[3 * static_cast<std::size_t>(src.parent)];
+        float f[3];
+        primitivePosition(p, src.parentFluid, primitiveTime(parent, frame, s, p), f);
+        const auto r = static_cast<float>(s.metresPerPrimitiveMetre * parent.scale);
+        for (int k = 0; k < 3; ++k) o[k] = po[k] + r * f[k];
+    }
+    return origins;
+}
+
+std::vector<std::uint64_t> cloudCounts(const SourceTable& table, int frame, const PrimitiveView& p,
+                                       const MappingSettings& s)
+{
+    std::vector<std::uint64_t> counts(static_cast<std::size_t>(std::max(s.maxLevel, 1)), 0);
+    for (const Source& src : table.sources)
+        if (src.level >= 1 && src.level <= counts.size()) counts[src.level - 1u] += clusterSize(src, frame, s, p);
+    return counts;
+}
+
+namespace {
+
+/// The counter-based stream of the copies' phases (levels use streams below 2^40).
+constexpr std::uint64_t kPhaseStream = std::uint64_t{1} << 40;
+
+/// Picks the k-th new candidate of (level, frame) uniformly in [0, n), skipping taken ones by
+/// probing forward: a candidate becomes a source at most once.
+template <class Taken>
+std::uint64_t pickCandidate(const MappingSettings& s, int level, int frame, std::uint64_t k,
+                            std::uint64_t n, const Taken& taken)
+{
+    const std::uint64_t stream = (static_cast<std::uint64_t>(level) << 32) | static_cast<std::uint32_t>(frame);
+    std::uint64_t u = counterBits(s.seed, stream, k) % n;
+    while (taken(u)) u = u + 1 == n ? 0 : u + 1;
+    return u;
+}
+
+}  // namespace
+
+SourceTable stepSources(const SourceTable& previous, int frame, int firstCondensation,
+                        const CondensationView& c, const MapView& map, const PrimitiveView& p,
+                        const MappingSettings& s)
+{
+    SourceTable table = previous;
+    const std::uint32_t stride = copyStride(s, p);
+    table.condensationTaken.resize(c.count, 0);
+    table.levelStart.assign(static_cast<std::size_t>(s.maxLevel), -1);
+    const int first = s.firstStart >= 0 ? s.firstStart : firstCondensation;
+    for (int level = 1; level <= s.maxLevel && first >= 0; ++level)
+        table.levelStart[static_cast<std::size_t>(level - 1)] = first + (level - 1) * s.levelDelay;
+
+    for (int level = 1; level <= std::min(table.topLevel, s.maxLevel); ++level) {
+        const int start = table.levelStart[static_cast<std::size_t>(level - 1)];
+        if (start < 0 || frame < start || frame > start + windowLength(s, level)) continue;
+
+        // The candidates: condensation particles (L = 1) or level L-1 cloud particles.
+        std::vector<std::uint32_t> condensed;
+        std::vector<std::uint32_t> parents;       // level L-1 source indices
+        std::vector<std::uint64_t> parentOffset;  // first candidate of each parent
+        std::uint64_t candidates = 0;
+        if (level == 1) {
+            for (std::size_t k = 0; k < c.count; ++k)
+                if (c.condensedFrame[k] >= 0 && c.condensedFrame[k] <= frame)
+                    condensed.push_back(static_cast<std::uint32_t>(k));
+            candidates = condensed.size();
+        } else {
+            for (std::size_t j = 0; j < table.sources.size(); ++j) {
+                if (table.sources[j].level != level - 1) continue;
+                parents.push_back(static_cast<std::uint32_t>(j));
+                parentOffset.push_back(candidates);
+                candidates += clusterSize(table.sources[j], frame, s, p);
+            }
+        }
+        std::uint64_t existing = 0;
+        for (const Source& src : table.sources) existing += src.level == level;
+        // Eq. 14: G[L](t) = M[L] x candidates, rounded down.
+        const auto target = static_cast<std::uint64_t>(std::floor(selectionRatio(s, level) * static_cast<double>(candidates)));
+        std::uint64_t fresh = target > existing ? target - existing : 0;
+        fresh = std::min<std::uint64_t>(fresh, s.maxSources > table.sources.size() ? s.maxSources - table.sources.size() : 0);
+        if (fresh == 0) continue;
+
+        const std::vector<float> origins =
+            level == 1 ? std::vector<float>() : sourceOrigins(table, frame, c, p, s);
+        std::unordered_set<std::uint64_t> takenNow;
+        for (std::uint64_t k = 0; k < fresh; ++k) {
+            Source src;
+            src.level = static_cast<std::uint8_t>(level);
+            src.startFrame = frame;
+            double x, y;
+            if (level == 1) {
+                const std::uint64_t u = pickCandidate(s, level, frame, k, candidates, [&](std::uint64_t v) {
+                    return table.condensationTaken[condensed[v]] != 0;
+                });
+                src.parent = condensed[u];
+                table.condensationTaken[src.parent] = 1;
+                x = c.x[src.parent];
+                y = c.y[src.parent];
+            } else {
+                auto keyOf = [&](std::uint64_t v) {
+                    const auto at = std::upper_bound(parentOffset.begin(), parentOffset.end(), v) - 1;
+                    const auto slot = static_cast<std::size_t>(at - parentOffset.begin());
+                    return (static_cast<std::uint64_t>(parents[slot]) << 32) | (v - *at);
+                };
+                const std::uint64_t u = pickCandidate(s, level, frame, k, candidates, [&](std::uint64_t v) {
+                    const std::uint64_t key = keyOf(v);
+                    return takenNow.count(key) ||
+                           std::binary_search(table.cloudTaken.begin(), table.cloudTaken.end(), key);
+                });
+                const std::uint64_t key = keyOf(u);
+                takenNow.insert(key);
+                src.parent = static_cast<std::uint32_t>(key >> 32);
+                src.parentFluid = copyFluidId(table.sources[src.parent], key & 0xffffffffu, stride);
+                // Eq. 16 reads the map under the parent cloud particle's position (Eq. 10).
+                const Source& parent = table.sources[src.parent];
+                float f[3];
+                primitivePosition(p, src.parentFluid, primitiveTime(parent, frame, s, p), f);
+                const double r = s.metresPerPrimitiveMetre * parent.scale;
+                x = origins[3 * src.parent] + r * f[0];
+                y = origins[3 * src.parent + 1] + r * f[1];
+            }
+            // Which of the primitive's particles this copy carries, keyed by the source's index,
+            // so it never depends on thread order.
+            src.phase = static_cast<std::uint16_t>(
+                counterBits(s.seed, kPhaseStream, table.sources.size()) % stride);
+            const double noise = map.at(x, y);  // Eq. 16
+            src.scale = static_cast<float>(s.scaleCoefficient * noise);
+            src.speed = static_cast<float>(1.0 + s.speedCoefficient * noise);
+            table.sources.push_back(src);
+        }
+        if (!takenNow.empty()) {
+            table.cloudTaken.insert(table.cloudTaken.end(), takenNow.begin(), takenNow.end());
+            std::sort(table.cloudTaken.begin(), table.cloudTaken.end());
+        }
+    }
+    // Pseudocode lines 26-27: once the top level has cloud particles, the next may start.
+    if (table.topLevel < s.maxLevel && cloudCounts(table, frame, p, s)[static_cast<std::size_t>(table.topLevel - 1)] > 0)
+        ++table.topLevel;
+    return table;
+}
+
+namespace {
+
+/// What every chunk of frame t needs: the origin of each source (Eq. 12) and the prefix sums
+/// of the cluster sizes (Eq. 13), so particle q belongs to the source j with
+/// offset[j] <= q < offset[j + 1].
+struct FramePlan {
+    std::uint32_t stride = 1;  ///< k of thinned copies
+    std::vector<float> origins;
+    std::vector<std::uint64_t> offset;
+    std::uint64_t total() const { return offset.back(); }
+};
+
+FramePlan planFrame(const SourceTable& table, int frame, const CondensationView& c, const PrimitiveView& p,
+                    const MappingSettings& s)
+{
+    FramePlan plan;
+    plan.stride = copyStride(s, p);
+    plan.origins = sourceOrigins(table, frame, c, p, s);
+    const std::size_t n = table.sources.size();
+    plan.offset.assign(n + 1, 0);
+    for (std::size_t j = 0; j < n; ++j) plan.offset[j + 1] = plan.offset[j] + clusterSize(table.sources[j], frame, s, p);
+    return plan;
+}
+
+/// Eq. 10 for particles [i0, i1) of one copy, whose fluid ids are first, first + k, ...:
+/// primitivePosition's arithmetic (P_f = a + w (b - a), or the last frame past its end) with
+/// the frame pair, weight, origin and scale hoisted out of the particle loop, bit-identical to
+/// calling it per particle. K is the stride when known at compile time (1: contiguous ids, the
+/// loop the compiler vectorises), 0 when it is `stride`.
+template <std::uint32_t K>
+void copySlice(const float* __restrict a, const float* __restrict b, float w, bool lerp, std::size_t stride,
+               const float* origin, float scale, std::uint64_t n, float* __restrict out)
+{
+    const std::size_t step = 3 * (K != 0 ? K : stride);
+    const float ox = origin[0], oy = origin[1], oz = origin[2];
+    if (!lerp) {
+        for (std::uint64_t i = 0; i < n; ++i) {
+            const float* q = a + i * step;
+            out[3 * i] = ox + scale * q[0];
+            out[3 * i + 1] = oy + scale * q[1];
+            out[3 * i + 2] = oz + scale * q[2];
+        }
+        return;
+    }
+    for (std::uint64_t i = 0; i < n; ++i) {
+        const float* qa = a + i * step;
+        const float* qb = b + i * step;
+        out[3 * i] = ox + scale * (qa[0] + w * (qb[0] - qa[0]));
+        out[3 * i + 1] = oy + scale * (qa[1] + w * (qb[1] - qa[1]));
+        out[3 * i + 2] = oz + scale * (qa[2] + w * (qb[2] - qa[2]));
+    }
+}
+
+/// Eq. 10 for particles [i0, i1) of source j's copy.
+void sourceSlice(const Source& src, const float* origin, int frame, const PrimitiveView& p,
+                 const MappingSettings& s, std::uint32_t stride, std::uint64_t i0, std::uint64_t i1,
+                 float* __restrict out)
+{
+    const double time = primitiveTime(src, frame, s, p);
+    const auto scale = static_cast<float>(s.metresPerPrimitiveMetre * src.scale);
+    const double whole = std::floor(time);
+    const bool past = whole >= p.frameCount - 1;
+    const int f = past ? p.frameCount - 1 : static_cast<int>(whole);
+    const auto w = past ? 0.0f : static_cast<float>(time - whole);
+    const std::size_t first = 3 * static_cast<std::size_t>(copyFluidId(src, i0, stride));
+    const float* a = p.frames[f] + first;
+    const float* b = past ? a : p.frames[f + 1] + first;
+    if (stride == 1)
+        copySlice<1>(a, b, w, !past, 1, origin, scale, i1 - i0, out);
+    else
+        copySlice<0>(a, b, w, !past, stride, origin, scale, i1 - i0, out);
+}
+
+/// Particles [first, last) of the frame into xyz (and levels / sources when not null), source
+/// slice by source slice.
+void fillRange(const FramePlan& plan, const SourceTable& table, int frame, const PrimitiveView& p,
+               const MappingSettings& s, std::uint64_t first, std::uint64_t last, float* xyz,
+               std::uint8_t* levels, std::uint32_t* sources)
+{
+    const auto& offset = plan.offset;
+    auto j = static_cast<std::size_t>(std::upper_bound(offset.begin(), offset.end(), first) - offset.begin() - 1);
+    for (std::uint64_t q = first; q < last; ++j) {
+        const std::uint64_t end = std::min(last, offset[j + 1]);
+        if (end == q) continue;  // a source not started yet: no cluster, no frame to look up
+        const Source& src = table.sources[j];
+        sourceSlice(src, &plan.origins[3 * j], frame, p, s, plan.stride, q - offset[j], end - offset[j],
+                    xyz + 3 * (q - first));
+        if (levels != nullptr) std::fill_n(levels + (q - first), end - q, src.level);
+        if (sources != nullptr) std::fill_n(sources + (q - first), end - q, static_cast<std::uint32_t>(j));
+        q = end;
+    }
+}
+
+/// The chunk loop behind forEachCloudChunk and generateCloudParticles.
+void runChunks(const FramePlan& plan, const SourceTable& table, int frame, const PrimitiveView& p,
+               const MappingSettings& s, const std::function<void(const CloudChunk&)>& consume,
+               const CloudChunkOptions& o)
+{
+    const std::uint64_t size = o.chunkParticles;
+    const bool direct = o.positionsOut != nullptr;
+    if (size == 0) throw std::invalid_argument("forEachCloudChunk: chunkParticles must be positive");
+    if (direct ? (o.levels && o.levelsOut == nullptr) || (o.sources && o.sourcesOut == nullptr)
+               : o.levelsOut != nullptr || o.sourcesOut != nullptr)
+        throw std::invalid_argument("forEachCloudChunk: frame arrays must be given for every requested field");
+    const std::uint64_t total = plan.total();
+    const std::uint64_t chunks = total / size + (total % size != 0);
+    struct Buffers {
+        std::vector<float> xyz;
+        std::vector<std::uint8_t> levels;
+        std::vector<std::uint32_t> sources;
+    };
+    tbb::enumerable_thread_specific<Buffers> perThread;
+    // Chunk k is particles [k size, (k + 1) size): fixed by the inputs, whatever the partition.
+    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, chunks), [&](const tbb::blocked_range<std::uint64_t>& r) {
+        for (std::uint64_t k = r.begin(); k < r.end(); ++k) {
+            if (o.checkCancelled) o.checkCancelled();
+            CloudChunk chunk;
+            chunk.first = k * size;
+            chunk.count = std::min(size, total - chunk.first);
+            float* xyz;
+            std::uint8_t* levels = nullptr;
+            std::uint32_t* sources = nullptr;
+            if (direct) {
+                xyz = o.positionsOut + 3 * chunk.first;
+                if (o.levels) levels = o.levelsOut + chunk.first;
+                if (o.sources) sources = o.sourcesOut + chunk.first;
+            } else {
+                Buffers& b = perThread.local();
+                if (b.xyz.empty()) {
+                    b.xyz.resize(3 * size);
+                    if (o.levels) b.levels.resize(size);
+                    if (o.sources) b.sources.resize(size);
+                }
+                xyz = b.xyz.data();
+                if (o.levels) levels = b.levels.data();
+                if (o.sources) sources = b.sources.data();
+            }
+            fillRange(plan, table, frame, p, s, chunk.first, chunk.first + chunk.count, xyz, levels, sources);
+            if (consume) {
+                chunk.positions = xyz;
+                chunk.levels = levels;
+                chunk.sources = sources;
+                consume(chunk);
+            }
+        }
+    });
+}
+
+}  // namespace
+
+std::uint64_t forEachCloudChunk(const SourceTable& table, int frame, const CondensationView& c,
+                                const PrimitiveView& p, const MappingSettings& s,
+                                const std::function<void(const CloudChunk&)>& consume,
+                                const CloudChunkOptions& options)
+{
+    const FramePlan plan = planFrame(table, frame, c, p, s);
+    runChunks(plan, table, frame, p, s, consume, options);
+    return plan.total();
+}
+
+CloudParticleArrays generateCloudParticles(const SourceTable& table, int frame,
+                                           const CondensationView& c, const PrimitiveView& p,
+                                           const MappingSettings& s,
+                                           const std::function<void()>& checkCancelled)
+{
+    const FramePlan plan = planFrame(table, frame, c, p, s);
+    const auto n = static_cast<std::size_t>(plan.total());
+    // Uninitialised: each chunk's writer touches its own pages first (no zero-fill on one thread).
+    CloudParticleArrays out{UninitArray<float>(3 * n), UninitArray<std::uint8_t>(n), UninitArray<std::uint32_t>(n)};
+    CloudChunkOptions o;
+    o.levels = o.sources = true;
+    o.positionsOut = out.positions.data();
+    o.levelsOut = out.levels.data();
+    o.sourcesOut = out.sources.data();
+    o.checkCancelled = checkCancelled;
+    runChunks(plan, table, frame, p, s, {}, o);
+    return out;
+}
+
+}  // namespace cg::algo

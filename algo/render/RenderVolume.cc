@@ -1,0 +1,293 @@
+#include "algo/render/RenderVolume.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <openvdb/tools/Interpolation.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "algo/CounterRandom.h"
+#include "algo/render/Phase.h"
+#include "algo/render/RenderLightMap.h"
+#include "algo/render/RenderOccupancy.h"
+
+namespace cg::algo {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kMaxOctaves = 16;
+
+using Accessor = openvdb::FloatGrid::ConstAccessor;
+using Span = RenderOccupancy::Span;
+
+void require(bool ok, const std::string& what)
+{
+    if (!ok) throw std::invalid_argument(what);
+}
+
+/// A world ray mapped to index space: the index point at world distance t is o + t d.
+struct IndexRay {
+    RenderVec3 o;
+    RenderVec3 d;
+};
+
+IndexRay toIndex(const openvdb::math::Transform& xform, const RenderVec3& origin,
+                 const RenderVec3& dir)
+{
+    const RenderVec3 o = xform.worldToIndex(origin);
+    return {o, xform.worldToIndex(origin + dir) - o};
+}
+
+/// Visits density samples on the lattice t_k = (k + offset) dt, t in [0, tMax), inside the
+/// occupied spans; each sample stands for the interval [t - dt/2, t + dt/2]. The lattice is
+/// global along the ray, so span boundaries leave no seams. fn(t, density) returns false to
+/// stop. Zero-density samples are skipped.
+template <class Fn>
+void marchRay(const RenderOccupancy& occ, Accessor& acc, const IndexRay& ray, double tMax,
+              double dt, double offset, std::vector<Span>& spans, Fn&& fn)
+{
+    spans.clear();
+    occ.spans(ray.o, ray.d, 0.0, tMax, spans);
+    for (const Span& s : spans) {
+        for (double k = std::ceil(s.t0 / dt - offset);; k += 1.0) {
+            const double t = (k + offset) * dt;
+            if (t >= s.t1) break;
+            const double density = openvdb::tools::BoxSampler::sample(acc, ray.o + ray.d * t);
+            if (density > 0.0 && !fn(t, density)) return;
+        }
+    }
+}
+
+double voxelSizeOf(const openvdb::FloatGrid& grid)
+{
+    require(grid.transform().isLinear(), "fog volume: the renderer needs a linear transform");
+    const openvdb::Vec3d v = grid.voxelSize();
+    return std::min({v.x(), v.y(), v.z()});
+}
+
+/// The ray through pixel (px, py) given the camera basis.
+RenderVec3 pixelRay(const RenderVec3& forward, const RenderVec3& right, const RenderVec3& up,
+                    double tanHalf, const RenderCamera& camera, int px, int py)
+{
+    const double aspect = double(camera.width) / double(camera.height);
+    const double sx = (2.0 * (px + 0.5) / camera.width - 1.0) * tanHalf * aspect;
+    const double sy = (1.0 - 2.0 * (py + 0.5) / camera.height) * tanHalf;
+    return (forward + right * sx + up * sy).unitSafe();
+}
+
+/// Everything constant over a frame.
+struct Frame {
+    const RenderSettings& s;
+    const openvdb::FloatGrid& grid;
+    RenderOccupancy occupancy;
+    RenderLightMap sunMap;
+    RenderLightMap skyMap;
+    double dt = 1.0;
+    RenderVec3 sunDir;        ///< unit, toward the sun
+    RenderVec3 sunIrradiance; ///< colour × intensity
+    RenderVec3 skyUp;         ///< ambient × mean radiance of the upper sky hemisphere
+    RenderVec3 below;         ///< ambient × radiance from below (ground bounce or horizon)
+    RenderVec3 groundSky;     ///< ground radiance from sky light alone
+    double groundSun = 0.0;   ///< cos of the sun's zenith angle, clamped at 0
+    RenderVec3 forward, right, up;
+    double tanHalf = 0.0;
+    int octaves = 1;
+    double octaveWeight[kMaxOctaves];  ///< b^i
+    double octaveAtten[kMaxOctaves];   ///< a^i
+    double octaveEcc[kMaxOctaves];     ///< c^i
+
+    Frame(const openvdb::FloatGrid& g, const RenderSettings& settings,
+          const std::function<bool()>& cancelled)
+        : s(settings), grid(g), occupancy(g.tree())
+    {
+        const double voxel = voxelSizeOf(g);
+        const RenderCamera& cam = s.camera;
+        require(cam.width >= 1 && cam.height >= 1, "image size must be at least 1 x 1");
+        require(cam.fovDegrees > 0.0 && cam.fovDegrees < 180.0,
+                "field of view must be in (0, 180) degrees");
+        require(s.march.step > 0.0, "step must be positive");
+        const RenderVec3 view = cam.lookAt - cam.position;
+        require(view.length() > 0.0, "camera look-at equals its position");
+        forward = view.unitSafe();
+        right = forward.cross(cam.up);
+        require(right.length() > 1e-9 * cam.up.length() && cam.up.length() > 0.0,
+                "camera up is zero or parallel to the view direction");
+        right = right.unitSafe();
+        up = right.cross(forward);
+        tanHalf = std::tan(0.5 * cam.fovDegrees * kPi / 180.0);
+        dt = s.march.step * voxel;
+
+        require(s.sun.direction.length() > 0.0, "sun direction is zero");
+        sunDir = s.sun.direction.unitSafe();
+        sunIrradiance = s.sun.colour * s.sun.intensity;
+        octaves = std::clamp(s.multiScatter.octaves, 1, kMaxOctaves);
+        for (int i = 0; i < octaves; ++i) {
+            octaveWeight[i] = std::pow(s.multiScatter.contribution, i);
+            octaveAtten[i] = std::pow(s.multiScatter.attenuation, i);
+            octaveEcc[i] = std::pow(s.multiScatter.eccentricity, i);
+        }
+
+        // Sky light: with radiance h + (z - h) sqrt(mu) over the upper hemisphere, the mean
+        // radiance is h/3 + 2z/3 and the irradiance on the ground is pi (0.2 h + 0.8 z).
+        const RenderVec3& h = s.sky.horizon;
+        const RenderVec3& z = s.sky.zenith;
+        skyUp = (h * (1.0 / 3.0) + z * (2.0 / 3.0)) * s.sky.ambient;
+        groundSun = std::max(0.0, sunDir.z());
+        groundSky = s.ground.albedo * (h * 0.2 + z * 0.8) * s.sky.ambient;
+        if (s.ground.enabled) {
+            const RenderVec3 groundLit =
+                s.ground.albedo * sunIrradiance * (groundSun / kPi) + groundSky;
+            below = groundLit;
+        } else {
+            below = h * s.sky.ambient;
+        }
+
+        const bool needSun = s.sun.intensity > 0.0;
+        const bool needSky = s.sky.ambient > 0.0 && s.sky.occlusion > 0.0;
+        if (needSun)
+            sunMap = RenderLightMap(g, occupancy, sunDir, s.medium.extinction,
+                                    s.march.lightTexel, s.march.lightStep,
+                                    std::size_t(8) << 20, cancelled);
+        if (needSky)
+            skyMap = RenderLightMap(g, occupancy, RenderVec3(0, 0, 1), s.medium.extinction,
+                                    s.march.lightTexel * 4.0, s.march.lightStep * 2.0,
+                                    std::size_t(4) << 20, cancelled);
+    }
+
+    RenderVec3 rayDirection(int px, int py) const
+    {
+        return pixelRay(forward, right, up, tanHalf, s.camera, px, py);
+    }
+
+    /// Radiance behind the volume: the lit, shadowed, hazed ground, or the sky.
+    RenderVec3 background(const RenderVec3& dir, double tGround) const
+    {
+        if (!std::isfinite(tGround)) return skyRadiance(s.sky, dir);
+        const RenderVec3 p = s.camera.position + dir * tGround;
+        const double sunT = std::exp(-sunMap.opticalDepth(p));
+        RenderVec3 lit = s.ground.albedo * sunIrradiance * (groundSun * sunT / kPi) + groundSky;
+        if (s.ground.hazeDistance > 0.0) {
+            const double f = std::exp(-tGround / s.ground.hazeDistance);
+            lit = lit * f + s.sky.horizon * (1.0 - f);
+        }
+        return lit;
+    }
+
+    void shade(int px, int py, Accessor& acc, std::vector<Span>& spans, float* out) const
+    {
+        const RenderVec3 dir = rayDirection(px, py);
+        const RenderVec3& origin = s.camera.position;
+        double tGround = std::numeric_limits<double>::infinity();
+        if (s.ground.enabled && origin.z() > 0.0 && dir.z() < 0.0) tGround = -origin.z() / dir.z();
+
+        // The phase functions depend only on the angle between sun light and the view ray.
+        const double cosTheta = sunDir.dot(dir);
+        double sunPhase[kMaxOctaves];
+        for (int i = 0; i < octaves; ++i) {
+            sunPhase[i] = octaveWeight[i] *
+                          twoLobeHenyeyGreenstein(cosTheta, s.medium.g * octaveEcc[i],
+                                                  s.medium.g2 * octaveEcc[i],
+                                                  s.medium.lobeBlend);
+        }
+        const std::uint64_t pixel =
+            static_cast<std::uint64_t>(py) * static_cast<std::uint64_t>(s.camera.width) +
+            static_cast<std::uint64_t>(px);
+        const double offset =
+            s.march.jitter ? counterUniform(s.march.seed, 0x52656e646572ull, pixel) : 0.5;
+
+        const double ext = s.medium.extinction;
+        const double albedo = s.medium.albedo;
+        const double minT = s.march.minTransmittance;
+        const bool skyOcclusion = !skyMap.empty();
+        double T = 1.0;
+        RenderVec3 L(0.0);
+        marchRay(occupancy, acc, toIndex(grid.transform(), origin, dir), tGround, dt, offset,
+                 spans, [&](double t, double density) {
+                     const double sigmaT = ext * density;
+                     const double segT = std::exp(-sigmaT * dt);
+                     const RenderVec3 p = origin + dir * t;
+                     const double tauSun = sunMap.opticalDepth(p);
+                     double sun = 0.0;
+                     for (int i = 0; i < octaves; ++i)
+                         sun += sunPhase[i] * std::exp(-octaveAtten[i] * tauSun);
+                     // Sky light from above and bounce light from below, each dimmed by the
+                     // optical depth of the cloud above or below the sample.
+                     double upT = 1.0, downT = 1.0;
+                     if (skyOcclusion) {
+                         const double tauUp = skyMap.opticalDepth(p);
+                         const double down = std::max(0.0, skyMap.columnDepth(p) - tauUp);
+                         upT = std::exp(-s.sky.occlusion * tauUp);
+                         downT = std::exp(-s.sky.occlusion * down);
+                     }
+                     const RenderVec3 source =
+                         sunIrradiance * sun + (skyUp * upT + below * downT) * 0.5;
+                     // Source constant over the step: ∫ T σ_s S ds = T albedo S (1 − segT).
+                     L += source * (T * albedo * (1.0 - segT));
+                     T *= segT;
+                     return T >= minT;
+                 });
+        L += background(dir, tGround) * T;
+        out[0] = static_cast<float>(L.x());
+        out[1] = static_cast<float>(L.y());
+        out[2] = static_cast<float>(L.z());
+        out[3] = static_cast<float>(1.0 - T);
+    }
+};
+
+}  // namespace
+
+RenderVec3 cameraRayDirection(const RenderCamera& camera, int px, int py)
+{
+    const RenderVec3 forward = (camera.lookAt - camera.position).unitSafe();
+    const RenderVec3 right = forward.cross(camera.up).unitSafe();
+    const RenderVec3 up = right.cross(forward);
+    const double tanHalf = std::tan(0.5 * camera.fovDegrees * kPi / 180.0);
+    return pixelRay(forward, right, up, tanHalf, camera, px, py);
+}
+
+RenderedImage renderFogVolume(const openvdb::FloatGrid& grid, const RenderSettings& settings,
+                              const std::function<bool()>& cancelled)
+{
+    const Frame frame(grid, settings, cancelled);
+    RenderedImage img;
+    img.width = settings.camera.width;
+    img.height = settings.camera.height;
+    const auto w = static_cast<std::size_t>(img.width);
+    img.rgba.assign(w * static_cast<std::size_t>(img.height) * 4, 0.0f);
+    tbb::parallel_for(tbb::blocked_range<int>(0, img.height, 1),
+                      [&](const tbb::blocked_range<int>& rows) {
+                          Accessor acc = grid.getConstAccessor();
+                          std::vector<Span> spans;
+                          for (int py = rows.begin(); py != rows.end(); ++py) {
+                              if (cancelled && cancelled()) return;
+                              float* row = img.rgba.data() + static_cast<std::size_t>(py) * w * 4;
+                              for (int px = 0; px < img.width; ++px)
+                                  frame.shade(px, py, acc, spans, row + 4 * px);
+                          }
+                      });
+    return img;
+}
+
+double fogTransmittance(const openvdb::FloatGrid& grid, const RenderVec3& origin,
+                        const RenderVec3& direction, double extinction, double stepVoxels)
+{
+    require(stepVoxels > 0.0, "step must be positive");
+    require(direction.length() > 0.0, "direction is zero");
+    const double dt = stepVoxels * voxelSizeOf(grid);
+    const RenderOccupancy occ(grid.tree());
+    Accessor acc = grid.getConstAccessor();
+    std::vector<Span> spans;
+    double tau = 0.0;
+    marchRay(occ, acc, toIndex(grid.transform(), origin, direction.unitSafe()),
+             std::numeric_limits<double>::infinity(), dt, 0.5, spans, [&](double, double d) {
+                 tau += extinction * d * dt;
+                 return true;
+             });
+    return std::exp(-tau);
+}
+
+}  // namespace cg::algo

@@ -1,0 +1,58 @@
+#pragma once
+/// Single-pass volume renderer for cloud fog volumes: camera rays are marched through the
+/// occupied leaf blocks of the VDB tree; each sample adds light from the sun (optical depth
+/// from a precomputed light map, Henyey-Greenstein phase, multiple scattering by octaves) and
+/// from the sky (occluded by the optical depth straight up); behind the volume is the ground
+/// plane z = 0 (lit, shadowed by the cloud, hazed with distance) or the sky gradient.
+/// See docs/rendering.md for the model.
+///
+/// Output is linear radiance (scene-referred, before exposure and tone mapping), RGBA with 4
+/// floats per pixel, top row first; alpha is the volume's opacity 1 − T along the pixel's ray,
+/// and RGB already contains what lies behind the volume. Every pixel is computed
+/// independently (jitter is counter-based on the pixel index), so the image does not depend
+/// on thread count.
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include <openvdb/openvdb.h>
+
+#include "algo/render/RenderSettings.h"
+
+namespace cg::algo {
+
+struct RenderedImage {
+    int width = 0;
+    int height = 0;
+    std::vector<float> rgba;  ///< 4 floats per pixel, top row first
+};
+
+/// Renders `grid` (density in [0, 1], linear transform, metres). Throws std::invalid_argument
+/// for unusable settings (size < 1, field of view outside (0, 180), camera looking at itself
+/// or along `up`, non-positive steps, a non-linear transform). `cancelled` is polled from
+/// worker threads; once it returns true the remaining rows are skipped (the caller discards
+/// the image).
+RenderedImage renderFogVolume(const openvdb::FloatGrid& grid, const RenderSettings& settings,
+                              const std::function<bool()>& cancelled = {});
+
+/// Transmittance exp(−∫ σ_t ds) of `grid` along the world ray origin + s * direction, s >= 0,
+/// with σ_t = extinction (1/m) × density, marched exactly as camera rays are (midpoint samples
+/// every stepVoxels voxels, no jitter, no early stop).
+double fogTransmittance(const openvdb::FloatGrid& grid, const RenderVec3& origin,
+                        const RenderVec3& direction, double extinction, double stepVoxels);
+
+/// Unit world direction of the ray through the centre of pixel (px, py), (0, 0) top left.
+RenderVec3 cameraRayDirection(const RenderCamera& camera, int px, int py);
+
+/// Radiance of the sky seen in unit direction `dir`: horizon + (zenith − horizon) sqrt(dir.z)
+/// for dir.z > 0, the horizon colour below.
+inline RenderVec3 skyRadiance(const RenderSky& sky, const RenderVec3& dir)
+{
+    if (!(dir.z() > 0.0)) return sky.horizon;
+    const double w = std::sqrt(std::min(dir.z(), 1.0));
+    return sky.horizon + (sky.zenith - sky.horizon) * w;
+}
+
+}  // namespace cg::algo

@@ -1,0 +1,30 @@
+#include "nodes/io/WriterSupport.h"
+
+#include "nodes/DeclHelpers.h"
+
+namespace cg {
+
+void addSequenceParams(NodeDecl& d)
+{
+    for (auto& p : d.params)
+        if (p.name == "every")
+            p.doc = "write frames firstFrame, firstFrame + every, ...; skip the rest";
+    d.params.push_back(intParam(
+        "firstFrame", -1, "frame",
+        "first frame to write, from which 'every' counts; -1 = the graph's start", -1));
+    d.params.push_back(boolParam(
+        "skipEmpty", true,
+        "write no file for an empty frame (e.g. before the cloud forms)"));
+}
+
+bool writesSequenceFrame(CookContext& ctx, bool empty)
+{
+    const auto& p = ctx.params();
+    const auto first = p.getInt("firstFrame") < 0 ? ctx.startFrame() : p.getInt("firstFrame");
+    const bool scheduled = ctx.frame() >= first && (ctx.frame() - first) % p.getInt("every") == 0;
+    if (scheduled && !(empty && p.getBool("skipEmpty"))) return true;
+    ctx.setOutput("files", std::make_shared<TextData>(""));
+    return false;
+}
+
+}  // namespace cg

@@ -1,0 +1,144 @@
+#include "util/AtomicFile.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+namespace cg::util {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::string_view kTempSuffix = ".cgtmp";
+std::atomic<unsigned> gCounter{0};
+
+/// 8 hex digits naming this host (FNV-1a of its name): temp names stay short and safe.
+const std::string& hostTag()
+{
+    static const std::string tag = [] {
+        char name[256] = {};
+        if (::gethostname(name, sizeof name - 1) != 0) std::strcpy(name, "unknown");
+        std::uint32_t h = 2166136261u;
+        for (const char* c = name; *c; ++c) h = (h ^ static_cast<unsigned char>(*c)) * 16777619u;
+        char hex[9];
+        std::snprintf(hex, sizeof hex, "%08x", h);
+        return std::string(hex);
+    }();
+    return tag;
+}
+
+[[noreturn]] void fail(const fs::path& target, const std::string& why)
+{
+    throw std::runtime_error("cannot write '" + target.string() + "': " + why);
+}
+
+/// fsync of a file or directory; `what` failed when this returns false.
+bool syncPath(const fs::path& p, int flags)
+{
+    const int fd = ::open(p.c_str(), flags | O_CLOEXEC);
+    if (fd < 0) return false;
+    const bool ok = ::fsync(fd) == 0;
+    return ::close(fd) == 0 && ok;
+}
+
+/// Whether the temp file `name` belongs to a writer that is gone; false when in doubt.
+bool isOrphan(const std::string& name, fs::file_time_type written)
+{
+    if (written < fs::file_time_type::clock::now() - std::chrono::hours(24)) return true;
+    // ".<target>.<host>-<pid>-<n>.cgtmp"
+    const std::size_t end = name.size() - kTempSuffix.size();
+    const std::size_t dot = name.rfind('.', end - 1);
+    if (dot == std::string::npos) return false;
+    const std::string_view owner(name.data() + dot + 1, end - dot - 1);
+    if (owner.size() < 10 || owner.substr(0, 8) != hostTag() || owner[8] != '-') return false;
+    long pid = 0;
+    const char* first = owner.data() + 9;
+    const char* last = owner.data() + owner.size();
+    const auto [stop, error] = std::from_chars(first, last, pid);
+    if (error != std::errc() || stop == first || stop == last || *stop != '-' || pid <= 0)
+        return false;
+    return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
+
+}  // namespace
+
+AtomicOutput::AtomicOutput(fs::path target, fs::path tempDir) : mTarget(std::move(target))
+{
+    if (tempDir.empty()) tempDir = mTarget.parent_path();
+    mTemp = tempDir / ("." + mTarget.filename().string() + "." + hostTag() + "-" +
+                       std::to_string(::getpid()) + "-" + std::to_string(gCounter.fetch_add(1)) +
+                       std::string(kTempSuffix));
+}
+
+AtomicOutput::~AtomicOutput()
+{
+    if (!mCommitted) {
+        std::error_code ec;
+        fs::remove(mTemp, ec);
+    }
+}
+
+void AtomicOutput::commit()
+{
+    // The data must be on disk before the rename makes it visible: after a crash the
+    // target would otherwise hold a whole-looking file with garbage inside.
+    if (!syncPath(mTemp, O_RDONLY)) fail(mTarget, std::string("fsync failed: ") + std::strerror(errno));
+    std::error_code ec;
+    fs::rename(mTemp, mTarget, ec);
+    if (ec) fail(mTarget, ec.message());
+    mCommitted = true;
+    // Makes the rename itself durable; the file is already whole, so a failure only costs
+    // durability and is not reported.
+    syncPath(mTarget.parent_path().empty() ? fs::path(".") : mTarget.parent_path(), O_RDONLY);
+}
+
+void writeFileAtomically(const fs::path& target, std::string_view bytes, const fs::path& tempDir)
+{
+    AtomicOutput out(target, tempDir);
+    const int fd = ::open(out.tempPath().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0) fail(target, std::strerror(errno));
+    std::size_t done = 0;
+    std::string why;
+    while (done < bytes.size()) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            why = std::string("write failed: ") + std::strerror(errno);
+            break;
+        }
+        done += static_cast<std::size_t>(n);
+    }
+    if (::close(fd) != 0 && why.empty()) why = std::string("close failed: ") + std::strerror(errno);
+    if (!why.empty()) fail(target, why);
+    out.commit();
+}
+
+std::size_t removeOrphanedTemporaries(const fs::path& dir)
+{
+    std::size_t removed = 0;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.size() <= kTempSuffix.size() + 1 || name[0] != '.' ||
+            name.compare(name.size() - kTempSuffix.size(), kTempSuffix.size(), kTempSuffix) != 0)
+            continue;
+        std::error_code statError;
+        if (!entry.is_regular_file(statError)) continue;
+        const auto written = entry.last_write_time(statError);
+        if (!statError && isOrphan(name, written) && fs::remove(entry.path(), statError)) ++removed;
+    }
+    return removed;
+}
+
+}  // namespace cg::util

@@ -1,0 +1,48 @@
+#pragma once
+/// Writing files so that nothing partial is ever left under the final name, and cleaning up
+/// after writers that were killed. The one atomic writer: outputs and the disk cache use it.
+
+#include <cstddef>
+#include <filesystem>
+#include <string_view>
+
+namespace cg::util {
+
+/// Write to tempPath(), then commit() renames it onto the target in one step. A writer
+/// that throws before commit() leaves no file behind: the destructor removes the temp file.
+///
+/// Temp files are named ".<target name>.<host>-<pid>-<n>.cgtmp" (host: 8 hex digits of a
+/// hash of the host name), so that a later run can tell a killed writer's orphan from a
+/// live writer's file, even in a directory shared by several machines.
+class AtomicOutput {
+public:
+    /// `tempDir`: where the temp file goes; the target's directory when empty. It must be on
+    /// the target's file system, so the rename cannot cross devices.
+    explicit AtomicOutput(std::filesystem::path target, std::filesystem::path tempDir = {});
+    ~AtomicOutput();
+    AtomicOutput(const AtomicOutput&) = delete;
+    AtomicOutput& operator=(const AtomicOutput&) = delete;
+
+    const std::filesystem::path& tempPath() const { return mTemp; }
+    const std::filesystem::path& target() const { return mTarget; }
+    /// Flushes the temp file to disk (fsync; a failure throws, as the data may be lost) and
+    /// renames it onto the target. Throws std::runtime_error naming the target.
+    void commit();
+
+private:
+    std::filesystem::path mTarget;
+    std::filesystem::path mTemp;
+    bool mCommitted = false;
+};
+
+/// Writes `bytes` to `target` atomically. Throws std::runtime_error naming the file.
+void writeFileAtomically(const std::filesystem::path& target, std::string_view bytes,
+                         const std::filesystem::path& tempDir = {});
+
+/// Removes the temp files in `dir` (not below it) that no live writer owns: those of this
+/// host whose process has ended, and any older than a day (a writer on another host that
+/// shares the directory finishes within minutes). Returns how many were removed; errors
+/// are ignored, as cleaning is best effort.
+std::size_t removeOrphanedTemporaries(const std::filesystem::path& dir);
+
+}  // namespace cg::util
