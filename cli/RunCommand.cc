@@ -11,10 +11,10 @@
 #include "cli/Commands.h"
 #include "cli/Common.h"
 #include "cli/ProgressBar.h"
-#include "util/AtomicFile.h"
 #include "core/Error.h"
 #include "core/Evaluator.h"
 #include "core/Graph.h"
+#include "util/AtomicFile.h"
 
 namespace cg::cli {
 

@@ -33,12 +33,12 @@
 
 #include <spdlog/spdlog.h>
 
-#include "util/AtomicFile.h"
 #include "core/Data.h"
 #include "core/Error.h"
 #include "core/Registry.h"
-#include "util/SystemMemory.h"
+#include "util/AtomicFile.h"
 #include "util/LittleEndian.h"
+#include "util/SystemMemory.h"
 
 namespace cg {
 

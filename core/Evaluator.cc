@@ -11,10 +11,10 @@
 #include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
 
-#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Hash.h"
+#include "util/AtomicFile.h"
 
 namespace cg {
 

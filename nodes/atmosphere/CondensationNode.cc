@@ -4,12 +4,12 @@
 #include <optional>
 #include <stdexcept>
 
+#include "algo/atmosphere/Condensation.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "algo/atmosphere/Condensation.h"
 #include "nodes/atmosphere/AtmosphereNodes.h"
 #include "nodes/data/AtmosphereData.h"
 #include "nodes/data/VapourParticles.h"

@@ -4,10 +4,10 @@
 #include <memory>
 #include <vector>
 
+#include "algo/atmosphere/NoiseMap.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "algo/atmosphere/NoiseMap.h"
 #include "nodes/atmosphere/AtmosphereNodes.h"
 #include "nodes/data/Map2D.h"
 

@@ -1,9 +1,9 @@
 // ThermalIntegrator: vapour particles rising under buoyancy (Eq. 6-9), stepped frame by frame.
 
+#include "algo/atmosphere/Thermal.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "algo/atmosphere/Thermal.h"
 #include "nodes/atmosphere/AtmosphereNodes.h"
 #include "nodes/data/AtmosphereData.h"
 #include "nodes/data/VapourParticles.h"

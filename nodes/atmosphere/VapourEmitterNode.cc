@@ -5,11 +5,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "algo/atmosphere/VapourEmission.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "algo/atmosphere/VapourEmission.h"
 #include "nodes/atmosphere/AtmosphereNodes.h"
 #include "nodes/data/Map2D.h"
 #include "nodes/data/VapourParticles.h"

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/Data.h"
 #include "algo/mapping/Mapping.h"
+#include "core/Data.h"
 
 namespace cg {
 

@@ -2,8 +2,8 @@
 /// The mapper's state: the table of source records (Sec. 5.2) and the settings that place
 /// their clusters, so cloud particles can be generated from it at any frame.
 
-#include "core/Data.h"
 #include "algo/mapping/Mapping.h"
+#include "core/Data.h"
 
 namespace cg {
 

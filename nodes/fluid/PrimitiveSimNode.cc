@@ -2,10 +2,10 @@
 
 #include <cmath>
 
+#include "algo/fluid/PrimitiveScene.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "algo/fluid/PrimitiveScene.h"
 #include "nodes/data/PrimitiveSet.h"
 #include "nodes/fluid/FluidNodes.h"
 

@@ -1,15 +1,15 @@
 // WritePrimitive (the .cgp file) and WritePrimitivePly (a frame range as PLY point clouds).
 
-#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
-#include "nodes/DeclHelpers.h"
 #include "formats/PrimitiveFile.h"
 #include "formats/PrimitivePly.h"
+#include "nodes/DeclHelpers.h"
 #include "nodes/data/PrimitiveSet.h"
 #include "nodes/fluid/FluidNodes.h"
+#include "util/AtomicFile.h"
 
 namespace cg {
 

@@ -7,14 +7,14 @@
 #include <stdexcept>
 #include <string>
 
-#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
-#include "nodes/DeclHelpers.h"
 #include "formats/VideoEncode.h"
+#include "nodes/DeclHelpers.h"
 #include "nodes/io/IoNodes.h"
+#include "util/AtomicFile.h"
 
 namespace cg {
 

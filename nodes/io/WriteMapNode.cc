@@ -5,15 +5,15 @@
 #include <memory>
 #include <string>
 
-#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Node.h"
 #include "core/Registry.h"
-#include "nodes/DeclHelpers.h"
 #include "formats/MapImage.h"
+#include "nodes/DeclHelpers.h"
 #include "nodes/data/Map2D.h"
 #include "nodes/io/IoNodes.h"
 #include "nodes/io/WriterSupport.h"
+#include "util/AtomicFile.h"
 
 namespace cg {
 

@@ -5,16 +5,16 @@
 #include <string>
 #include <vector>
 
-#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
-#include "nodes/DeclHelpers.h"
 #include "formats/PlyWriter.h"
+#include "nodes/DeclHelpers.h"
 #include "nodes/data/VapourParticles.h"
 #include "nodes/io/IoNodes.h"
 #include "nodes/io/WriterSupport.h"
+#include "util/AtomicFile.h"
 
 namespace cg {
 

@@ -4,10 +4,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "algo/mapping/PrimitiveSubset.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "algo/mapping/PrimitiveSubset.h"
 #include "nodes/data/PrimitiveSet.h"
 #include "nodes/mapping/MappingNodes.h"
 

@@ -1,14 +1,14 @@
 // WriteCloudParticles: cloud particles per frame as binary little-endian PLY.
 
-#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Node.h"
 #include "core/Registry.h"
-#include "nodes/DeclHelpers.h"
 #include "formats/CloudPly.h"
+#include "nodes/DeclHelpers.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/io/WriterSupport.h"
 #include "nodes/mapping/MappingNodes.h"
+#include "util/AtomicFile.h"
 
 namespace cg {
 

@@ -6,11 +6,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "algo/render/RenderVolume.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "algo/render/RenderVolume.h"
 #include "nodes/data/FogVolume.h"
 #include "nodes/data/Image.h"
 #include "nodes/render/RenderNodes.h"

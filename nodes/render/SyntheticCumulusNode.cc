@@ -2,10 +2,10 @@
 
 #include <memory>
 
+#include "algo/render/SyntheticCumulus.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "algo/render/SyntheticCumulus.h"
 #include "nodes/data/FogVolume.h"
 #include "nodes/render/RenderNodes.h"
 

@@ -5,17 +5,17 @@
 #include <memory>
 #include <string>
 
-#include "util/AtomicFile.h"
+#include "algo/render/Display.h"
 #include "core/CoreData.h"
 #include "core/Node.h"
 #include "core/Registry.h"
-#include "nodes/DeclHelpers.h"
 #include "formats/ExrFile.h"
 #include "formats/PngFile.h"
-#include "algo/render/Display.h"
+#include "nodes/DeclHelpers.h"
 #include "nodes/data/Image.h"
 #include "nodes/io/WriterSupport.h"
 #include "nodes/render/RenderNodes.h"
+#include "util/AtomicFile.h"
 
 namespace cg {
 
@@ -37,7 +37,8 @@ public:
         const std::filesystem::path path = ctx.outputPath("file");
         util::AtomicOutput out(path);
         if (isExr(path.string())) {
-            formats::writeExrRgba32(out.tempPath().string(), image->width, image->height, image->rgba);
+            formats::writeExrRgba32(out.tempPath().string(), image->width, image->height,
+                                    image->rgba);
         } else {
             algo::DisplaySettings display;
             display.exposure = ctx.params().getFloat("exposure");

@@ -3,11 +3,11 @@
 #include <cmath>
 #include <vector>
 
+#include "algo/CounterRandom.h"
 #include "core/CoreData.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "algo/CounterRandom.h"
 #include "nodes/util/UtilNodes.h"
 
 namespace cg {

@@ -3,13 +3,13 @@
 #include <cstdio>
 #include <string>
 
-#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
 #include "nodes/io/WriterSupport.h"
 #include "nodes/util/UtilNodes.h"
+#include "util/AtomicFile.h"
 
 namespace cg {
 

@@ -5,11 +5,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "algo/volume/CombineVolumes.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "algo/volume/CombineVolumes.h"
 #include "nodes/data/FogVolume.h"
 #include "nodes/volume/VolumeNodes.h"
 

@@ -4,11 +4,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "algo/volume/Voxelize.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "algo/volume/Voxelize.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/data/FogVolume.h"
 #include "nodes/volume/VolumeNodes.h"

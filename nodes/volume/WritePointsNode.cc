@@ -7,16 +7,16 @@
 
 #include <openvdb/io/File.h>
 
-#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
-#include "nodes/DeclHelpers.h"
 #include "formats/PointsGrid.h"
+#include "nodes/DeclHelpers.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/io/WriterSupport.h"
 #include "nodes/volume/VolumeNodes.h"
+#include "util/AtomicFile.h"
 
 namespace cg {
 
@@ -51,7 +51,8 @@ public:
         ctx.checkCancelled();
 
         const std::filesystem::path path = ctx.outputPath("file");
-        util::AtomicOutput out(path);  // OpenVDB truncates and writes in place: write beside, rename
+        // OpenVDB truncates and writes in place: write beside, then rename.
+        util::AtomicOutput out(path);
         {
             openvdb::io::File file(out.tempPath().string());
             openvdb::MetaMap fileMeta;

@@ -5,7 +5,6 @@
 
 #include <openvdb/io/File.h>
 
-#include "util/AtomicFile.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Node.h"
@@ -14,6 +13,7 @@
 #include "nodes/data/FogVolume.h"
 #include "nodes/io/WriterSupport.h"
 #include "nodes/volume/VolumeNodes.h"
+#include "util/AtomicFile.h"
 
 namespace cg {
 
@@ -46,7 +46,8 @@ public:
         grid->setSaveFloatAsHalf(ctx.params().getBool("halfFloat"));
 
         const std::filesystem::path path = ctx.outputPath("file");
-        util::AtomicOutput out(path);  // OpenVDB truncates and writes in place: write beside, rename
+        // OpenVDB truncates and writes in place: write beside, then rename.
+        util::AtomicOutput out(path);
         {
             openvdb::io::File file(out.tempPath().string());
             file.setCompression(flags);

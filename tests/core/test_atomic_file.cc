@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <string>
 
-#include "util/AtomicFile.h"
 #include "support/TestUtil.h"
+#include "util/AtomicFile.h"
 
 namespace cg {
 

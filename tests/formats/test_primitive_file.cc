@@ -5,9 +5,9 @@
 #include <cmath>
 #include <fstream>
 
+#include "algo/fluid/PrimitiveScene.h"
 #include "formats/FormatError.h"
 #include "formats/PrimitiveFile.h"
-#include "algo/fluid/PrimitiveScene.h"
 #include "support/TestUtil.h"
 
 namespace cg::formats {

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "formats/FormatError.h"
 #include "core/Hash.h"
+#include "formats/FormatError.h"
 #include "formats/PrimitiveFile.h"
 
 namespace {

@@ -21,11 +21,11 @@
 #include <openvdb/tools/Count.h>
 #include <openvdb/tools/Prune.h>
 
+#include "algo/atmosphere/VapourEmission.h"
+#include "algo/mapping/Mapping.h"
+#include "algo/volume/Voxelize.h"
 #include "core/CoreData.h"
 #include "core/Registry.h"
-#include "algo/mapping/Mapping.h"
-#include "algo/atmosphere/VapourEmission.h"
-#include "algo/volume/Voxelize.h"
 #include "nodes/data/AtmosphereData.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/data/CloudSources.h"

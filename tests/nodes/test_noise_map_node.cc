@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "algo/atmosphere/NoiseMap.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Evaluator.h"
 #include "core/Graph.h"
 #include "core/Registry.h"
 #include "formats/MapImage.h"
-#include "algo/atmosphere/NoiseMap.h"
 #include "nodes/atmosphere/AtmosphereNodes.h"
 #include "nodes/data/DataTypes.h"
 #include "nodes/data/Map2D.h"

@@ -9,13 +9,13 @@
 #include <memory>
 #include <string>
 
+#include "algo/render/RenderVolume.h"
+#include "algo/render/SyntheticCumulus.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Evaluator.h"
 #include "core/Graph.h"
 #include "core/Registry.h"
-#include "algo/render/RenderVolume.h"
-#include "algo/render/SyntheticCumulus.h"
 #include "nodes/data/DataTypes.h"
 #include "nodes/data/FogVolume.h"
 #include "nodes/data/Image.h"

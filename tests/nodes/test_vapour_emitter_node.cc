@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "algo/atmosphere/VapourEmission.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Evaluator.h"
@@ -18,7 +19,6 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
-#include "algo/atmosphere/VapourEmission.h"
 #include "nodes/atmosphere/AtmosphereNodes.h"
 #include "nodes/data/DataTypes.h"
 #include "nodes/data/Map2D.h"

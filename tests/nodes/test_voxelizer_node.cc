@@ -7,11 +7,11 @@
 
 #include <openvdb/tools/Count.h>
 
+#include "algo/volume/Voxelize.h"
 #include "core/Error.h"
 #include "core/Evaluator.h"
 #include "core/Graph.h"
 #include "core/Registry.h"
-#include "algo/volume/Voxelize.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/data/DataTypes.h"
 #include "nodes/data/FogVolume.h"

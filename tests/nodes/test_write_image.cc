@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <string>
 
+#include "algo/render/Display.h"
+#include "algo/render/ToneMap.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Evaluator.h"
@@ -13,8 +15,6 @@
 #include "core/Registry.h"
 #include "formats/ExrFile.h"
 #include "formats/PngFile.h"
-#include "algo/render/Display.h"
-#include "algo/render/ToneMap.h"
 #include "nodes/data/DataTypes.h"
 #include "nodes/render/RenderNodes.h"
 #include "support/FixtureNodes.h"
@@ -108,7 +108,8 @@ TEST_F(WriteImageTest, ExrKeepsTheLinearValuesExactly)
 {
     // Exposure and tone map are for display: the EXR holds the radiance unchanged.
     cook(R"({"file": "frames/cloud.####.exr", "exposure": 3.0, "toneMap": "aces"})", "frames/cloud.0042.exr");
-    const formats::ExrRgbaImage img = formats::readExrRgba((out / "frames/cloud.0042.exr").string());
+    const formats::ExrRgbaImage img =
+        formats::readExrRgba((out / "frames/cloud.0042.exr").string());
     ASSERT_EQ(img.width, 16);
     ASSERT_EQ(img.height, 8);
     for (int y = 0; y < 8; ++y)

@@ -131,7 +131,8 @@ TEST(PointsGrid, EmptyAndNonFiniteInput)
     const float bad[3] = {0.0f, std::nanf(""), 0.0f};
     const std::uint8_t level = 1;
     const std::uint32_t source = 0;
-    EXPECT_THROW(formats::makeParticlePointsGrid(bad, &level, &source, 1, {}), std::invalid_argument);
+    EXPECT_THROW(formats::makeParticlePointsGrid(bad, &level, &source, 1, {}),
+                 std::invalid_argument);
 }
 
 namespace {
