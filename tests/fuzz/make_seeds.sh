@@ -64,4 +64,8 @@ for p in sample bad_abi no_entry; do
     strip -o "$corpus/plugin_stamp/$p.so" "$plugins/libcloudgraph_${p}_plugin.so"
 done
 
+# sounding_reader: the test soundings in both formats.
+rm -rf "$corpus/sounding_reader" && mkdir -p "$corpus/sounding_reader"
+cp "$root"/tests/data/soundings/* "$corpus/sounding_reader/"
+
 ls -l "$corpus"/*
