@@ -14,5 +14,6 @@ int validateCommand(const Args& args);
 int nodesCommand(const Args& args);
 int dotCommand(const Args& args);
 int infoCommand(const Args& args);
+int soundingCommand(const Args& args);
 
 }  // namespace cg::cli

@@ -29,6 +29,7 @@ usage:
   cloudgraph nodes [TYPE] [--markdown]                    the node reference
   cloudgraph dot GRAPH                                    the graph as Graphviz
   cloudgraph info FILE                                    summary of a primitive-set file (.cgp)
+  cloudgraph sounding FILE                                a sounding's LCL, LFC, EL and CAPE
   cloudgraph --help | --version
 Every command takes -v (debug logging) and -q (errors only).
 
@@ -58,6 +59,7 @@ int main(int argc, char** argv)
     if (command == "nodes") return nodesCommand(args);
     if (command == "dot") return dotCommand(args);
     if (command == "info") return infoCommand(args);
+    if (command == "sounding") return soundingCommand(args);
     std::fprintf(stderr, "error: unknown command '%s'\n\n%s", command.c_str(), kUsage);
     return kExitBadInput;
 }

@@ -8,7 +8,7 @@
 #   formats  <- util
 #   core     <- util
 #   nodes    <- core, algo, formats, util
-#   cli      <- nodes, core, formats, util
+#   cli      <- nodes, core, algo, formats, util
 function(cloudgraph_folder target folder)
     set(root "${CMAKE_BINARY_DIR}/include/${folder}")
     file(MAKE_DIRECTORY "${root}")
