@@ -78,7 +78,8 @@ std::optional<std::int32_t> readPluginStamp(const ByteSource& read, std::uint64_
         const char* name = names.data() + s.sh_name;  // names ends with a '\0' we added
         if (std::strlen(name) != wantedLength || std::strcmp(name, kPluginStampSection) != 0)
             continue;
-        if (s.sh_type != SHT_PROGBITS || s.sh_size != sizeof(PluginStamp))
+        // At least a stamp: AddressSanitizer pads globals with a redzone, section included.
+        if (s.sh_type != SHT_PROGBITS || s.sh_size < sizeof(PluginStamp))
             bad(std::string("malformed ") + kPluginStampSection + " section");
         PluginStamp stamp{};
         readExactly(read, fileSize, s.sh_offset, &stamp, sizeof stamp, "the plugin stamp");
