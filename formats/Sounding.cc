@@ -59,11 +59,17 @@ std::string shown(double v)
     return text;
 }
 
+/// Parses the whole of `s` as a finite number into `v`; false for anything else.
+bool parseNumber(std::string_view s, double& v)
+{
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    return ec == std::errc() && end == s.data() + s.size() && std::isfinite(v);
+}
+
 bool isNumber(std::string_view s)
 {
     double v = 0.0;
-    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    return ec == std::errc() && end == s.data() + s.size() && std::isfinite(v);
+    return parseNumber(s, v);
 }
 
 /// The text's lines, numbered from 1, without their line ends ("\n" or "\r\n").
@@ -105,10 +111,9 @@ public:
     {
         field = trim(field);
         if (field.empty()) return kMissing;
-        if (!isNumber(field))
-            fail(line, std::string(column) + ": '" + std::string(field) + "' is not a number");
         double v = 0.0;
-        std::from_chars(field.data(), field.data() + field.size(), v);
+        if (!parseNumber(field, v))
+            fail(line, std::string(column) + ": '" + std::string(field) + "' is not a number");
         return v;
     }
 
