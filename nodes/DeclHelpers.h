@@ -46,6 +46,17 @@ inline ParamDecl intParam(std::string name, std::int64_t def, std::string units,
     return p;
 }
 
+/// A list of floats; min and max, when given, bound each element.
+inline ParamDecl floatListParam(std::string name, std::vector<double> def, std::string units,
+                                std::string doc, std::optional<double> min = std::nullopt,
+                                std::optional<double> max = std::nullopt)
+{
+    ParamDecl p = floatParam(std::move(name), 0.0, std::move(units), std::move(doc), min, max);
+    p.type = ParamType::FloatList;
+    p.defaultValue = std::move(def);
+    return p;
+}
+
 inline ParamDecl boolParam(std::string name, bool def, std::string doc)
 {
     ParamDecl p;

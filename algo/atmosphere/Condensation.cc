@@ -4,8 +4,11 @@
 
 namespace cg::algo {
 
-CondensationState condenseStep(const CondensationState* previous, const float* temperature,
-                               std::size_t count, double dewPoint, std::int32_t frame)
+namespace {
+
+template <typename Condenses>
+CondensationState condenseWhere(const CondensationState* previous, std::size_t count,
+                                std::int32_t frame, Condenses condenses)
 {
     CondensationState next;
     next.condensedFrame.assign(count, -1);
@@ -16,11 +19,27 @@ CondensationState condenseStep(const CondensationState* previous, const float* t
         next.firstFrame = previous->firstFrame;
     }
     for (std::size_t i = 0; i < count; ++i) {
-        if (next.condensedFrame[i] < 0 && temperature[i] < dewPoint) next.condensedFrame[i] = frame;
+        if (next.condensedFrame[i] < 0 && condenses(i)) next.condensedFrame[i] = frame;
         if (next.condensedFrame[i] >= 0) ++next.count;
     }
     if (next.firstFrame < 0 && next.count > 0) next.firstFrame = frame;
     return next;
+}
+
+}  // namespace
+
+CondensationState condenseStep(const CondensationState* previous, const float* temperature,
+                               std::size_t count, double dewPoint, std::int32_t frame)
+{
+    return condenseWhere(previous, count, frame,
+                         [&](std::size_t i) { return temperature[i] < dewPoint; });
+}
+
+CondensationState condenseStep(const CondensationState* previous, const float* temperature,
+                               const float* dewpoints, std::size_t count, std::int32_t frame)
+{
+    return condenseWhere(previous, count, frame,
+                         [&](std::size_t i) { return temperature[i] < dewpoints[i]; });
 }
 
 }  // namespace cg::algo

@@ -20,4 +20,9 @@ struct CondensationState {
 CondensationState condenseStep(const CondensationState* previous, const float* temperature,
                                std::size_t count, double dewPoint, std::int32_t frame);
 
+/// The same with a dew point per particle: particle i condenses when temperature[i] <
+/// dewpoints[i].
+CondensationState condenseStep(const CondensationState* previous, const float* temperature,
+                               const float* dewpoints, std::size_t count, std::int32_t frame);
+
 }  // namespace cg::algo

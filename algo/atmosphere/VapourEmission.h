@@ -45,8 +45,9 @@ struct VapourEmission {
     std::size_t size() const { return id.size(); }
 };
 
-/// Bytes one emitted particle occupies (id, home cell and five floats).
-constexpr std::uint64_t kVapourParticleBytes = 2 * sizeof(std::uint32_t) + 5 * sizeof(float);
+/// Bytes one emitted particle may occupy: id, home cell and seven floats (x, y, z, U_vz, T_v,
+/// and as statics its start height and dew-point offset).
+constexpr std::uint64_t kVapourParticleBytes = 2 * sizeof(std::uint32_t) + 7 * sizeof(float);
 
 /// Particles of one cell of density `density` (Eq. 3 rounded half up, never negative,
 /// capped at 2^53). `density` must be finite.

@@ -4,6 +4,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "algo/atmosphere/ColumnThermal.h"
 #include "algo/atmosphere/Condensation.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
@@ -18,20 +19,43 @@ namespace cg {
 
 namespace {
 
+/// Each particle's own dew point now (issue 14): from the profile at its start height, less
+/// 1.8 C/km risen, or the paper's T_dp; plus its offset.
+std::vector<float> particleDewpoints(const Atmosphere& a, const VapourParticlesData& particles)
+{
+    const algo::EnvironmentColumn column = algo::sampleColumn(a.profile.get(), algo::WindProfile{});
+    algo::ColumnThermalSettings s;
+    s.paper.dewPoint = a.dewPoint;
+    s.column = &column;
+    const VapourStatics& st = *particles.statics;
+    const algo::ParticleMoisture m{st.startZ.data(),
+                                   st.dewpointOffset.empty() ? nullptr : st.dewpointOffset.data()};
+    std::vector<float> dewpoints(particles.size());
+    for (std::size_t i = 0; i < dewpoints.size(); ++i)
+        dewpoints[i] = algo::particleDewpoint(s, m, i, particles.z[i]);
+    return dewpoints;
+}
+
 class CondensationNode final : public Node {
 public:
     void cook(CookContext& ctx) override
     {
         const auto particles = ctx.input<VapourParticlesData>("particles");
-        const double dewPoint = ctx.input<AtmosphereData>("atmosphere")->atmosphere.dewPoint;
+        const Atmosphere& atmosphere = ctx.input<AtmosphereData>("atmosphere")->atmosphere;
         const auto previous = ctx.previous<CondensationData>("condensation");
         std::optional<algo::CondensationState> before;
         if (previous) before = algo::CondensationState{previous->condensedFrame, previous->firstFrame, 0};
         algo::CondensationState now;
         try {
-            now = algo::condenseStep(before ? &*before : nullptr, particles->temperature.data(),
-                                     particles->size(), dewPoint,
-                                     static_cast<std::int32_t>(ctx.frame()));
+            const auto frame = static_cast<std::int32_t>(ctx.frame());
+            if (atmosphere.profile || !particles->statics->dewpointOffset.empty()) {
+                const std::vector<float> dewpoints = particleDewpoints(atmosphere, *particles);
+                now = algo::condenseStep(before ? &*before : nullptr, particles->temperature.data(),
+                                         dewpoints.data(), particles->size(), frame);
+            } else {
+                now = algo::condenseStep(before ? &*before : nullptr, particles->temperature.data(),
+                                         particles->size(), atmosphere.dewPoint, frame);
+            }
         } catch (const std::invalid_argument& e) {
             throw InputError(ctx.nodeId(), e.what());
         }
@@ -53,7 +77,10 @@ void registerCondensationNode(Registry& registry)
             "condensation particles (pseudocode lines 9-14) and remembers the frame at which each "
             "condensed; once condensed, a particle stays a condensation particle. Also gives the "
             "frame at which the first condensation particle appeared: t_s[1] of Sec. 5.2. A "
-            "simulation: each frame builds on the previous one.";
+            "simulation: each frame builds on the previous one. Ours (issue 14): with an "
+            "Atmosphere profile each particle has its own dew point, the profile's at its start "
+            "height falling 1.8 degC/km as it rises, so it condenses at its lifting condensation "
+            "level; a VapourEmitter moisture map adds each particle's perturbation.";
     d.simulation = true;
     d.inputs = {port("particles", "VapourParticles", "the particles at this frame"),
                 port("atmosphere", "Atmosphere", "the environment (its dew point T_dp)")};

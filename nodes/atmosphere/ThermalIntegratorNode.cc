@@ -1,5 +1,11 @@
-// ThermalIntegrator: vapour particles rising under buoyancy (Eq. 6-9), stepped frame by frame.
+// ThermalIntegrator: vapour particles rising under buoyancy (Eq. 6-9), stepped frame by frame;
+// with issue 14's real atmosphere, through a profile, with wind and outflow.
 
+#include <cmath>
+
+#include "algo/atmosphere/ColumnThermal.h"
+#include "algo/atmosphere/Outflow.h"
+#include "algo/atmosphere/Parcel.h"
 #include "algo/atmosphere/Thermal.h"
 #include "core/Node.h"
 #include "core/Registry.h"
@@ -11,6 +17,9 @@
 namespace cg {
 
 namespace {
+
+/// Ours: towers are told apart on ground cells this large (docs/atmosphere.md, "Anvils").
+constexpr double kTowerCellSize = 500.0;
 
 algo::ThermalSettings settingsFrom(const CookContext& ctx, const Atmosphere& a)
 {
@@ -28,6 +37,15 @@ algo::ThermalSettings settingsFrom(const CookContext& ctx, const Atmosphere& a)
     return s;
 }
 
+/// Where the outflow may start: the level of free convection of a parcel lifted from the
+/// profile's ground (its LCL when it has none); the ground without a profile.
+double outflowBottom(const Atmosphere& a)
+{
+    if (!a.profile) return 0.0;
+    const algo::ParcelAscent p = algo::liftParcel(*a.profile, a.profile->groundHeight());
+    return (std::isnan(p.lfcM) ? p.lclM : p.lfcM) - a.profile->groundHeight();
+}
+
 class ThermalIntegratorNode final : public Node {
 public:
     void cook(CookContext& ctx) override
@@ -38,16 +56,72 @@ public:
             ctx.setOutput("particles", emitted);  // t = t0: the emission itself
             return;
         }
-        const auto atmosphere = ctx.input<AtmosphereData>("atmosphere");
-        const std::size_t n = previous->size();
+        const Atmosphere& atmosphere = ctx.input<AtmosphereData>("atmosphere")->atmosphere;
+        const algo::ThermalSettings paper = settingsFrom(ctx, atmosphere);
+        const ParamSet& p = ctx.params();
+        const bool beyondPaper = atmosphere.beyondPaper() || p.getString("buoyancy") != "paper" ||
+                                 p.getFloat("drag") > 0.0 || p.getFloat("outflowDivergence") > 0.0 ||
+                                 !previous->statics->dewpointOffset.empty() ||
+                                 previous->movedHorizontally();
+        ctx.setOutput("particles", beyondPaper ? stepThroughColumn(ctx, paper, atmosphere, *previous)
+                                               : stepAsPaper(ctx, paper, *previous));
+    }
+
+private:
+    /// The paper's Eq. 6-9 exactly; x, y stay the emission's.
+    static std::shared_ptr<VapourParticlesData> stepAsPaper(CookContext& ctx,
+                                                            const algo::ThermalSettings& s,
+                                                            const VapourParticlesData& previous)
+    {
+        const std::size_t n = previous.size();
         std::vector<float> z(n), vz(n), temperature(n);
-        algo::thermalStepParallel(settingsFrom(ctx, atmosphere->atmosphere),
-                                  {previous->z.data(), previous->vz.data(), previous->temperature.data()},
+        algo::thermalStepParallel(s, {previous.z.data(), previous.vz.data(), previous.temperature.data()},
                                   {z.data(), vz.data(), temperature.data()}, n,
                                   [&ctx] { ctx.checkCancelled(); });
-        ctx.setOutput("particles",
-                      std::make_shared<VapourParticlesData>(previous->statics, std::move(z),
-                                                            std::move(vz), std::move(temperature)));
+        return std::make_shared<VapourParticlesData>(previous.statics, std::move(z), std::move(vz),
+                                                     std::move(temperature));
+    }
+
+    static std::shared_ptr<VapourParticlesData> stepThroughColumn(
+        CookContext& ctx, const algo::ThermalSettings& paper, const Atmosphere& atmosphere,
+        const VapourParticlesData& previous)
+    {
+        const ParamSet& p = ctx.params();
+        const algo::EnvironmentColumn column = algo::sampleColumn(atmosphere.profile.get(), atmosphere.wind);
+        algo::ColumnThermalSettings s;
+        s.paper = paper;
+        s.buoyancy = p.getString("buoyancy") == "parcel" ? algo::Buoyancy::Parcel : algo::Buoyancy::Paper;
+        s.drag = p.getFloat("drag");
+        s.column = &column;
+        s.moistAdiabat = atmosphere.moistAdiabat;
+        s.outflowDivergence = p.getFloat("outflowDivergence");
+
+        const VapourStatics& st = *previous.statics;
+        const std::size_t n = previous.size();
+        const std::vector<float>& x = previous.xs();
+        const std::vector<float>& y = previous.ys();
+        std::vector<float> axisX, axisY;
+        if (s.outflowDivergence > 0.0) {
+            s.outflowBottom = outflowBottom(atmosphere);
+            algo::towerAxes(algo::towerIds(st.x.data(), st.y.data(), n, kTowerCellSize), x.data(),
+                            y.data(), previous.z.data(), static_cast<float>(s.outflowBottom), axisX,
+                            axisY);
+        }
+        std::vector<float> xNext(n), yNext(n), z(n), vz(n), temperature(n);
+        algo::columnThermalStepParallel(
+            s, {st.startZ.data(), st.dewpointOffset.empty() ? nullptr : st.dewpointOffset.data()},
+            {axisX.empty() ? nullptr : axisX.data(), axisY.empty() ? nullptr : axisY.data()},
+            {x.data(), y.data(), previous.z.data(), previous.vz.data(), previous.temperature.data()},
+            {xNext.data(), yNext.data(), z.data(), vz.data(), temperature.data()}, n,
+            [&ctx] { ctx.checkCancelled(); });
+        // Particles nothing moves sideways keep sharing the emission's x, y.
+        if (atmosphere.wind.calm() && s.outflowDivergence <= 0.0 && !previous.movedHorizontally()) {
+            xNext.clear();
+            yNext.clear();
+        }
+        return std::make_shared<VapourParticlesData>(previous.statics, std::move(xNext),
+                                                     std::move(yNext), std::move(z), std::move(vz),
+                                                     std::move(temperature));
     }
 };
 
@@ -63,8 +137,13 @@ void registerThermalIntegratorNode(Registry& registry)
             "one explicit Euler step of the graph's timeStep (Delta t) from the previous frame: "
             "T_e = T_sl_max - C_e z (Eq. 9), f = C_b (T_v - T_e) - m g (Eq. 6, vertical only), "
             "U += dt f / m and P += dt U(t) (Eq. 7, position advanced with the old velocity), "
-            "T_v -= C dz with C = 10 C/km while T_v >= T_dp and 6 C/km after (Eq. 8). "
-            "Interaction between particles and wind are ignored, as in the paper.";
+            "T_v -= C dz with C = 10 C/km while T_v >= T_dp and 6 C/km after (Eq. 8). With the "
+            "paper's atmosphere and the defaults below this is the paper's step exactly, and x, y "
+            "never change. Ours (issue 14, docs/atmosphere.md): with an Atmosphere profile, T_e "
+            "is the profile's, each particle condenses at its own lifting condensation level "
+            "and, saturated, cools at the moist adiabatic rate; a wind moves x, y by the wind at "
+            "the particle's height; 'parcel' buoyancy, drag and the outflow at the top of a "
+            "tower (anvils) are below.";
     d.simulation = true;
     d.readsTimeStep = true;
     d.inputs = {port("particles", "VapourParticles", "the emitted vapour particles at t0"),
@@ -77,6 +156,19 @@ void registerThermalIntegratorNode(Registry& registry)
         floatParam("particleMass", 1.0, "kg", "m of Eq. 6-7 (value ours)", 1e-9, 1e9),
         boolParam("groundStopsParticles", true,
                   "ours, not the paper's: a particle cannot sink below the ground z = 0"),
+        stringParam("buoyancy", "paper",
+                    "'paper': Eq. 6, f = C_b (T_v - T_e) - m g, neutral where T_v - T_e = m g / "
+                    "C_b; 'parcel' (ours): f / m = g (T_v - T_e) / T_e in kelvin, neutral where "
+                    "T_v = T_e, so towers stop at the profile's equilibrium level",
+                    {"paper", "parcel"}),
+        floatParam("drag", 0.0, "1/m",
+                   "ours: quadratic drag, f / m -= drag |U| U, the mixing that keeps updrafts "
+                   "near 10-30 m/s and overshooting tops short (0: none, the paper's)", 0.0, 1.0),
+        floatParam("outflowDivergence", 0.0, "1/s",
+                   "ours: saturated particles colder than the environment above the level of "
+                   "free convection (the top of a tower) move away from their tower's axis at "
+                   "this rate times their distance from it: the anvil (0: none, the paper's)",
+                   0.0, 1.0),
     };
     d.create = [] { return std::make_unique<ThermalIntegratorNode>(); };
     registry.addNode(std::move(d));

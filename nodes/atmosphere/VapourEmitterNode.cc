@@ -19,7 +19,7 @@ namespace cg {
 namespace {
 
 /// The most one emission may hold: the engine's default per-node allocation limit (16 GiB),
-/// about 613 million particles, which also keeps every id within a PLY int.
+/// about 477 million particles, which also keeps every id within a PLY int.
 constexpr std::uint64_t kMaxEmissionBytes = std::uint64_t(16) << 30;
 constexpr std::uint64_t kMaxParticles = kMaxEmissionBytes / algo::kVapourParticleBytes;
 
@@ -34,6 +34,19 @@ algo::VapourEmissionSettings settingsFrom(const ParamSet& p)
     s.maxTemperature = p.getFloat("maxTemperature");
     s.seed = static_cast<std::uint64_t>(p.getInt("seed"));
     return s;
+}
+
+/// Ours: amplitude (2 m - 1) for each particle, m the moisture map's value at its x, y (the
+/// map clamped at its edges), so a map in [0, 1] perturbs dew points by up to +-amplitude.
+std::vector<float> dewpointOffsets(const Map2DData& moisture, const VapourStatics& s,
+                                   double amplitude)
+{
+    std::vector<float> offsets(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        const double m = moisture.values[static_cast<std::size_t>(moisture.cellAt(s.x[i], s.y[i]))];
+        offsets[i] = static_cast<float>(amplitude * (2.0 * m - 1.0));
+    }
+    return offsets;
 }
 
 class VapourEmitterNode final : public Node {
@@ -67,6 +80,11 @@ public:
         statics->homeCell = std::move(e.homeCell);
         statics->x = std::move(e.x);
         statics->y = std::move(e.y);
+        statics->startZ = e.z;
+        if (const auto moisture = ctx.input<Map2DData>("moisture")) {
+            const double amplitude = ctx.params().getFloat("moistureAmplitude");
+            if (amplitude > 0.0) statics->dewpointOffset = dewpointOffsets(*moisture, *statics, amplitude);
+        }
         ctx.setOutput("particles", std::make_shared<VapourParticlesData>(
                                        std::move(statics), std::move(e.z), std::move(e.vz),
                                        std::move(e.temperature)));
@@ -79,7 +97,7 @@ void registerVapourEmitterNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "VapourEmitter";
-    d.version = 1;
+    d.version = 2;
     d.category = "atmosphere";
     d.doc =
         "Initial water vapour particles of the stochastic simulation (Sec. 5.1) at time t0. "
@@ -94,9 +112,15 @@ void registerVapourEmitterNode(Registry& registry)
         "vapour cools as it rises (Eq. 8), so every particle reaches the dew point at the same "
         "altitude and the cloud base is flat. The emission does not change with the frame: "
         "ThermalIntegrator takes it as its start state. A map density outside [0, 1], or more "
-        "than 16 GiB of particles (about 613 million), is refused.";
+        "than 16 GiB of particles (about 477 million), is refused. Ours (issue 14): an optional moisture map perturbs each "
+        "particle's dew point by moistureAmplitude (2 m - 1) C, m the map's value at the "
+        "particle, so the cloud base is irregular (the paper's Sec. 7 asks for it); no map or "
+        "amplitude 0 gives the paper's flat base.";
     d.inputs = {
-        port("map", "Map2D", "the 1/f^beta density map fNoise(ix, iy) of Eq. 3-5, in [0, 1]")};
+        port("map", "Map2D", "the 1/f^beta density map fNoise(ix, iy) of Eq. 3-5, in [0, 1]"),
+        port("moisture", "Map2D",
+             "ours, optional: a second map in [0, 1] that perturbs each particle's dew point "
+             "(irregular cloud bases)", true)};
     d.outputs = {port("particles", "VapourParticles",
                       "the vapour particles at t0: position, U_vz = 0 and T_v")};
     d.params = {
@@ -115,7 +139,10 @@ void registerVapourEmitterNode(Registry& registry)
                    "T_v_max of Eq. 5: initial temperature at minHeight (value ours)", -100.0,
                    100.0),
         intParam("seed", 0, "", "keys the random x, y inside each cell (value ours)", 0.0,
-                 9007199254740992.0)};
+                 9007199254740992.0),
+        floatParam("moistureAmplitude", 0.0, "degC",
+                   "ours: the largest dew-point perturbation the moisture map gives (0: the "
+                   "paper's flat base)", 0.0, 20.0)};
     d.validate = [](const ParamSet& p, const ParamChecker& check) {
         // Each pair must be an ordered range, or Eq. 3-5 run backwards.
         if (p.getFloat("maxParticlesPerCell") < p.getFloat("minParticlesPerCell"))

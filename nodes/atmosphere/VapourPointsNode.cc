@@ -26,11 +26,13 @@ public:
         const bool wantVapour = which != "condensation", wantCondensed = which != "vapour";
         const VapourParticlesData& v = *c->particles;
         const VapourStatics& st = *v.statics;
+        const std::vector<float>& x = v.xs();
+        const std::vector<float>& y = v.ys();
         std::vector<float> positions;
         std::vector<std::uint32_t> ids;
         for (std::size_t i = 0; i < v.size(); ++i) {
             if (!(c->condensed(i) ? wantCondensed : wantVapour)) continue;
-            positions.insert(positions.end(), {st.x[i], st.y[i], v.z[i]});
+            positions.insert(positions.end(), {x[i], y[i], v.z[i]});
             ids.push_back(st.id[i]);
         }
         // Level 0 marks points that are not cloud particles; the source field holds the id.

@@ -2,6 +2,10 @@
 /// The environment of Sec. 5.1 (Eq. 8-9), in SI units: one source of truth for the thermal
 /// integrator and for condensation.
 
+#include <memory>
+
+#include "algo/atmosphere/Profile.h"
+#include "algo/atmosphere/Wind.h"
 #include "core/Data.h"
 
 namespace cg {
@@ -16,8 +20,22 @@ struct Atmosphere {
     double moistLapse = 6.0e-3;           ///< C of Eq. 8 once T_v < T_dp, degrees C per metre
     double gravity = 9.81;                ///< g of Eq. 6, m/s^2
 
-    /// Eq. 9: T_e = T_sl_max - C_e * z.
-    double environmentTemperature(double z) const { return groundTemperature - environmentLapse * z; }
+    /// Issue 14, ours: the environment of a sounding or the standard atmosphere, in place of
+    /// Eq. 9 and the one T_dp. Null: the paper's line.
+    std::shared_ptr<const algo::EnvironmentProfile> profile;
+    /// With a profile: saturated particles cool at the moist adiabatic rate, not moistLapse.
+    bool moistAdiabat = true;
+    /// Issue 14, ours: horizontal wind by height above the ground; calm in the paper.
+    algo::WindProfile wind;
+
+    /// Eq. 9: T_e = T_sl_max - C_e * z, or the profile's temperature z above its ground.
+    double environmentTemperature(double z) const
+    {
+        return profile ? profile->temperature(profile->groundHeight() + z)
+                       : groundTemperature - environmentLapse * z;
+    }
+    /// Whether anything beyond the paper's Eq. 8-9 is asked for.
+    bool beyondPaper() const { return profile || !wind.calm(); }
 };
 
 /// The ranges of the Atmosphere node's parameters (lapse rates per kilometre there, per metre
@@ -28,6 +46,8 @@ struct AtmosphereLimits {
     static constexpr double kMaxEnvironmentLapsePerKm = 20.0;
     static constexpr double kMaxParticleLapsePerKm = 50.0;  ///< dry and moist
     static constexpr double kMaxGravity = 100.0;            ///< m/s^2
+    static constexpr double kMaxWindSpeed = 200.0;          ///< m/s
+    static constexpr double kMaxProfileDepth = 100000.0;    ///< m, ground to top
 };
 
 class AtmosphereData final : public Data {
@@ -36,7 +56,7 @@ public:
     const Atmosphere atmosphere;
 
     std::string typeName() const override { return "Atmosphere"; }
-    std::size_t byteSize() const override { return sizeof(*this); }
+    std::size_t byteSize() const override;
     bool serialize(ByteWriter& out) const override;
 };
 

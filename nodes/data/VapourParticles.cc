@@ -27,6 +27,9 @@ void checkStatics(const VapourStatics& s, const char* type)
                            "home cells are not in emission order at particle " + std::to_string(i));
         if (!(s.x[i] >= 0.0f && s.y[i] >= 0.0f) || !std::isfinite(s.x[i]) || !std::isfinite(s.y[i]))
             checks::refuse(type, "particle " + std::to_string(i) + " is not on the map");
+        // Consumers look the start height up in a profile and add the offset to a dew point.
+        if (!std::isfinite(s.startZ[i]) || (!s.dewpointOffset.empty() && !std::isfinite(s.dewpointOffset[i])))
+            checks::refuse(type, "particle " + std::to_string(i) + " has no finite start");
     }
 }
 
@@ -37,16 +40,22 @@ std::shared_ptr<const VapourParticlesData> readParticles(ByteReader& in, const c
     statics->homeCell = in.podVector<std::uint32_t>();
     statics->x = in.podVector<float>();
     statics->y = in.podVector<float>();
+    statics->startZ = in.podVector<float>();
+    statics->dewpointOffset = in.podVector<float>();
     auto z = in.podVector<float>();
     auto vz = in.podVector<float>();
     auto t = in.podVector<float>();
+    auto x = in.podVector<float>();
+    auto y = in.podVector<float>();
     const std::size_t n = statics->id.size();
+    const auto emptyOrN = [n](const std::vector<float>& v) { return v.empty() || v.size() == n; };
     if (statics->homeCell.size() != n || statics->x.size() != n || statics->y.size() != n ||
-        z.size() != n || vz.size() != n || t.size() != n)
+        statics->startZ.size() != n || !emptyOrN(statics->dewpointOffset) || z.size() != n ||
+        vz.size() != n || t.size() != n || !emptyOrN(x) || x.size() != y.size())
         checks::refuse(type, "particle arrays differ in length");  // before checkStatics reads them
     checkStatics(*statics, type);
-    return std::make_shared<VapourParticlesData>(std::move(statics), std::move(z), std::move(vz),
-                                                 std::move(t));
+    return std::make_shared<VapourParticlesData>(std::move(statics), std::move(x), std::move(y),
+                                                 std::move(z), std::move(vz), std::move(t));
 }
 
 /// Condensation frames are -1 (still vapour) or the frame a particle condensed, and the first
@@ -77,19 +86,32 @@ DataPtr readCondensation(ByteReader& in)
 VapourParticlesData::VapourParticlesData(std::shared_ptr<const VapourStatics> statics_,
                                          std::vector<float> z_, std::vector<float> vz_,
                                          std::vector<float> temperature_)
+    : VapourParticlesData(std::move(statics_), {}, {}, std::move(z_), std::move(vz_),
+                          std::move(temperature_))
+{
+}
+
+VapourParticlesData::VapourParticlesData(std::shared_ptr<const VapourStatics> statics_,
+                                         std::vector<float> x_, std::vector<float> y_,
+                                         std::vector<float> z_, std::vector<float> vz_,
+                                         std::vector<float> temperature_)
     : statics(std::move(statics_)), z(std::move(z_)), vz(std::move(vz_)),
-      temperature(std::move(temperature_))
+      temperature(std::move(temperature_)), mX(std::move(x_)), mY(std::move(y_))
 {
     const std::size_t n = statics ? statics->size() : 0;
     if (!statics || statics->homeCell.size() != n || statics->x.size() != n ||
-        statics->y.size() != n || z.size() != n || vz.size() != n || temperature.size() != n)
+        statics->y.size() != n || statics->startZ.size() != n ||
+        (!statics->dewpointOffset.empty() && statics->dewpointOffset.size() != n) ||
+        z.size() != n || vz.size() != n || temperature.size() != n ||
+        (!mX.empty() && mX.size() != n) || mY.size() != mX.size())
         throw std::invalid_argument("VapourParticles: arrays differ in length");
 }
 
 std::size_t VapourParticlesData::byteSize() const
 {
     // The statics are shared across frames; count them anyway, as a cache cannot know.
-    return sizeof(*this) + sizeof(VapourStatics) + size() * (4 * 4 + 3 * 4);
+    return sizeof(*this) + sizeof(VapourStatics) +
+           size() * (5 * 4 + 3 * 4) + (statics->dewpointOffset.size() + mX.size() + mY.size()) * 4;
 }
 
 bool VapourParticlesData::serialize(ByteWriter& out) const
@@ -98,9 +120,13 @@ bool VapourParticlesData::serialize(ByteWriter& out) const
     out.podVector(statics->homeCell);
     out.podVector(statics->x);
     out.podVector(statics->y);
+    out.podVector(statics->startZ);
+    out.podVector(statics->dewpointOffset);
     out.podVector(z);
     out.podVector(vz);
     out.podVector(temperature);
+    out.podVector(mX);
+    out.podVector(mY);
     return true;
 }
 
@@ -139,8 +165,8 @@ bool CondensationData::serialize(ByteWriter& out) const
 void registerVapourParticleTypes(Registry& registry)
 {
     registry.addDataType({"VapourParticles",
-                          "water vapour particles: id, home cell, x, y, height, vertical velocity, "
-                          "temperature",
+                          "water vapour particles: id, home cell, start position and moisture, "
+                          "height, vertical velocity, temperature, and x, y once moved",
                           [](ByteReader& in) -> DataPtr { return VapourParticlesData::deserialize(in); }});
     registry.addDataType({"Condensation",
                           "vapour particles with the frame at which each condensed, and the "

@@ -1,8 +1,8 @@
 #pragma once
 /// Water vapour particles of the stochastic simulation (Sec. 5.1), as structure-of-arrays.
-/// What never changes after emission (id, home cell, x, y) is shared by every frame's state,
-/// so a simulation step writes only the arrays that move: height, vertical velocity and
-/// temperature.
+/// What never changes after emission (id, home cell, start position, moisture) is shared by
+/// every frame's state, so a simulation step writes only the arrays that move: height,
+/// vertical velocity, temperature, and x, y once a wind or an outflow moves them.
 
 #include <cstdint>
 #include <memory>
@@ -18,8 +18,12 @@ class Registry;
 struct VapourStatics {
     std::vector<std::uint32_t> id;
     std::vector<std::uint32_t> homeCell;  ///< map cell index iy * nx + ix (Eq. 16 reads it)
-    std::vector<float> x;                 ///< metres; wind is ignored, so x, y never change
-    std::vector<float> y;                 ///< metres
+    std::vector<float> x;                 ///< metres, at emission
+    std::vector<float> y;                 ///< metres, at emission
+    std::vector<float> startZ;            ///< metres, P_vz(t0): where the particle's parcel starts
+    /// Issue 14, ours: each particle's own dew-point perturbation (C), for irregular cloud
+    /// bases; empty when there is none.
+    std::vector<float> dewpointOffset;
 
     std::size_t size() const { return id.size(); }
 };
@@ -29,6 +33,10 @@ class VapourParticlesData final : public Data {
 public:
     VapourParticlesData(std::shared_ptr<const VapourStatics> statics, std::vector<float> z,
                         std::vector<float> vz, std::vector<float> temperature);
+    /// With horizontal positions of their own (wind, outflow): `x` and `y` empty or size().
+    VapourParticlesData(std::shared_ptr<const VapourStatics> statics, std::vector<float> x,
+                        std::vector<float> y, std::vector<float> z, std::vector<float> vz,
+                        std::vector<float> temperature);
 
     const std::shared_ptr<const VapourStatics> statics;
     const std::vector<float> z;            ///< height P_vz, metres
@@ -36,11 +44,18 @@ public:
     const std::vector<float> temperature;  ///< T_v, degrees Celsius
 
     std::size_t size() const { return z.size(); }
+    /// The horizontal position at this frame: the emission's until something moved it.
+    const std::vector<float>& xs() const { return mX.empty() ? statics->x : mX; }
+    const std::vector<float>& ys() const { return mY.empty() ? statics->y : mY; }
+    bool movedHorizontally() const { return !mX.empty(); }
 
     std::string typeName() const override { return "VapourParticles"; }
     std::size_t byteSize() const override;
     bool serialize(ByteWriter& out) const override;
     static std::shared_ptr<const VapourParticlesData> deserialize(ByteReader& in);
+
+private:
+    std::vector<float> mX, mY;  ///< empty: statics->x, y
 };
 
 /// Which particles have become condensation particles (pseudocode lines 9-14).

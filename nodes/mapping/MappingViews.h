@@ -13,8 +13,8 @@ namespace cg {
 inline algo::CondensationView condensationView(const CondensationData& c)
 {
     algo::CondensationView v;
-    v.x = c.particles->statics->x.data();
-    v.y = c.particles->statics->y.data();
+    v.x = c.particles->xs().data();
+    v.y = c.particles->ys().data();
     v.z = c.particles->z.data();
     v.condensedFrame = c.condensedFrame.data();
     v.count = c.particles->size();

@@ -144,10 +144,14 @@ TEST(CachedValueDecoding, CoreTypesRefuseLengthsPastTheEnd)
 
 // ---- Atmosphere ---------------------------------------------------------------------------
 
-Bytes atmosphereBytes(std::vector<double> fields)
+Bytes atmosphereBytes(std::vector<double> fields, const std::vector<double>& profile = {},
+                      const std::vector<double>& wind = {})
 {
     ByteWriter out;
     for (double v : fields) out.f64(v);
+    out.podVector(profile);
+    if (!profile.empty()) out.u64(1);  // the moist adiabat
+    out.podVector(wind);
     return out.buffer();
 }
 
@@ -171,6 +175,39 @@ TEST(CachedValueDecoding, AtmosphereRoundTripsAndRefusesValuesTheNodeCannotMake)
             expectRefused("Atmosphere", atmosphereBytes(f), names[i]);
         }
     }
+}
+
+TEST(CachedValueDecoding, AtmosphereProfileAndWindRoundTripOrAreRefused)
+{
+    Atmosphere a;
+    a.profile = std::make_shared<algo::EnvironmentProfile>(algo::standardAtmosphere(25.0, 17.0, 11000.0));
+    a.moistAdiabat = false;
+    a.wind = algo::WindProfile({{0.0, 5.0, 0.0}, {10000.0, 20.0, -3.0}});
+    const auto back = roundTrip(AtmosphereData(a))->atmosphere;
+    ASSERT_TRUE(back.profile);
+    EXPECT_EQ(back.profile->levels().size(), a.profile->levels().size());
+    EXPECT_EQ(back.profile->temperature(5432.0), a.profile->temperature(5432.0));
+    EXPECT_EQ(back.profile->pressure(5432.0), a.profile->pressure(5432.0));
+    EXPECT_FALSE(back.moistAdiabat);
+    EXPECT_EQ(back.wind.at(2500.0).east, a.wind.at(2500.0).east);
+
+    const std::vector<double> ok{20.0, 6.4e-3, 16.0, 10e-3, 6e-3, 9.81};
+    // height, T, T_d, p, wind east, wind north per level
+    const std::vector<double> levels{0, 25, 17, 1000, 0, 0, 1000, 18, 12, 890, 5, 0};
+    ASSERT_NO_THROW(decode("Atmosphere", atmosphereBytes(ok, levels, {0, 1, 2})));
+    auto forgedLevels = [&](std::size_t i, double v, const std::string& why) {
+        std::vector<double> l = levels;
+        l[i] = v;
+        expectRefused("Atmosphere", atmosphereBytes(ok, l), why);
+    };
+    forgedLevels(6, 0.0, "heights must increase");
+    forgedLevels(1, kNaN, "profile temperature");
+    forgedLevels(9, -1.0, "profile pressure");
+    forgedLevels(10, 1e6, "profile wind");
+    expectRefused("Atmosphere", atmosphereBytes(ok, {0, 25, 17, 1000, 0}), "a profile of 5 values");
+    expectRefused("Atmosphere", atmosphereBytes(ok, {}, {0, 1}), "a wind profile of 2 values");
+    expectRefused("Atmosphere", atmosphereBytes(ok, {}, {0, 1, 2, 0, 1, 2}), "wind heights must increase");
+    expectRefused("Atmosphere", atmosphereBytes(ok, {}, {0, kInf, 2}), "wind");
 }
 
 // ---- Map2D ---------------------------------------------------------------------------------
@@ -346,12 +383,13 @@ algo::VapourEmission emitted()
 struct VapourFields {
     std::vector<std::uint32_t> id, homeCell;
     std::vector<float> x, y, z, vz, t;
+    std::vector<float> startZ, dewpointOffset, movedX, movedY;
 };
 
 VapourFields vapourFields()
 {
     algo::VapourEmission e = emitted();
-    return {e.id, e.homeCell, e.x, e.y, e.z, e.vz, e.temperature};
+    return {e.id, e.homeCell, e.x, e.y, e.z, e.vz, e.temperature, e.z, {}, {}, {}};
 }
 
 Bytes vapourBytes(const VapourFields& f)
@@ -361,9 +399,13 @@ Bytes vapourBytes(const VapourFields& f)
     out.podVector(f.homeCell);
     out.podVector(f.x);
     out.podVector(f.y);
+    out.podVector(f.startZ);
+    out.podVector(f.dewpointOffset);
     out.podVector(f.z);
     out.podVector(f.vz);
     out.podVector(f.t);
+    out.podVector(f.movedX);
+    out.podVector(f.movedY);
     return out.buffer();
 }
 
@@ -374,7 +416,9 @@ std::shared_ptr<const VapourParticlesData> particlesOf(const VapourFields& f)
     statics->homeCell = f.homeCell;
     statics->x = f.x;
     statics->y = f.y;
-    return std::make_shared<VapourParticlesData>(statics, f.z, f.vz, f.t);
+    statics->startZ = f.startZ;
+    statics->dewpointOffset = f.dewpointOffset;
+    return std::make_shared<VapourParticlesData>(statics, f.movedX, f.movedY, f.z, f.vz, f.t);
 }
 
 TEST(CachedValueDecoding, VapourParticlesRoundTripAndRefuseBrokenStatics)
@@ -386,6 +430,18 @@ TEST(CachedValueDecoding, VapourParticlesRoundTripAndRefuseBrokenStatics)
     EXPECT_EQ(back->statics->homeCell, f.homeCell);
     EXPECT_EQ(back->statics->x, f.x);
     EXPECT_EQ(back->temperature, f.t);
+    EXPECT_FALSE(back->movedHorizontally());
+
+    // Moved by a wind, with irregular-base offsets: both survive the round trip.
+    VapourFields moved = vapourFields();
+    moved.dewpointOffset.assign(moved.id.size(), -1.5f);
+    moved.movedX.assign(moved.id.size(), -40.0f);  // blown off the map: not refused
+    moved.movedY = moved.y;
+    const auto movedBack = roundTrip(*particlesOf(moved));
+    EXPECT_EQ(movedBack->xs(), moved.movedX);
+    EXPECT_EQ(movedBack->statics->x, moved.x);
+    EXPECT_EQ(movedBack->statics->dewpointOffset, moved.dewpointOffset);
+    EXPECT_EQ(movedBack->statics->startZ, moved.startZ);
 
     auto forged = [&](const std::function<void(VapourFields&)>& change, const std::string& why) {
         VapourFields g = vapourFields();
@@ -400,6 +456,12 @@ TEST(CachedValueDecoding, VapourParticlesRoundTripAndRefuseBrokenStatics)
     forged([](VapourFields& g) { g.x[4] = kInf; }, "particle 4 is not on the map");
     forged([](VapourFields& g) { g.vz.pop_back(); }, "particle arrays differ in length");
     forged([](VapourFields& g) { g.homeCell.pop_back(); }, "particle arrays differ in length");
+    forged([](VapourFields& g) { g.startZ.pop_back(); }, "particle arrays differ in length");
+    forged([](VapourFields& g) { g.movedX = g.x; }, "particle arrays differ in length");
+    forged([](VapourFields& g) { g.dewpointOffset = {1.0f}; }, "particle arrays differ in length");
+    forged([](VapourFields& g) { g.startZ[6] = kNaN; }, "particle 6 has no finite start");
+    forged([](VapourFields& g) { g.dewpointOffset.assign(g.id.size(), 0.0f); g.dewpointOffset[2] = kInf; },
+           "particle 2 has no finite start");
 }
 
 Bytes condensationBytes(const VapourFields& f, const std::vector<std::int32_t>& frames,

@@ -247,6 +247,7 @@ TEST_F(VapourEmitterNodeTest, WriterMarksCondensedParticles)
     statics->homeCell = {0, 0, 1, 5};
     statics->x = {0.5f, 1.5f, 2.5f, 3.5f};
     statics->y = {1.0f, 2.0f, 3.0f, 4.0f};
+    statics->startZ = {0.0f, 0.0f, 0.0f, 0.0f};
     auto particles = std::make_shared<VapourParticlesData>(
         statics, std::vector<float>{10, 20, 30, 40}, std::vector<float>{0.5f, 0, -1, 2},
         std::vector<float>{29, 28, 27, 26});
@@ -283,6 +284,7 @@ TEST_F(VapourEmitterNodeTest, WriterMarksCondensedParticles)
     fewer->homeCell = {0};
     fewer->x = {0.5f};
     fewer->y = {0.5f};
+    fewer->startZ = {0.0f};
     auto one = std::make_shared<VapourParticlesData>(fewer, std::vector<float>{1},
                                                      std::vector<float>{0}, std::vector<float>{3});
     CookContext ctx(*decl, "write", params, eval, dir.path());
