@@ -1,0 +1,226 @@
+// Issue 14's real atmosphere through the engine: a sounding's lifting condensation level and
+// equilibrium level, wind, shear, anvils and irregular bases, each against a closed form or a
+// value computed here from the sounding's own numbers.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numeric>
+
+#include <nlohmann/json.hpp>
+
+#include "algo/atmosphere/Parcel.h"
+#include "core/Evaluator.h"
+#include "core/Graph.h"
+#include "formats/Sounding.h"
+#include "nodes/Builtin.h"
+#include "nodes/atmosphere/SoundingProfile.h"
+#include "nodes/data/VapourParticles.h"
+
+namespace cg {
+
+namespace {
+
+using nlohmann::json;
+
+const std::string kDeepConvection =
+    (std::filesystem::path(CLOUDGRAPH_SOURCE_DIR) / "graphs" / "soundings" / "deep_convection.csv")
+        .string();
+
+/// Emission, rise and condensation; `atmosphere`, `emit` and `rise` parameters as given. An
+/// 8 x 8 map: with equal min and max the emission is uniform whatever the noise.
+json pipeline(int frames, double timeStep, const json& atmosphere, const json& emit,
+              const json& rise, const json& noise = json::object())
+{
+    json n = {{"width", 8}, {"height", 8}, {"seed", 3}};
+    n.update(noise);
+    return {{"cloudgraph", 1},
+            {"frames", {{"start", 0}, {"end", frames}}},
+            {"timeStep", timeStep},
+            {"nodes",
+             {{"noise", {{"type", "NoiseMap"}, {"params", n}}},
+              {"moisture", {{"type", "NoiseMap"}, {"params", {{"width", 8}, {"height", 8}, {"seed", 11}}}}},
+              {"atmosphere", {{"type", "Atmosphere"}, {"params", atmosphere}}},
+              {"emit", {{"type", "VapourEmitter"}, {"inputs", {{"map", "noise.map"}, {"moisture", "moisture.map"}}}, {"params", emit}}},
+              {"rise", {{"type", "ThermalIntegrator"},
+                        {"inputs", {{"particles", "emit.particles"}, {"atmosphere", "atmosphere.atmosphere"}}},
+                        {"params", rise}}},
+              {"condense", {{"type", "Condensation"},
+                            {"inputs", {{"particles", "rise.particles"}, {"atmosphere", "atmosphere.atmosphere"}}}}}}}};
+}
+
+json uniformEmission(double temperature)
+{
+    return {{"minParticlesPerCell", 1}, {"maxParticlesPerCell", 1}, {"minHeight", 0}, {"maxHeight", 0},
+            {"minTemperature", temperature}, {"maxTemperature", temperature}};
+}
+
+json soundingAtmosphere()
+{
+    return {{"profile", "sounding"}, {"soundingFile", kDeepConvection}, {"dryLapseRate", 9.76}};
+}
+
+class RealAtmosphere : public ::testing::Test {
+protected:
+    void SetUp() override { registerBuiltinNodes(registry); }
+
+    /// Runs frames 0..last, calling `each` with the condensation state of every frame.
+    void run(const json& graph, const std::function<void(int, const CondensationData&)>& each)
+    {
+        const Graph g = parseGraph(graph.dump(), "real_atmosphere.json", registry);
+        Evaluator ev(registry, {});
+        const int last = graph["frames"]["end"];
+        ev.cookFrames(g, 0, last, {"condense"}, [&](int frame, const Evaluator::FrameOutputs& out) {
+            each(frame, *std::dynamic_pointer_cast<const CondensationData>(
+                            out[g.indexOf("condense")]->at("condensation")));
+        });
+    }
+
+    /// Each particle's height in the frame it condensed (NaN: never).
+    std::vector<float> baseHeights(const json& graph)
+    {
+        std::vector<float> base;
+        run(graph, [&](int frame, const CondensationData& c) {
+            base.resize(c.particles->size(), std::nanf(""));
+            for (std::size_t i = 0; i < base.size(); ++i)
+                if (c.condensedFrame[i] == frame) base[i] = c.particles->z[i];
+        });
+        return base;
+    }
+
+    Registry registry;
+};
+
+algo::EnvironmentProfile deepConvection()
+{
+    return profileFromSounding(formats::readSounding(kDeepConvection));
+}
+
+double standardDeviation(const std::vector<float>& v)
+{
+    const double mean = std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+    double sum = 0.0;
+    for (float x : v) sum += (x - mean) * (x - mean);
+    return std::sqrt(sum / static_cast<double>(v.size()));
+}
+
+}  // namespace
+
+TEST_F(RealAtmosphere, UniformEmissionCondensesAtTheSoundingsLiftingCondensationLevel)
+{
+    // Independently of the code: a parcel starting at T0 with the sounding's surface dew point
+    // (22 C, its first row) cools 9.76 C/km while its dew point falls 1.8 C/km.
+    const double t0 = 31.0, surfaceDewpoint = 22.0;
+    const double lcl = (t0 - surfaceDewpoint) / (9.76e-3 - 1.8e-3);  // 1131 m above the ground
+    const double timeStep = 2.0;
+    float fastest = 0.0f;
+    std::vector<float> base;
+    run(pipeline(300, timeStep, soundingAtmosphere(), uniformEmission(t0), {{"buoyancy", "parcel"}}),
+        [&](int frame, const CondensationData& c) {
+            base.resize(c.particles->size(), std::nanf(""));
+            for (std::size_t i = 0; i < base.size(); ++i) {
+                if (c.condensedFrame[i] == frame) base[i] = c.particles->z[i];
+                fastest = std::max(fastest, c.particles->vz[i]);
+            }
+        });
+    ASSERT_EQ(base.size(), 64u);
+    const double tolerance = std::max(0.05 * lcl, fastest * timeStep);
+    for (float z : base) {
+        ASSERT_FALSE(std::isnan(z)) << "a particle never condensed";
+        EXPECT_NEAR(z, lcl, tolerance);
+    }
+}
+
+TEST_F(RealAtmosphere, TowersStopAtTheEquilibriumLevel)
+{
+    const algo::EnvironmentProfile profile = deepConvection();
+    const double el = algo::liftParcel(profile, profile.groundHeight()).elM - profile.groundHeight();
+    ASSERT_NEAR(el, 11800.0, 300.0);  // the shipped sounding's, as docs/atmosphere.md says
+    float highest = 0.0f;
+    std::vector<float> last;
+    run(pipeline(500, 5.0, soundingAtmosphere(), uniformEmission(31.0),
+                 {{"buoyancy", "parcel"}, {"drag", 1e-3}}),
+        [&](int, const CondensationData& c) {
+            highest = std::max(highest, *std::max_element(c.particles->z.begin(), c.particles->z.end()));
+            last = c.particles->z;
+        });
+    EXPECT_LE(highest, 1.10 * el) << "the overshoot goes too far";
+    const double mean = std::accumulate(last.begin(), last.end(), 0.0) / static_cast<double>(last.size());
+    EXPECT_NEAR(mean, el, 0.10 * el) << "the tops did not settle at the equilibrium level";
+}
+
+TEST_F(RealAtmosphere, ConstantWindMovesEveryParticleByUTAndNothingElse)
+{
+    const int frames = 100;
+    const double timeStep = 0.5, speed = 12.0;
+    json windy = {{"wind", "layers"}, {"windHeights", {0.0}}, {"windSpeeds", {speed}}, {"windDirections", {270.0}}};
+    std::shared_ptr<const VapourParticlesData> calm, blown;
+    run(pipeline(frames, timeStep, json::object(), json::object(), json::object()),
+        [&](int, const CondensationData& c) { calm = c.particles; });
+    run(pipeline(frames, timeStep, windy, json::object(), json::object()),
+        [&](int, const CondensationData& c) { blown = c.particles; });
+    ASSERT_EQ(calm->size(), blown->size());
+    EXPECT_FALSE(calm->movedHorizontally());
+    ASSERT_TRUE(blown->movedHorizontally());
+    EXPECT_EQ(blown->z, calm->z);  // the wind leaves the paper's vertical motion bit for bit
+    EXPECT_EQ(blown->temperature, calm->temperature);
+    const double ut = speed * timeStep * frames;  // from the west: toward +x
+    for (std::size_t i = 0; i < blown->size(); ++i) {
+        const float x0 = blown->statics->x[i];
+        // Float sums of u dt, one rounding per step.
+        const float x = blown->xs()[i];
+        const double ulps = frames * (static_cast<double>(std::nextafter(x, 1e9f)) - x);
+        ASSERT_NEAR(blown->xs()[i] - x0, ut, ulps) << "particle " << i;
+        ASSERT_EQ(blown->ys()[i], blown->statics->y[i]) << "particle " << i;
+    }
+}
+
+TEST_F(RealAtmosphere, LinearShearTiltsTheTowerByTheExpectedAngle)
+{
+    // Constant acceleration (the environment cools at the particles' own 10 C/km, nothing
+    // condenses, no gravity): z = a t^2 / 2 for every particle, so under u = s z each one is
+    // at x - x0 = s a t^3 / 6 = (s t / 3) z: the tower leans by atan(s t / 3) at time t.
+    const int frames = 400;
+    const double timeStep = 0.5, shear = 4e-3;  // 1/s: 40 m/s over 10 km
+    const json atmosphere = {{"environmentLapseRate", 10.0}, {"dewPoint", -60.0}, {"gravity", 0.0},
+                             {"wind", "layers"}, {"windHeights", {0.0, 20000.0}},
+                             {"windSpeeds", {0.0, shear * 20000.0}}, {"windDirections", {270.0, 270.0}}};
+    std::shared_ptr<const VapourParticlesData> p;
+    run(pipeline(frames, timeStep, atmosphere, {{"minTemperature", 25.0}, {"maxTemperature", 30.0}},
+                 {{"buoyancyCoefficient", 0.05}}),  // a = 0.25 .. 0.5 m/s^2: 5 to 10 km
+        [&](int, const CondensationData& c) { p = c.particles; });
+    double zz = 0.0, xz = 0.0;
+    for (std::size_t i = 0; i < p->size(); ++i) {
+        const double z = p->z[i] - p->statics->startZ[i];
+        zz += z * z;
+        xz += (p->xs()[i] - p->statics->x[i]) * z;
+    }
+    ASSERT_GT(zz, 0.0);
+    const double t = frames * timeStep;
+    const double expected = std::atan(shear * t / 3.0), measured = std::atan(xz / zz);
+    EXPECT_GT(expected, 0.25);  // a visible lean, not a rounding
+    EXPECT_LT(*std::max_element(p->z.begin(), p->z.end()), 20000.0f);  // all inside the shear
+    EXPECT_NEAR(measured, expected, 0.2 * expected);
+}
+
+TEST_F(RealAtmosphere, IrregularBasesSpreadWithTheMoistureAmplitude)
+{
+    // The paper's atmosphere and a uniform emission: every particle condenses at
+    // (30 - 16) / 10 C/km = 1400 m. A dew-point offset d moves its base by -d / 10 C/km.
+    std::vector<double> spread;
+    for (double amplitude : {0.0, 1.0, 2.0}) {
+        const std::vector<float> base = baseHeights(pipeline(
+            120, 0.2, json::object(),
+            [&] { json e = uniformEmission(30.0); e["moistureAmplitude"] = amplitude; return e; }(),
+            json::object()));
+        ASSERT_TRUE(std::none_of(base.begin(), base.end(), [](float z) { return std::isnan(z); }));
+        spread.push_back(standardDeviation(base));
+    }
+    EXPECT_EQ(spread[0], 0.0);
+    EXPECT_GT(spread[1], 10.0);
+    EXPECT_NEAR(spread[2] / spread[1], 2.0, 0.2);
+}
+
+}  // namespace cg
