@@ -30,7 +30,7 @@ float moistLapseAt(float temperatureC, float pressureHPa)
 
 }  // namespace
 
-float particleDewpoint(const ColumnThermalSettings& s, const ParticleMoisture& m, std::size_t i,
+float particleDewpoint(const ColumnThermalSettings& s, const ParticleStart& m, std::size_t i,
                        float z)
 {
     const float offset = m.dewpointOffset ? m.dewpointOffset[i] : 0.0f;
@@ -41,7 +41,7 @@ float particleDewpoint(const ColumnThermalSettings& s, const ParticleMoisture& m
            offset;
 }
 
-void columnThermalStep(const ColumnThermalSettings& s, const ParticleMoisture& m,
+void columnThermalStep(const ColumnThermalSettings& s, const ParticleStart& m,
                        const TowerAxes& axes, const ColumnState& in, const ColumnStateOut& out,
                        std::size_t begin, std::size_t end)
 {
@@ -58,7 +58,16 @@ void columnThermalStep(const ColumnThermalSettings& s, const ParticleMoisture& m
     const float divergence = static_cast<float>(s.outflowDivergence);
     const float outflowBottom = static_cast<float>(s.outflowBottom);
     const float floorHeight = p.groundStops ? 0.0f : -std::numeric_limits<float>::infinity();
+    const float time = static_cast<float>(s.time);
     for (std::size_t i = begin; i < end; ++i) {
+        if (m.releaseTime && m.releaseTime[i] > time) {  // still waiting at its start
+            out.x[i] = in.x[i];
+            out.y[i] = in.y[i];
+            out.z[i] = in.z[i];
+            out.vz[i] = in.vz[i];
+            out.temperature[i] = in.temperature[i];
+            continue;
+        }
         const float z = in.z[i];
         const float u = in.vz[i];
         const float t = in.temperature[i];
@@ -94,7 +103,7 @@ void columnThermalStep(const ColumnThermalSettings& s, const ParticleMoisture& m
     }
 }
 
-void columnThermalStepParallel(const ColumnThermalSettings& s, const ParticleMoisture& m,
+void columnThermalStepParallel(const ColumnThermalSettings& s, const ParticleStart& m,
                                const TowerAxes& axes, const ColumnState& in,
                                const ColumnStateOut& out, std::size_t n,
                                const std::function<void()>& checkCancelled)

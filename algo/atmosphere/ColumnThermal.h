@@ -32,19 +32,23 @@ struct ColumnThermalSettings {
     /// (m above the ground) moves away from its tower's axis at divergence * distance.
     double outflowDivergence = 0.0;  ///< 1/s; 0 = no outflow
     double outflowBottom = 0.0;      ///< m above the ground
+    /// Seconds from t0 to the state being stepped, for the particles' release times.
+    double time = 0.0;
 };
 
-/// A particle's moisture. With a profile its dew point at start is the profile's at its start
+/// What each particle brought from its emission. Its moisture: with a profile its dew point at start is the profile's at its start
 /// height, and it falls kParcelDewpointLapse per metre as the particle rises (a lifted parcel
 /// keeps its mixing ratio); without one it is the paper's constant T_dp. `dewpointOffset`, when
-/// not null, adds each particle's own perturbation (irregular bases).
-struct ParticleMoisture {
+/// not null, adds each particle's own perturbation (irregular bases). `releaseTime`, when not
+/// null: a particle stays at its start until that many seconds after t0.
+struct ParticleStart {
     const float* startZ = nullptr;
     const float* dewpointOffset = nullptr;
+    const float* releaseTime = nullptr;
 };
 
 /// The dew point of particle i at height z (m above the ground).
-float particleDewpoint(const ColumnThermalSettings& s, const ParticleMoisture& m, std::size_t i,
+float particleDewpoint(const ColumnThermalSettings& s, const ParticleStart& m, std::size_t i,
                        float z);
 
 struct ColumnState {
@@ -72,13 +76,14 @@ struct TowerAxes {
 /// Advances particles [begin, end) by Delta t, as thermalStep does (Eq. 7: position with the
 /// old velocity), with T_e from the column when it has a profile, the particle's own dew point
 /// choosing the lapse rate, and x, y moved by the wind at the old height (plus the outflow).
-/// Each particle is independent, so any split of the range gives the same bits.
-void columnThermalStep(const ColumnThermalSettings& s, const ParticleMoisture& m,
+/// A particle not yet released keeps its state. Each particle is independent, so any split of
+/// the range gives the same bits.
+void columnThermalStep(const ColumnThermalSettings& s, const ParticleStart& m,
                        const TowerAxes& axes, const ColumnState& in, const ColumnStateOut& out,
                        std::size_t begin, std::size_t end);
 
 /// The same step for all n particles in parallel, deterministic for any thread count.
-void columnThermalStepParallel(const ColumnThermalSettings& s, const ParticleMoisture& m,
+void columnThermalStepParallel(const ColumnThermalSettings& s, const ParticleStart& m,
                                const TowerAxes& axes, const ColumnState& in,
                                const ColumnStateOut& out, std::size_t n,
                                const std::function<void()>& checkCancelled = {});

@@ -13,6 +13,12 @@
 
 namespace cg::algo {
 
+float releaseTime(std::uint64_t seed, std::uint32_t id, double duration)
+{
+    constexpr std::uint64_t kReleaseStream = 0x72656c65617365ull;  // "release": above any cell
+    return static_cast<float>(duration * counterUniform(seed, kReleaseStream, id));
+}
+
 namespace {
 
 constexpr double kMaxCellCount = 9007199254740992.0;  // 2^53: every count below is exact

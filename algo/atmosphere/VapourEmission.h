@@ -45,9 +45,13 @@ struct VapourEmission {
     std::size_t size() const { return id.size(); }
 };
 
-/// Bytes one emitted particle may occupy: id, home cell and seven floats (x, y, z, U_vz, T_v,
-/// and as statics its start height and dew-point offset).
-constexpr std::uint64_t kVapourParticleBytes = 2 * sizeof(std::uint32_t) + 7 * sizeof(float);
+/// Bytes one emitted particle may occupy: id, home cell and eight floats (x, y, z, U_vz, T_v,
+/// and as statics its start height, dew-point offset and release time).
+constexpr std::uint64_t kVapourParticleBytes = 2 * sizeof(std::uint32_t) + 8 * sizeof(float);
+
+/// Ours: particle `id` leaves its start at duration * u, u uniform in [0, 1) keyed by (seed,
+/// id), so a source keeps feeding its tower for `duration` seconds.
+float releaseTime(std::uint64_t seed, std::uint32_t id, double duration);
 
 /// Particles of one cell of density `density` (Eq. 3 rounded half up, never negative,
 /// capped at 2^53). `density` must be finite.

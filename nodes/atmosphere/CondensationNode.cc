@@ -28,8 +28,9 @@ std::vector<float> particleDewpoints(const Atmosphere& a, const VapourParticlesD
     s.paper.dewPoint = a.dewPoint;
     s.column = &column;
     const VapourStatics& st = *particles.statics;
-    const algo::ParticleMoisture m{st.startZ.data(),
-                                   st.dewpointOffset.empty() ? nullptr : st.dewpointOffset.data()};
+    algo::ParticleStart m;
+    m.startZ = st.startZ.data();
+    m.dewpointOffset = st.dewpointOffset.empty() ? nullptr : st.dewpointOffset.data();
     std::vector<float> dewpoints(particles.size());
     for (std::size_t i = 0; i < dewpoints.size(); ++i)
         dewpoints[i] = algo::particleDewpoint(s, m, i, particles.z[i]);

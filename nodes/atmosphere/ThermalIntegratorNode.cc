@@ -62,6 +62,7 @@ public:
         const bool beyondPaper = atmosphere.beyondPaper() || p.getString("buoyancy") != "paper" ||
                                  p.getFloat("drag") > 0.0 || p.getFloat("outflowDivergence") > 0.0 ||
                                  !previous->statics->dewpointOffset.empty() ||
+                                 !previous->statics->releaseTime.empty() ||
                                  previous->movedHorizontally();
         ctx.setOutput("particles", beyondPaper ? stepThroughColumn(ctx, paper, atmosphere, *previous)
                                                : stepAsPaper(ctx, paper, *previous));
@@ -95,6 +96,7 @@ private:
         s.column = &column;
         s.moistAdiabat = atmosphere.moistAdiabat;
         s.outflowDivergence = p.getFloat("outflowDivergence");
+        s.time = (ctx.frame() - 1 - ctx.startFrame()) * paper.timeStep;  // the previous frame's
 
         const VapourStatics& st = *previous.statics;
         const std::size_t n = previous.size();
@@ -108,9 +110,10 @@ private:
                             axisY);
         }
         std::vector<float> xNext(n), yNext(n), z(n), vz(n), temperature(n);
+        const auto orNull = [](const std::vector<float>& v) { return v.empty() ? nullptr : v.data(); };
         algo::columnThermalStepParallel(
-            s, {st.startZ.data(), st.dewpointOffset.empty() ? nullptr : st.dewpointOffset.data()},
-            {axisX.empty() ? nullptr : axisX.data(), axisY.empty() ? nullptr : axisY.data()},
+            s, {st.startZ.data(), orNull(st.dewpointOffset), orNull(st.releaseTime)},
+            {orNull(axisX), orNull(axisY)},
             {x.data(), y.data(), previous.z.data(), previous.vz.data(), previous.temperature.data()},
             {xNext.data(), yNext.data(), z.data(), vz.data(), temperature.data()}, n,
             [&ctx] { ctx.checkCancelled(); });

@@ -19,7 +19,7 @@ namespace cg {
 namespace {
 
 /// The most one emission may hold: the engine's default per-node allocation limit (16 GiB),
-/// about 477 million particles, which also keeps every id within a PLY int.
+/// about 447 million particles, which also keeps every id within a PLY int.
 constexpr std::uint64_t kMaxEmissionBytes = std::uint64_t(16) << 30;
 constexpr std::uint64_t kMaxParticles = kMaxEmissionBytes / algo::kVapourParticleBytes;
 
@@ -81,6 +81,11 @@ public:
         statics->x = std::move(e.x);
         statics->y = std::move(e.y);
         statics->startZ = e.z;
+        if (const double duration = ctx.params().getFloat("emissionDuration"); duration > 0.0) {
+            statics->releaseTime.resize(statics->size());
+            for (std::size_t i = 0; i < statics->size(); ++i)
+                statics->releaseTime[i] = algo::releaseTime(s.seed, statics->id[i], duration);
+        }
         if (const auto moisture = ctx.input<Map2DData>("moisture")) {
             const double amplitude = ctx.params().getFloat("moistureAmplitude");
             if (amplitude > 0.0) statics->dewpointOffset = dewpointOffsets(*moisture, *statics, amplitude);
@@ -112,10 +117,13 @@ void registerVapourEmitterNode(Registry& registry)
         "vapour cools as it rises (Eq. 8), so every particle reaches the dew point at the same "
         "altitude and the cloud base is flat. The emission does not change with the frame: "
         "ThermalIntegrator takes it as its start state. A map density outside [0, 1], or more "
-        "than 16 GiB of particles (about 477 million), is refused. Ours (issue 14): an optional moisture map perturbs each "
+        "than 16 GiB of particles (about 447 million), is refused. Ours (issue 14): an optional moisture map perturbs each "
         "particle's dew point by moistureAmplitude (2 m - 1) C, m the map's value at the "
         "particle, so the cloud base is irregular (the paper's Sec. 7 asks for it); no map or "
-        "amplitude 0 gives the paper's flat base.";
+        "amplitude 0 gives the paper's flat base. Also ours: with emissionDuration > 0 each particle waits at its start "
+        "until a release time drawn uniformly from [0, emissionDuration) s keyed by (seed, "
+        "id), so a source keeps feeding its tower, as a real updraft does, instead of "
+        "rising as one bubble.";
     d.inputs = {
         port("map", "Map2D", "the 1/f^beta density map fNoise(ix, iy) of Eq. 3-5, in [0, 1]"),
         port("moisture", "Map2D",
@@ -142,7 +150,10 @@ void registerVapourEmitterNode(Registry& registry)
                  9007199254740992.0),
         floatParam("moistureAmplitude", 0.0, "degC",
                    "ours: the largest dew-point perturbation the moisture map gives (0: the "
-                   "paper's flat base)", 0.0, 20.0)};
+                   "paper's flat base)", 0.0, 20.0),
+        floatParam("emissionDuration", 0.0, "s",
+                   "ours: particles leave their start at random times over this long (0: all "
+                   "at t0, the paper's)", 0.0, 1e6)};
     d.validate = [](const ParamSet& p, const ParamChecker& check) {
         // Each pair must be an ordered range, or Eq. 3-5 run backwards.
         if (p.getFloat("maxParticlesPerCell") < p.getFloat("minParticlesPerCell"))

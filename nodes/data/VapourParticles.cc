@@ -28,7 +28,8 @@ void checkStatics(const VapourStatics& s, const char* type)
         if (!(s.x[i] >= 0.0f && s.y[i] >= 0.0f) || !std::isfinite(s.x[i]) || !std::isfinite(s.y[i]))
             checks::refuse(type, "particle " + std::to_string(i) + " is not on the map");
         // Consumers look the start height up in a profile and add the offset to a dew point.
-        if (!std::isfinite(s.startZ[i]) || (!s.dewpointOffset.empty() && !std::isfinite(s.dewpointOffset[i])))
+        if (!std::isfinite(s.startZ[i]) || (!s.dewpointOffset.empty() && !std::isfinite(s.dewpointOffset[i])) ||
+            (!s.releaseTime.empty() && !(s.releaseTime[i] >= 0.0f && std::isfinite(s.releaseTime[i]))))
             checks::refuse(type, "particle " + std::to_string(i) + " has no finite start");
     }
 }
@@ -42,6 +43,7 @@ std::shared_ptr<const VapourParticlesData> readParticles(ByteReader& in, const c
     statics->y = in.podVector<float>();
     statics->startZ = in.podVector<float>();
     statics->dewpointOffset = in.podVector<float>();
+    statics->releaseTime = in.podVector<float>();
     auto z = in.podVector<float>();
     auto vz = in.podVector<float>();
     auto t = in.podVector<float>();
@@ -50,7 +52,7 @@ std::shared_ptr<const VapourParticlesData> readParticles(ByteReader& in, const c
     const std::size_t n = statics->id.size();
     const auto emptyOrN = [n](const std::vector<float>& v) { return v.empty() || v.size() == n; };
     if (statics->homeCell.size() != n || statics->x.size() != n || statics->y.size() != n ||
-        statics->startZ.size() != n || !emptyOrN(statics->dewpointOffset) || z.size() != n ||
+        statics->startZ.size() != n || !emptyOrN(statics->dewpointOffset) || !emptyOrN(statics->releaseTime) || z.size() != n ||
         vz.size() != n || t.size() != n || !emptyOrN(x) || x.size() != y.size())
         checks::refuse(type, "particle arrays differ in length");  // before checkStatics reads them
     checkStatics(*statics, type);
@@ -102,6 +104,7 @@ VapourParticlesData::VapourParticlesData(std::shared_ptr<const VapourStatics> st
     if (!statics || statics->homeCell.size() != n || statics->x.size() != n ||
         statics->y.size() != n || statics->startZ.size() != n ||
         (!statics->dewpointOffset.empty() && statics->dewpointOffset.size() != n) ||
+        (!statics->releaseTime.empty() && statics->releaseTime.size() != n) ||
         z.size() != n || vz.size() != n || temperature.size() != n ||
         (!mX.empty() && mX.size() != n) || mY.size() != mX.size())
         throw std::invalid_argument("VapourParticles: arrays differ in length");
@@ -111,7 +114,7 @@ std::size_t VapourParticlesData::byteSize() const
 {
     // The statics are shared across frames; count them anyway, as a cache cannot know.
     return sizeof(*this) + sizeof(VapourStatics) +
-           size() * (5 * 4 + 3 * 4) + (statics->dewpointOffset.size() + mX.size() + mY.size()) * 4;
+           size() * (5 * 4 + 3 * 4) + (statics->dewpointOffset.size() + statics->releaseTime.size() + mX.size() + mY.size()) * 4;
 }
 
 bool VapourParticlesData::serialize(ByteWriter& out) const
@@ -122,6 +125,7 @@ bool VapourParticlesData::serialize(ByteWriter& out) const
     out.podVector(statics->y);
     out.podVector(statics->startZ);
     out.podVector(statics->dewpointOffset);
+    out.podVector(statics->releaseTime);
     out.podVector(z);
     out.podVector(vz);
     out.podVector(temperature);

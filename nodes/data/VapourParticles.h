@@ -24,6 +24,9 @@ struct VapourStatics {
     /// Issue 14, ours: each particle's own dew-point perturbation (C), for irregular cloud
     /// bases; empty when there is none.
     std::vector<float> dewpointOffset;
+    /// Ours: seconds after t0 at which each particle leaves its start (a source that keeps
+    /// feeding a tower); empty when all leave at t0, as in the paper.
+    std::vector<float> releaseTime;
 
     std::size_t size() const { return id.size(); }
 };

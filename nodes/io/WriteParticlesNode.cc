@@ -45,8 +45,8 @@ public:
         const VapourStatics& s = *particles->statics;
         formats::PlyParticleView view;
         view.count = particles->size();
-        view.x = s.x.data();
-        view.y = s.y.data();
+        view.x = particles->xs().data();
+        view.y = particles->ys().data();
         view.z = particles->z.data();
         view.vz = particles->vz.data();
         view.temperature = particles->temperature.data();

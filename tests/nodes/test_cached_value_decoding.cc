@@ -383,13 +383,13 @@ algo::VapourEmission emitted()
 struct VapourFields {
     std::vector<std::uint32_t> id, homeCell;
     std::vector<float> x, y, z, vz, t;
-    std::vector<float> startZ, dewpointOffset, movedX, movedY;
+    std::vector<float> startZ, dewpointOffset, releaseTime, movedX, movedY;
 };
 
 VapourFields vapourFields()
 {
     algo::VapourEmission e = emitted();
-    return {e.id, e.homeCell, e.x, e.y, e.z, e.vz, e.temperature, e.z, {}, {}, {}};
+    return {e.id, e.homeCell, e.x, e.y, e.z, e.vz, e.temperature, e.z, {}, {}, {}, {}};
 }
 
 Bytes vapourBytes(const VapourFields& f)
@@ -401,6 +401,7 @@ Bytes vapourBytes(const VapourFields& f)
     out.podVector(f.y);
     out.podVector(f.startZ);
     out.podVector(f.dewpointOffset);
+    out.podVector(f.releaseTime);
     out.podVector(f.z);
     out.podVector(f.vz);
     out.podVector(f.t);
@@ -418,6 +419,7 @@ std::shared_ptr<const VapourParticlesData> particlesOf(const VapourFields& f)
     statics->y = f.y;
     statics->startZ = f.startZ;
     statics->dewpointOffset = f.dewpointOffset;
+    statics->releaseTime = f.releaseTime;
     return std::make_shared<VapourParticlesData>(statics, f.movedX, f.movedY, f.z, f.vz, f.t);
 }
 
@@ -435,6 +437,7 @@ TEST(CachedValueDecoding, VapourParticlesRoundTripAndRefuseBrokenStatics)
     // Moved by a wind, with irregular-base offsets: both survive the round trip.
     VapourFields moved = vapourFields();
     moved.dewpointOffset.assign(moved.id.size(), -1.5f);
+    moved.releaseTime.assign(moved.id.size(), 12.5f);
     moved.movedX.assign(moved.id.size(), -40.0f);  // blown off the map: not refused
     moved.movedY = moved.y;
     const auto movedBack = roundTrip(*particlesOf(moved));
@@ -442,6 +445,7 @@ TEST(CachedValueDecoding, VapourParticlesRoundTripAndRefuseBrokenStatics)
     EXPECT_EQ(movedBack->statics->x, moved.x);
     EXPECT_EQ(movedBack->statics->dewpointOffset, moved.dewpointOffset);
     EXPECT_EQ(movedBack->statics->startZ, moved.startZ);
+    EXPECT_EQ(movedBack->statics->releaseTime, moved.releaseTime);
 
     auto forged = [&](const std::function<void(VapourFields&)>& change, const std::string& why) {
         VapourFields g = vapourFields();
@@ -462,6 +466,9 @@ TEST(CachedValueDecoding, VapourParticlesRoundTripAndRefuseBrokenStatics)
     forged([](VapourFields& g) { g.startZ[6] = kNaN; }, "particle 6 has no finite start");
     forged([](VapourFields& g) { g.dewpointOffset.assign(g.id.size(), 0.0f); g.dewpointOffset[2] = kInf; },
            "particle 2 has no finite start");
+    forged([](VapourFields& g) { g.releaseTime.assign(g.id.size(), 1.0f); g.releaseTime[3] = -1.0f; },
+           "particle 3 has no finite start");
+    forged([](VapourFields& g) { g.releaseTime = {1.0f}; }, "particle arrays differ in length");
 }
 
 Bytes condensationBytes(const VapourFields& f, const std::vector<std::int32_t>& frames,

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "algo/atmosphere/Parcel.h"
+#include "algo/atmosphere/VapourEmission.h"
 #include "core/Evaluator.h"
 #include "core/Graph.h"
 #include "formats/Sounding.h"
@@ -151,6 +152,54 @@ TEST_F(RealAtmosphere, TowersStopAtTheEquilibriumLevel)
     EXPECT_NEAR(mean, el, 0.10 * el) << "the tops did not settle at the equilibrium level";
 }
 
+/// Twice the root-mean-square horizontal distance of the particles from their centroid.
+double width(const VapourParticlesData& p, const std::vector<std::size_t>& which)
+{
+    double x = 0.0, y = 0.0;
+    for (std::size_t i : which) x += p.xs()[i], y += p.ys()[i];
+    x /= static_cast<double>(which.size());
+    y /= static_cast<double>(which.size());
+    double r2 = 0.0;
+    for (std::size_t i : which)
+        r2 += (p.xs()[i] - x) * (p.xs()[i] - x) + (p.ys()[i] - y) * (p.ys()[i] - y);
+    return 2.0 * std::sqrt(r2 / static_cast<double>(which.size()));
+}
+
+TEST_F(RealAtmosphere, OutflowSpreadsTheTopIntoAnAnvil)
+{
+    const algo::EnvironmentProfile profile = deepConvection();
+    const double el = algo::liftParcel(profile, profile.groundHeight()).elM - profile.groundHeight();
+    // One tower: a centre-weighted 2 km map emits only near its middle.
+    json emit = uniformEmission(31.0);
+    emit["minParticlesPerCell"] = 0;
+    emit["maxParticlesPerCell"] = 4;
+    const json noise = {{"width", 20}, {"height", 20}, {"cellSize", 100.0}, {"centreBias", 1.0},
+                        {"centreRadius", 0.3}};
+    double midWidth = 0.0, topWidth = 0.0;
+    std::size_t atTop = 0, total = 0;
+    run(pipeline(600, 5.0, soundingAtmosphere(), emit,
+                 {{"buoyancy", "parcel"}, {"drag", 1e-3}, {"outflowDivergence", 2e-3}}, noise),
+        [&](int frame, const CondensationData& c) {
+            const VapourParticlesData& p = *c.particles;
+            total = p.size();
+            std::vector<std::size_t> all(p.size());
+            std::iota(all.begin(), all.end(), 0);
+            const double mean = std::accumulate(p.z.begin(), p.z.end(), 0.0) / static_cast<double>(p.size());
+            if (midWidth == 0.0 && mean >= 0.5 * el) midWidth = width(p, all);  // the tower passing mid-height
+            if (frame == 600) {
+                std::vector<std::size_t> top;
+                for (std::size_t i = 0; i < p.size(); ++i)
+                    if (p.z[i] >= 0.8 * el) top.push_back(i);
+                atTop = top.size();
+                topWidth = width(p, top);
+            }
+        });
+    ASSERT_GT(total, 50u);
+    ASSERT_GT(midWidth, 0.0) << "the tower never reached mid-height";
+    EXPECT_GT(atTop, total / 2) << "most of the tower should have reached the top";
+    EXPECT_GE(topWidth, 2.0 * midWidth) << "mid " << midWidth << " m, top " << topWidth << " m";
+}
+
 TEST_F(RealAtmosphere, ConstantWindMovesEveryParticleByUTAndNothingElse)
 {
     const int frames = 100;
@@ -203,6 +252,34 @@ TEST_F(RealAtmosphere, LinearShearTiltsTheTowerByTheExpectedAngle)
     EXPECT_GT(expected, 0.25);  // a visible lean, not a rounding
     EXPECT_LT(*std::max_element(p->z.begin(), p->z.end()), 20000.0f);  // all inside the shear
     EXPECT_NEAR(measured, expected, 0.2 * expected);
+}
+
+TEST_F(RealAtmosphere, EmissionDurationReleasesEachParticleAtItsOwnTime)
+{
+    // A particle released at r seconds is first stepped from the frame at or after r, so its
+    // velocity first changes in the frame after: frame ceil(r / dt) + 1.
+    const double duration = 60.0, timeStep = 1.0;
+    json emit = uniformEmission(30.0);
+    emit["emissionDuration"] = duration;
+    std::vector<int> firstMoved;
+    run(pipeline(80, timeStep, json::object(), emit, json::object()),
+        [&](int frame, const CondensationData& c) {
+            firstMoved.resize(c.particles->size(), -1);
+            for (std::size_t i = 0; i < firstMoved.size(); ++i)
+                if (firstMoved[i] < 0 && c.particles->vz[i] != 0.0f) firstMoved[i] = frame;
+        });
+    ASSERT_EQ(firstMoved.size(), 64u);
+    std::vector<int> distinct;
+    for (std::size_t i = 0; i < firstMoved.size(); ++i) {
+        const float release = algo::releaseTime(0, static_cast<std::uint32_t>(i), duration);
+        ASSERT_GE(release, 0.0f);
+        ASSERT_LT(release, duration);
+        EXPECT_EQ(firstMoved[i], static_cast<int>(std::ceil(release / timeStep)) + 1) << i;
+        distinct.push_back(firstMoved[i]);
+    }
+    std::sort(distinct.begin(), distinct.end());
+    distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+    EXPECT_GT(distinct.size(), 30u);  // spread over the minute, not released together
 }
 
 TEST_F(RealAtmosphere, IrregularBasesSpreadWithTheMoistureAmplitude)
