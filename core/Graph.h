@@ -49,6 +49,10 @@ struct LoadOptions {
     bool allowPathsOutsideOut = false;
     /// Lets a graph set Program parameters (--allow-graph-programs): the user trusts it.
     bool allowGraphPrograms = false;
+    /// Where a relative input file (ParamRole::InputFile) is found: loadGraph sets the graph
+    /// file's directory, so a graph and the files beside it move together, as a Houdini or
+    /// Blender scene's relative paths do. Empty: the working directory.
+    std::filesystem::path inputFileBase;
 };
 
 class Graph {

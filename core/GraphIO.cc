@@ -196,6 +196,10 @@ GraphNode readNode(const std::string& id, const Json& j, const Reader& r, const 
                                             didYouMean(item.key(), names));
             }
             ParamValue v = paramFromJson(item.value(), *p, where);
+            if (const auto* file = std::get_if<std::string>(&v);
+                file && p->role == ParamRole::InputFile && !file->empty() &&
+                std::filesystem::path(*file).is_relative() && !options.inputFileBase.empty())
+                v = (options.inputFileBase / *file).lexically_normal().string();
             checkParamRole(*p, v, options, where);
             node.params.set(p->name, std::move(v));
         }
@@ -277,7 +281,9 @@ Graph loadGraph(const std::filesystem::path& path, const Registry& registry,
     std::ostringstream text;
     if (in) text << in.rdbuf();
     if (!in || in.bad()) throw InputError(name, "cannot read the graph file");
-    Graph graph = parseGraph(text.str(), name, registry, options);
+    LoadOptions besideTheGraph = options;
+    besideTheGraph.inputFileBase = path.parent_path();
+    Graph graph = parseGraph(text.str(), name, registry, besideTheGraph);
     graph.source = path;
     return graph;
 }

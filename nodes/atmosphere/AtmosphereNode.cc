@@ -160,7 +160,8 @@ void registerAtmosphereNode(Registry& registry)
                     {"linear", "standard", "sounding"}),
         inputFileParam("soundingFile", "",
                        "profile 'sounding': a University of Wyoming text list or a CSV with "
-                       "height_m,temperature_C,dewpoint_C (docs/atmosphere.md)"),
+                       "height_m,temperature_C,dewpoint_C (docs/atmosphere.md); a relative "
+                       "path is found beside the graph file"),
         floatParam("surfaceTemperature", 25.0, "degC",
                    "profile 'standard': temperature at sea level (ICAO: 15; value ours)",
                    L::kMinTemperature, L::kMaxTemperature),

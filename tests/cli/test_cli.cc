@@ -76,6 +76,7 @@ TEST(Cli, BadGraphCorpusIsRefusedWithExitCode2AndALocation)
 TEST(Cli, ValidateAcceptsTheShippedGraphs)
 {
     for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(CLOUDGRAPH_SOURCE_DIR) / "graphs")) {
+        if (entry.path().extension() != ".json") continue;  // soundings/ holds their data
         const auto r = runCli({"validate", entry.path().string()});
         EXPECT_EQ(r.exitCode, 0) << entry.path() << ": " << r.errors;
     }

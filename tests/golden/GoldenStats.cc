@@ -154,6 +154,15 @@ void atmosphere(Stats& s, const AtmosphereData& d)
     mean(s, "dry_lapse", a.dryLapse);
     mean(s, "moist_lapse", a.moistLapse);
     mean(s, "gravity", a.gravity);
+    if (a.profile) {  // issue 14: only where a graph asks for one, so older graphs keep theirs
+        count(s, "profile_levels", static_cast<std::int64_t>(a.profile->levels().size()));
+        mean(s, "profile_ground", a.profile->groundHeight());
+        mean(s, "profile_temperature_5km", a.environmentTemperature(5000.0));
+    }
+    if (!a.wind.calm()) {
+        count(s, "wind_levels", static_cast<std::int64_t>(a.wind.levels().size()));
+        mean(s, "wind_east_5km", a.wind.at(5000.0).east);
+    }
 }
 
 void floatArray(Stats& s, const FloatArrayData& d)

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <numeric>
 
 #include <nlohmann/json.hpp>
@@ -18,7 +19,9 @@
 #include "formats/Sounding.h"
 #include "nodes/Builtin.h"
 #include "nodes/atmosphere/SoundingProfile.h"
+#include "nodes/data/AtmosphereData.h"
 #include "nodes/data/VapourParticles.h"
+#include "support/TestUtil.h"
 
 namespace cg {
 
@@ -298,6 +301,34 @@ TEST_F(RealAtmosphere, IrregularBasesSpreadWithTheMoistureAmplitude)
     EXPECT_EQ(spread[0], 0.0);
     EXPECT_GT(spread[1], 10.0);
     EXPECT_NEAR(spread[2] / spread[1], 2.0, 0.2);
+}
+
+TEST_F(RealAtmosphere, ASoundingIsFoundBesideItsGraphAndKeyedByItsContent)
+{
+    namespace fs = std::filesystem;
+    test::TempDir dir;
+    fs::create_directories(dir / "soundings");
+    fs::copy_file(kDeepConvection, dir / "soundings" / "day.csv");
+    fs::copy_file(kDeepConvection, dir / "soundings" / "copy.csv");
+    auto graphWith = [&](const std::string& file) {
+        const json g = {{"cloudgraph", 1}, {"frames", {{"start", 0}, {"end", 0}}},
+                        {"nodes", {{"atmosphere", {{"type", "Atmosphere"},
+                                                   {"params", {{"profile", "sounding"}, {"soundingFile", file}}}}}}}};
+        std::ofstream(dir / "g.json") << g.dump();
+        return loadGraph(dir / "g.json", registry);  // the working directory is elsewhere
+    };
+    const Graph g = graphWith("soundings/day.csv");
+    Evaluator ev(registry, {});
+    const auto a = std::dynamic_pointer_cast<const AtmosphereData>(ev.pull(g, "atmosphere", 0)->at("atmosphere"));
+    ASSERT_TRUE(a && a->atmosphere.profile);
+    EXPECT_EQ(a->atmosphere.profile->groundHeight(), 200.0);
+
+    // The key is the file's content: another name with the same bytes is the same key; one
+    // changed value is not.
+    const Key key = ev.key(g, "atmosphere", 0);
+    EXPECT_EQ(ev.key(graphWith("soundings/copy.csv"), "atmosphere", 0), key);
+    std::ofstream(dir / "soundings" / "copy.csv", std::ios::app) << "17000,-42.0,,,,\n";
+    EXPECT_NE(ev.key(graphWith("soundings/copy.csv"), "atmosphere", 0), key);
 }
 
 }  // namespace cg
