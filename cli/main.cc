@@ -29,7 +29,7 @@ usage:
   cloudgraph nodes [TYPE] [--markdown]                    the node reference
   cloudgraph dot GRAPH                                    the graph as Graphviz
   cloudgraph info FILE                                    summary of a primitive-set file (.cgp)
-  cloudgraph sounding FILE                                a sounding's LCL, LFC, EL and CAPE
+  cloudgraph sounding FILE [--plot PNG]                   a sounding's LCL, LFC, EL, CAPE; its skew-T
   cloudgraph --help | --version
 Every command takes -v (debug logging) and -q (errors only).
 

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
+#include "formats/PngFile.h"
 #include "support/TestUtil.h"
 
 namespace cg {
@@ -32,6 +35,25 @@ TEST(SoundingCommand, AMalformedFileExitsTwoNamingTheFileAndLine)
               std::string::npos)
         << r.errors;
     EXPECT_EQ(test::runCli({"sounding"}).exitCode, 2);
+}
+
+TEST(SoundingCommand, PlotWritesTheSkewTDiagram)
+{
+    test::TempDir dir;
+    const std::string png = (dir / "skewt.png").string();
+    const auto r = test::runCli({"sounding", test::dataPath("soundings/csv_sample.csv").string(), "--plot", png});
+    ASSERT_EQ(r.exitCode, 0) << r.errors;
+    EXPECT_NE(r.output.find("skew-T:  " + png), std::string::npos) << r.output;
+    const formats::Rgb8Image image = formats::readPngRgb8(png);
+    EXPECT_EQ(image.width, 640);
+    EXPECT_EQ(image.height, 720);
+    std::size_t red = 0;
+    for (std::size_t i = 0; i < image.rgb.size(); i += 3)
+        red += image.rgb[i] == 200 && image.rgb[i + 1] == 30 && image.rgb[i + 2] == 30;
+    EXPECT_GT(red, 500u) << "no environment curve";
+    std::size_t files = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir.path())) files += e.is_regular_file();
+    EXPECT_EQ(files, 1u) << "a temporary file was left beside the plot";
 }
 
 }  // namespace cg
