@@ -31,6 +31,7 @@ void registerBuiltinNodes(Registry& registry)
     registerVapourEmitterNode(registry);
     registerThermalIntegratorNode(registry);
     registerCondensationNode(registry);
+    registerWriteWeatherReportNode(registry);
     registerVapourPointsNode(registry);
 
     // fluid/

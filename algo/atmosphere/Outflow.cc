@@ -18,8 +18,13 @@ std::vector<std::uint32_t> towerIds(const float* x0, const float* y0, std::size_
 {
     std::vector<std::uint32_t> ids(n, 0);
     if (n == 0) return ids;
-    const auto [minX, maxX] = std::minmax_element(x0, x0 + n);
-    const auto [minY, maxY] = std::minmax_element(y0, y0 + n);
+    // Plain pointers, not structured bindings: C++17 lambdas cannot capture those.
+    const auto rangeX = std::minmax_element(x0, x0 + n);
+    const auto rangeY = std::minmax_element(y0, y0 + n);
+    const float* minX = rangeX.first;
+    const float* maxX = rangeX.second;
+    const float* minY = rangeY.first;
+    const float* maxY = rangeY.second;
     const double spanX = static_cast<double>(*maxX) - *minX;
     const double spanY = static_cast<double>(*maxY) - *minY;
     double cell = cellSize;

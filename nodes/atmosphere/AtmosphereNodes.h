@@ -12,5 +12,6 @@ void registerVapourEmitterNode(Registry& registry);       // VapourEmitter
 void registerThermalIntegratorNode(Registry& registry);   // ThermalIntegrator
 void registerCondensationNode(Registry& registry);        // Condensation
 void registerVapourPointsNode(Registry& registry);        // VapourPoints
+void registerWriteWeatherReportNode(Registry& registry);  // WriteWeatherReport: JSON, CSV, skew-T
 
 }  // namespace cg

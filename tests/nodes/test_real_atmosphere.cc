@@ -331,4 +331,44 @@ TEST_F(RealAtmosphere, ASoundingIsFoundBesideItsGraphAndKeyedByItsContent)
     EXPECT_NE(ev.key(graphWith("soundings/copy.csv"), "atmosphere", 0), key);
 }
 
+TEST_F(RealAtmosphere, WeatherReportWritesTheCloudAndTheParcel)
+{
+    test::TempDir out;
+    json emit = uniformEmission(31.0);
+    emit["emissionDuration"] = 400.0;  // air keeps arriving, so the base is where it condenses
+    json graph = pipeline(300, 2.0, soundingAtmosphere(), emit, {{"buoyancy", "parcel"}});
+    graph["nodes"]["report"] = {{"type", "WriteWeatherReport"},
+                                {"inputs", {{"condensation", "condense.condensation"}, {"atmosphere", "atmosphere.atmosphere"}}},
+                                {"params", {{"file", "weather.####"}, {"every", 300}}}};
+    const Graph g = parseGraph(graph.dump(), "report.json", registry);
+    EvaluatorOptions options;
+    options.outDir = out.path();
+    Evaluator ev(registry, options);
+    ev.cookFrames(g, 0, 300, {"report"});
+    for (const char* ext : {".json", ".csv", ".png"})
+        EXPECT_TRUE(std::filesystem::exists(out / (std::string("weather.0300") + ext))) << ext;
+    EXPECT_FALSE(std::filesystem::exists(out / "weather.0001.json"));
+
+    const json report = json::parse(std::ifstream(out / "weather.0300.json"));
+    // The sounding's own levels (cloudgraph sounding prints them), and the uniform emission's
+    // base at its particles' LCL, 1131 m above the 200 m ground.
+    EXPECT_NEAR(report["lcl_m"].get<double>(), 1205.0, 1.0);
+    EXPECT_NEAR(report["el_m"].get<double>(), 11984.0, 1.0);
+    EXPECT_NEAR(report["cloud_base_m"].get<double>(), 200.0 + 1131.0, 0.05 * 1131.0);
+    const int condensed = report["condensed_particles"].get<int>();
+    EXPECT_GT(condensed, 0);
+    EXPECT_LT(condensed, 64);  // the last ones released are still rising to their LCL
+    EXPECT_GT(report["cloud_top_m"].get<double>(), report["cloud_base_m"].get<double>());
+    EXPECT_GT(report["parcel"].size(), 100u);
+    double cloudy = 0.0;
+    for (const auto& f : report["cloud_fraction"]["from_ground"]) cloudy = std::max(cloudy, f.get<double>());
+    EXPECT_GT(cloudy, 0.0);
+    EXPECT_LE(cloudy, 1.0);
+
+    std::ifstream csv(out / "weather.0300.csv");
+    std::string header;
+    std::getline(csv, header);
+    EXPECT_EQ(header, "height_m,pressure_hPa,environment_C,dewpoint_C,parcel_C,cloud_fraction");
+}
+
 }  // namespace cg
