@@ -56,4 +56,22 @@ TEST(SoundingCommand, PlotWritesTheSkewTDiagram)
     EXPECT_EQ(files, 1u) << "a temporary file was left beside the plot";
 }
 
+TEST(SoundingCommand, AGraphWithAMalformedSoundingExitsTwoNamingTheFileLineAndParameter)
+{
+    test::TempDir dir;
+    test::writeFile(dir / "s.csv", "height_m,temperature_C,dewpoint_C\n0,20,12\n500,warm,10\n");
+    test::writeFile(dir / "g.json", R"({"cloudgraph": 1, "frames": {"start": 0, "end": 1}, "nodes": {
+        "atmosphere": {"type": "Atmosphere", "params": {"profile": "sounding", "soundingFile": "s.csv"}}}})");
+    for (const std::string command : {"validate", "run"}) {
+        std::vector<std::string> args = {command, (dir / "g.json").string()};
+        if (command == "run") args.insert(args.end(), {"--out", (dir / "out").string()});
+        const auto r = test::runCli(args);
+        EXPECT_EQ(r.exitCode, 2) << command << ": " << r.errors;
+        EXPECT_NE(r.errors.find("g.json:/nodes/atmosphere/params/soundingFile"), std::string::npos) << r.errors;
+        EXPECT_NE(r.errors.find("s.csv: line 3: temperature_C: 'warm' is not a number"), std::string::npos)
+            << r.errors;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "out")) << "a refused run wrote files";
+}
+
 }  // namespace cg
