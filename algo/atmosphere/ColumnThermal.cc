@@ -11,31 +11,11 @@
 
 namespace cg::algo {
 
-namespace {
-
-/// thermo::moistAdiabaticLapse in single precision, like the state it steps.
-float moistLapseAt(float temperatureC, float pressureHPa)
-{
-    using namespace thermo;
-    const float t = temperatureC + static_cast<float>(kKelvin);
-    const float e = 6.112f * std::exp(17.67f * temperatureC / (temperatureC + 243.5f));
-    const float r = static_cast<float>(kMolarMassRatio) * e / std::max(pressureHPa - e, 1.0f);
-    const float l = static_cast<float>(kLatentHeat);
-    const float rd = static_cast<float>(kDryGasConstant);
-    const float numerator = static_cast<float>(kGravity) * (1.0f + l * r / (rd * t));
-    const float denominator = static_cast<float>(kDryHeatCapacity) +
-                              l * l * r * static_cast<float>(kMolarMassRatio) / (rd * t * t);
-    return numerator / denominator;
-}
-
-}  // namespace
-
-float particleDewpoint(const ColumnThermalSettings& s, const ParticleStart& m, std::size_t i,
-                       float z)
+float particleDewpoint(const EnvironmentColumn& c, double paperDewPoint, const ParticleStart& m,
+                       std::size_t i, float z)
 {
     const float offset = m.dewpointOffset ? m.dewpointOffset[i] : 0.0f;
-    const EnvironmentColumn& c = *s.column;
-    if (c.temperature.empty()) return static_cast<float>(s.paper.dewPoint) + offset;
+    if (c.temperature.empty()) return static_cast<float>(paperDewPoint) + offset;
     const float z0 = m.startZ[i];
     return c.at(c.dewpoint, z0) - static_cast<float>(thermo::kParcelDewpointLapse) * (z - z0) +
            offset;
@@ -84,9 +64,11 @@ void columnThermalStep(const ColumnThermalSettings& s, const ParticleStart& m,
         const bool belowGround = zNext < floorHeight;
         zNext = belowGround ? floorHeight : zNext;
         uNext = belowGround ? std::max(uNext, 0.0f) : uNext;
-        const bool saturated = t < particleDewpoint(s, m, i, z);
-        const float moist = s.moistAdiabat && profile ? moistLapseAt(t, c.at(c.pressure, z))
-                                                      : static_cast<float>(p.moistLapse);
+        const bool saturated = t < particleDewpoint(c, p.dewPoint, m, i, z);
+        const float moist =
+            s.moistAdiabat && profile
+                ? static_cast<float>(thermo::moistAdiabaticLapse(t, c.at(c.pressure, z)))
+                : static_cast<float>(p.moistLapse);
         const float lapse = saturated ? moist : static_cast<float>(p.dryLapse);  // Eq. 8
         out.z[i] = zNext;
         out.vz[i] = uNext;

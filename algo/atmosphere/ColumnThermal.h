@@ -47,9 +47,10 @@ struct ParticleStart {
     const float* releaseTime = nullptr;
 };
 
-/// The dew point of particle i at height z (m above the ground).
-float particleDewpoint(const ColumnThermalSettings& s, const ParticleStart& m, std::size_t i,
-                       float z);
+/// The dew point of particle i at height z (m above the ground): from the column's dew point
+/// when it has a profile, else the paper's `paperDewPoint`.
+float particleDewpoint(const EnvironmentColumn& c, double paperDewPoint, const ParticleStart& m,
+                       std::size_t i, float z);
 
 struct ColumnState {
     const float* x;

@@ -21,19 +21,15 @@ namespace {
 
 /// Each particle's own dew point now (issue 14): from the profile at its start height, less
 /// 1.8 C/km risen, or the paper's T_dp; plus its offset.
-std::vector<float> particleDewpoints(const Atmosphere& a, const VapourParticlesData& particles)
+std::vector<float> particleDewpoints(const AtmosphereData& a, const VapourParticlesData& particles)
 {
-    const algo::EnvironmentColumn column = algo::sampleColumn(a.profile.get(), algo::WindProfile{});
-    algo::ColumnThermalSettings s;
-    s.paper.dewPoint = a.dewPoint;
-    s.column = &column;
     const VapourStatics& st = *particles.statics;
     algo::ParticleStart m;
     m.startZ = st.startZ.data();
     m.dewpointOffset = st.dewpointOffset.empty() ? nullptr : st.dewpointOffset.data();
     std::vector<float> dewpoints(particles.size());
     for (std::size_t i = 0; i < dewpoints.size(); ++i)
-        dewpoints[i] = algo::particleDewpoint(s, m, i, particles.z[i]);
+        dewpoints[i] = algo::particleDewpoint(a.column, a.atmosphere.dewPoint, m, i, particles.z[i]);
     return dewpoints;
 }
 
@@ -42,7 +38,8 @@ public:
     void cook(CookContext& ctx) override
     {
         const auto particles = ctx.input<VapourParticlesData>("particles");
-        const Atmosphere& atmosphere = ctx.input<AtmosphereData>("atmosphere")->atmosphere;
+        const auto data = ctx.input<AtmosphereData>("atmosphere");
+        const Atmosphere& atmosphere = data->atmosphere;
         const auto previous = ctx.previous<CondensationData>("condensation");
         std::optional<algo::CondensationState> before;
         if (previous) before = algo::CondensationState{previous->condensedFrame, previous->firstFrame, 0};
@@ -50,7 +47,7 @@ public:
         try {
             const auto frame = static_cast<std::int32_t>(ctx.frame());
             if (atmosphere.profile || !particles->statics->dewpointOffset.empty()) {
-                const std::vector<float> dewpoints = particleDewpoints(atmosphere, *particles);
+                const std::vector<float> dewpoints = particleDewpoints(*data, *particles);
                 now = algo::condenseStep(before ? &*before : nullptr, particles->temperature.data(),
                                          dewpoints.data(), particles->size(), frame);
             } else {

@@ -56,7 +56,8 @@ public:
             ctx.setOutput("particles", emitted);  // t = t0: the emission itself
             return;
         }
-        const Atmosphere& atmosphere = ctx.input<AtmosphereData>("atmosphere")->atmosphere;
+        const auto data = ctx.input<AtmosphereData>("atmosphere");
+        const Atmosphere& atmosphere = data->atmosphere;
         const algo::ThermalSettings paper = settingsFrom(ctx, atmosphere);
         const ParamSet& p = ctx.params();
         const bool beyondPaper = atmosphere.beyondPaper() || p.getString("buoyancy") != "paper" ||
@@ -64,7 +65,7 @@ public:
                                  !previous->statics->dewpointOffset.empty() ||
                                  !previous->statics->releaseTime.empty() ||
                                  previous->movedHorizontally();
-        ctx.setOutput("particles", beyondPaper ? stepThroughColumn(ctx, paper, atmosphere, *previous)
+        ctx.setOutput("particles", beyondPaper ? stepThroughColumn(ctx, paper, *data, *previous)
                                                : stepAsPaper(ctx, paper, *previous));
     }
 
@@ -84,16 +85,16 @@ private:
     }
 
     static std::shared_ptr<VapourParticlesData> stepThroughColumn(
-        CookContext& ctx, const algo::ThermalSettings& paper, const Atmosphere& atmosphere,
+        CookContext& ctx, const algo::ThermalSettings& paper, const AtmosphereData& data,
         const VapourParticlesData& previous)
     {
         const ParamSet& p = ctx.params();
-        const algo::EnvironmentColumn column = algo::sampleColumn(atmosphere.profile.get(), atmosphere.wind);
+        const Atmosphere& atmosphere = data.atmosphere;
         algo::ColumnThermalSettings s;
         s.paper = paper;
         s.buoyancy = p.getString("buoyancy") == "parcel" ? algo::Buoyancy::Parcel : algo::Buoyancy::Paper;
         s.drag = p.getFloat("drag");
-        s.column = &column;
+        s.column = &data.column;
         s.moistAdiabat = atmosphere.moistAdiabat;
         s.outflowDivergence = p.getFloat("outflowDivergence");
         s.time = (ctx.frame() - 1 - ctx.startFrame()) * paper.timeStep;  // the previous frame's

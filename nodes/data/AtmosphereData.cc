@@ -110,8 +110,11 @@ bool AtmosphereData::serialize(ByteWriter& out) const
 std::size_t AtmosphereData::byteSize() const
 {
     const std::size_t levels = atmosphere.profile ? atmosphere.profile->levels().size() : 0;
+    const std::size_t samples = column.temperature.size() + column.dewpoint.size() +
+                                column.pressure.size() + column.windEast.size() +
+                                column.windNorth.size();
     return sizeof(*this) + levels * sizeof(algo::ProfileLevel) +
-           atmosphere.wind.levels().size() * sizeof(algo::WindLevel);
+           atmosphere.wind.levels().size() * sizeof(algo::WindLevel) + samples * sizeof(float);
 }
 
 void registerAtmosphereType(Registry& registry)

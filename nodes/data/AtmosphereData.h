@@ -4,6 +4,7 @@
 
 #include <memory>
 
+#include "algo/atmosphere/Column.h"
 #include "algo/atmosphere/Profile.h"
 #include "algo/atmosphere/Wind.h"
 #include "core/Data.h"
@@ -52,8 +53,14 @@ struct AtmosphereLimits {
 
 class AtmosphereData final : public Data {
 public:
-    explicit AtmosphereData(const Atmosphere& a) : atmosphere(a) {}
+    explicit AtmosphereData(const Atmosphere& a)
+        : atmosphere(a), column(algo::sampleColumn(a.profile.get(), a.wind))
+    {
+    }
     const Atmosphere atmosphere;
+    /// The profile and the wind as tables by height, sampled once here for every frame's
+    /// steps (derived: not stored in the cache).
+    const algo::EnvironmentColumn column;
 
     std::string typeName() const override { return "Atmosphere"; }
     std::size_t byteSize() const override;
