@@ -108,6 +108,10 @@ namespace {
 
 /// The counter-based stream of the copies' phases (levels use streams below 2^40).
 constexpr std::uint64_t kPhaseStream = std::uint64_t{1} << 40;
+/// The streams of Eq. 15's draws of a parent source and of a particle in it, one per
+/// (level, frame) below each.
+constexpr std::uint64_t kParentStream = std::uint64_t{1} << 41;
+constexpr std::uint64_t kParticleStream = std::uint64_t{1} << 42;
 
 /// Picks the k-th new candidate of (level, frame) uniformly in [0, n), skipping taken ones by
 /// probing forward: a candidate becomes a source at most once.
@@ -119,6 +123,76 @@ std::uint64_t pickCandidate(const MappingSettings& s, int level, int frame, std:
     std::uint64_t u = counterBits(s.seed, stream, k) % n;
     while (taken(u)) u = u + 1 == n ? 0 : u + 1;
     return u;
+}
+
+
+/// The level L-1 cloud particles a level L >= 2 source may start from at one frame: source
+/// parents[n] holds candidates [parentOffset[n], parentOffset[n + 1]) (or up to `count`).
+struct ParentCandidates {
+    int level = 2;
+    int frame = 0;
+    const std::vector<std::uint32_t>& parents;
+    const std::vector<std::uint64_t>& parentOffset;
+    std::uint64_t count = 0;
+};
+
+/// The keys (j' << 32 | q) of up to `fresh` new parent cloud particles, none taken before
+/// (Eq. 15, by the settings' rule), in the order the sources are made.
+std::vector<std::uint64_t> pickParents(const SourceTable& table, const ParentCandidates& c,
+                                       std::uint64_t fresh, const MappingSettings& s)
+{
+    std::vector<std::uint64_t> keys;
+    std::unordered_set<std::uint64_t> takenNow;
+    auto taken = [&](std::uint64_t key) {
+        return takenNow.count(key) != 0 || std::binary_search(table.cloudTaken.begin(), table.cloudTaken.end(), key);
+    };
+    auto take = [&](std::uint64_t key) {
+        takenNow.insert(key);
+        keys.push_back(key);
+    };
+    if (s.parentRule == ParentRule::PerParticle) {
+        auto keyOf = [&](std::uint64_t v) {
+            const auto at = std::upper_bound(c.parentOffset.begin(), c.parentOffset.end(), v) - 1;
+            const auto slot = static_cast<std::size_t>(at - c.parentOffset.begin());
+            return (static_cast<std::uint64_t>(c.parents[slot]) << 32) | (v - *at);
+        };
+        for (std::uint64_t k = 0; k < fresh; ++k)
+            take(keyOf(pickCandidate(s, c.level, c.frame, k, c.count, [&](std::uint64_t v) { return taken(keyOf(v)); })));
+        return keys;
+    }
+    // The paper's rule: r_j uniformly among the sources that have particles, then r_i
+    // uniformly among r_j's particles that are still free. A parent whose particles are all
+    // taken is drawn again, so r_j stays uniform over the parents that can give one.
+    std::vector<std::uint32_t> eligible;
+    std::vector<std::uint64_t> sizes, takenIn;
+    for (std::size_t n = 0; n < c.parents.size(); ++n) {
+        const std::uint64_t end = n + 1 < c.parents.size() ? c.parentOffset[n + 1] : c.count;
+        if (end == c.parentOffset[n]) continue;
+        const std::uint64_t j = c.parents[n], size = end - c.parentOffset[n];
+        eligible.push_back(c.parents[n]);
+        sizes.push_back(size);
+        // Taken particles of j below its size now (a cluster that shrank keeps older keys).
+        takenIn.push_back(static_cast<std::uint64_t>(
+            std::lower_bound(table.cloudTaken.begin(), table.cloudTaken.end(), (j << 32) | size) -
+            std::lower_bound(table.cloudTaken.begin(), table.cloudTaken.end(), j << 32)));
+    }
+    std::uint64_t freeLeft = 0;
+    for (std::size_t n = 0; n < eligible.size(); ++n) freeLeft += sizes[n] - takenIn[n];
+    const std::uint64_t key = (static_cast<std::uint64_t>(c.level) << 32) | static_cast<std::uint32_t>(c.frame);
+    std::uint64_t parentDraw = 0, particleDraw = 0;
+    while (keys.size() < fresh && freeLeft > 0) {
+        const std::size_t n = counterBits(s.seed, kParentStream | key, parentDraw++) % eligible.size();
+        if (takenIn[n] >= sizes[n]) continue;
+        std::uint64_t pair;
+        do {
+            const std::uint64_t q = counterBits(s.seed, kParticleStream | key, particleDraw++) % sizes[n];
+            pair = (static_cast<std::uint64_t>(eligible[n]) << 32) | q;
+        } while (taken(pair));
+        take(pair);
+        ++takenIn[n];
+        --freeLeft;
+    }
+    return keys;
 }
 
 }  // namespace
@@ -167,7 +241,9 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
 
         const std::vector<float> origins =
             level == 1 ? std::vector<float>() : sourceOrigins(table, frame, c, p, s);
-        std::unordered_set<std::uint64_t> takenNow;
+        const std::vector<std::uint64_t> parentKeys =
+            level == 1 ? std::vector<std::uint64_t>()
+                       : pickParents(table, ParentCandidates{level, frame, parents, parentOffset, candidates}, fresh, s);
         for (std::uint64_t k = 0; k < fresh; ++k) {
             Source src;
             src.level = static_cast<std::uint8_t>(level);
@@ -182,18 +258,8 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
                 x = c.x[src.parent];
                 y = c.y[src.parent];
             } else {
-                auto keyOf = [&](std::uint64_t v) {
-                    const auto at = std::upper_bound(parentOffset.begin(), parentOffset.end(), v) - 1;
-                    const auto slot = static_cast<std::size_t>(at - parentOffset.begin());
-                    return (static_cast<std::uint64_t>(parents[slot]) << 32) | (v - *at);
-                };
-                const std::uint64_t u = pickCandidate(s, level, frame, k, candidates, [&](std::uint64_t v) {
-                    const std::uint64_t key = keyOf(v);
-                    return takenNow.count(key) ||
-                           std::binary_search(table.cloudTaken.begin(), table.cloudTaken.end(), key);
-                });
-                const std::uint64_t key = keyOf(u);
-                takenNow.insert(key);
+                if (k >= parentKeys.size()) break;  // every draw hit a taken particle
+                const std::uint64_t key = parentKeys[k];
                 src.parent = static_cast<std::uint32_t>(key >> 32);
                 src.parentFluid = copyFluidId(table.sources[src.parent], key & 0xffffffffu, stride);
                 // Eq. 16 reads the map under the parent cloud particle's position (Eq. 10).
@@ -213,8 +279,8 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
             src.speed = static_cast<float>(1.0 + s.speedCoefficient * noise);
             table.sources.push_back(src);
         }
-        if (!takenNow.empty()) {
-            table.cloudTaken.insert(table.cloudTaken.end(), takenNow.begin(), takenNow.end());
+        if (!parentKeys.empty()) {
+            table.cloudTaken.insert(table.cloudTaken.end(), parentKeys.begin(), parentKeys.end());
             std::sort(table.cloudTaken.begin(), table.cloudTaken.end());
         }
     }

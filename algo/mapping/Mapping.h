@@ -75,6 +75,17 @@ struct MapView {
     float at(double x, double y) const;  ///< fNoise of the cell under (x, y), clamped to the map
 };
 
+/// How Eq. 15 picks the parent cloud particle of a level L >= 2 source.
+enum class ParentRule : std::uint8_t {
+    /// The paper: a level L-1 source r_j uniformly among those with particles, then one of its
+    /// N_f(A (t - t0)) particles r_i uniformly; a pair already taken is drawn again.
+    PerSource,
+    /// Ours, the rule before mapper version 3: uniformly over all level L-1 cloud particles
+    /// (which weights a parent by its cluster size); a taken draw probes forward to the next
+    /// free particle.
+    PerParticle,
+};
+
 struct MappingSettings {
     int maxLevel = 5;                           ///< cap on L_max
     std::vector<double> selectionRatio{0.2};    ///< M[L]; the last value repeats for higher L
@@ -92,6 +103,7 @@ struct MappingSettings {
     /// phase o_j in [0, k) drawn at selection, so different copies carry different particles.
     /// 0: every copy carries all N_f(s) (the paper).
     std::uint32_t particlesPerCopy = 0;
+    ParentRule parentRule = ParentRule::PerSource;  ///< Eq. 15's draw of a parent particle
 };
 
 /// k, the fluid-id stride of thinned copies: ceil(N_f(last) / K), at least 1, at most 65,536

@@ -32,6 +32,8 @@ algo::MappingSettings settingsFrom(const CookContext& ctx)
     s.seed = static_cast<std::uint64_t>(p.getInt("seed"));
     s.maxSources = static_cast<std::uint64_t>(p.getInt("maxSources"));
     s.particlesPerCopy = static_cast<std::uint32_t>(p.getInt("particlesPerCopy"));
+    s.parentRule = p.getString("parentRule") == "particle" ? algo::ParentRule::PerParticle
+                                                            : algo::ParentRule::PerSource;
     return s;
 }
 
@@ -72,16 +74,17 @@ void registerPrimitiveMapperNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "PrimitiveMapper";
-    d.version = 2;  // 2: source records carry the copy phase
+    d.version = 3;  // 2: source records carry the copy phase; 3: Eq. 15 draws per source
     d.category = "mapping";
     d.doc =
         "The recursive mapping of Sec. 5.2 (pseudocode lines 15-28). Each frame t, every active "
         "level L <= L_max whose window [t_s[L], t_e[L]] holds t selects new source particles so "
         "that G[L](t) = floor(M[L] x candidates) (Eq. 14): condensation particles for L = 1, "
-        "cloud particles of level L-1 for L >= 2 (Eq. 12, 15), uniformly at random from a "
-        "counter-based generator keyed by (seed, level, frame, index), without replacement: a "
-        "candidate becomes a source at most once (a repeated draw probes forward to the next "
-        "free candidate). Each source records its parent, t0 = t, A = 1 + A0 fNoise and "
+        "cloud particles of level L-1 for L >= 2 (Eq. 12, 15), at random from a counter-based "
+        "generator keyed by (seed, level, frame, index), without replacement: a candidate "
+        "becomes a source at most once. Eq. 15 as the paper writes it (parentRule 'source'): a "
+        "level L-1 source uniformly among those with particles, then one of its particles "
+        "uniformly; a taken pair is drawn again. Each source records its parent, t0 = t, A = 1 + A0 fNoise and "
         "R = R0 fNoise with fNoise read under the source (Eq. 16). t_s[1] is the first "
         "condensation frame unless firstStart is set; t_s[L] = t_s[L-1] + chi; t_e[L] = t_s[L] "
         "+ windowLength[L]. L_max starts at 1 and grows by one once the top level has cloud "
@@ -142,6 +145,12 @@ void registerPrimitiveMapperNode(Registry& registry)
                  "o_j + k, ... (k = ceil(N_f(last) / K), phase o_j drawn per source, so copies "
                  "differ); keeps deep recursions near the paper's counts; 0 = all (the paper)",
                  0, L::kMaxParticlesPerCopy),
+        stringParam("parentRule", "source",
+                    "Eq. 15's draw of a level L >= 2 parent: 'source' (the paper: a source "
+                    "uniformly, then a particle of it uniformly) or 'particle' (ours, before "
+                    "version 3: uniformly over all level L-1 particles, which favours big "
+                    "parents; a taken draw probes forward to the next free particle)",
+                    {"source", "particle"}),
     };
     d.create = [] { return std::make_unique<PrimitiveMapperNode>(); };
     registry.addNode(std::move(d));

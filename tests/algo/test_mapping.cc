@@ -295,6 +295,79 @@ TEST(Mapping, ALevel2ClusterFollowsItsParentCloudParticle)
     }
 }
 
+namespace {
+
+/// Level 2 parents and particles drawn over many seeds: six level 1 sources started 0..5
+/// frames before t, so their clusters hold 3, 7, 11, 15, 19 and 23 particles.
+struct ParentDraws {
+    std::vector<std::uint64_t> perParent = std::vector<std::uint64_t>(6, 0);
+    std::vector<std::uint64_t> inLargest = std::vector<std::uint64_t>(23, 0);
+};
+
+ParentDraws drawParents(ParentRule rule, int seeds)
+{
+    Scene scene;
+    const int t = 20;
+    scene.settings.maxLevel = 2;
+    scene.settings.firstStart = 0;
+    scene.settings.levelDelay = 0;
+    scene.settings.windowLength = {100};
+    scene.settings.selectionRatio = {0.0, 0.1};  // no new level 1 sources; 7 level 2 a seed
+    scene.settings.parentRule = rule;
+    const Scene::Frame c = scene.condensation(t);
+    SourceTable table;
+    table.topLevel = 2;
+    table.condensationTaken.assign(c.x.size(), 0);
+    for (int n = 0; n < 6; ++n) {
+        Source src;
+        src.parent = static_cast<std::uint32_t>(n);
+        src.startFrame = t - n;
+        src.scale = 1.0f;
+        table.sources.push_back(src);
+        table.condensationTaken[static_cast<std::size_t>(n)] = 1;
+    }
+    ParentDraws d;
+    for (int seed = 0; seed < seeds; ++seed) {
+        scene.settings.seed = static_cast<std::uint64_t>(seed);
+        const SourceTable next = stepSources(table, t, 0, Scene::view(c), scene.mapView(), scene.primitive(), scene.settings);
+        for (std::size_t j = table.sources.size(); j < next.sources.size(); ++j) {
+            const Source& src = next.sources[j];
+            ++d.perParent[src.parent];
+            if (src.parent == 5) ++d.inLargest[src.parentFluid];
+        }
+    }
+    return d;
+}
+
+double chiSquareAgainstUniform(const std::vector<std::uint64_t>& counts)
+{
+    double total = 0.0;
+    for (auto c : counts) total += static_cast<double>(c);
+    const double expected = total / static_cast<double>(counts.size());
+    double chi2 = 0.0;
+    for (auto c : counts) chi2 += (static_cast<double>(c) - expected) * (static_cast<double>(c) - expected) / expected;
+    return chi2;
+}
+
+}  // namespace
+
+TEST(Mapping, Eq15DrawsTheParentSourceUniformlyThenAParticleOfItUniformly)
+{
+    const ParentDraws d = drawParents(ParentRule::PerSource, 2000);
+    std::uint64_t total = 0;
+    for (auto c : d.perParent) total += c;
+    EXPECT_EQ(total, 2000u * 7u);  // floor(0.1 x 78 candidates) a seed, none lost to rejection
+    // Chi-square against uniform; the critical values are for p = 0.001 (5 and 22 degrees of
+    // freedom), so a correct rule fails one seed set in a thousand.
+    EXPECT_LT(chiSquareAgainstUniform(d.perParent), 20.52);
+    EXPECT_LT(chiSquareAgainstUniform(d.inLargest), 48.27);
+    // The size-weighted rule (parentRule 'particle') fails the same test by far: the largest
+    // parent holds 23 / 78 of the candidates, the smallest 3 / 78.
+    const ParentDraws weighted = drawParents(ParentRule::PerParticle, 2000);
+    EXPECT_GT(chiSquareAgainstUniform(weighted.perParent), 1000.0);
+    EXPECT_GT(weighted.perParent[5], 5 * weighted.perParent[0]);
+}
+
 TEST(Mapping, Eq16SpeedAndScaleComeFromTheMapUnderTheSource)
 {
     Scene scene;
