@@ -173,6 +173,8 @@ public:
     T& operator[](std::size_t i) { return mData[i]; }
     const T& operator[](std::size_t i) const { return mData[i]; }
     operator std::vector<T>() const { return std::vector<T>(begin(), end()); }  // NOLINT: a copy
+    /// Keeps the first n elements (n <= size); the memory stays allocated.
+    void shrink(std::size_t n) { mSize = std::min(n, mSize); }
 
 private:
     std::unique_ptr<T[]> mData;

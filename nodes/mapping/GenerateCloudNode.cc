@@ -1,6 +1,7 @@
 // GenerateCloud: the cloud particles of one frame, made on demand from the source table
 // (Eq. 10-12).
 
+#include "algo/mapping/Evaporation.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
@@ -33,9 +34,11 @@ public:
                                                " cloud particles, over parameter maxCloudParticles = " +
                                                std::to_string(limit));
         }
-        auto arrays = algo::generateCloudParticles(sources->table, ctx.frame(),
-                                                   condensationView(*condensation), prim.view,
+        const algo::CondensationView condensed = condensationView(*condensation);
+        auto arrays = algo::generateCloudParticles(sources->table, ctx.frame(), condensed, prim.view,
                                                    sources->settings, [&ctx] { ctx.checkCancelled(); });
+        if (ctx.params().getBool("evaporateBelowBase"))
+            if (const auto base = algo::condensationLevel(condensed)) algo::dropCloudParticlesBelow(arrays, *base);
         ctx.setOutput("particles", std::make_shared<CloudParticlesData>(std::move(arrays.positions),
                                                                         std::move(arrays.levels),
                                                                         std::move(arrays.sources)));
@@ -60,14 +63,20 @@ void registerGenerateCloudNode(Registry& registry)
             "the parent cloud particle (L >= 2, Eq. 12). P_f at a fractional s is interpolated "
             "between primitive frames; past the last frame the last frame holds. Particles are "
             "in source-table order, with their level and source index; the result does not "
-            "depend on the thread count. Nothing is kept between frames.";
+            "depend on the thread count. Nothing is kept between frames. With evaporateBelowBase "
+            "(ours), particles under the condensation level are dropped.";
     d.inputs = {port("sources", "CloudSources", "the source table at this frame"),
                 port("condensation", "Condensation", "the condensation particles at this frame"),
                 port("primitive", "PrimitiveSet", "the 3D cloud primitive set")};
     d.outputs = {port("particles", "CloudParticles", "the cloud particles of this frame")};
     d.params = {intParam("maxCloudParticles", 100000000, "particles",
                          "refuse a frame with more cloud particles than this, before allocating "
-                         "(17 bytes each; value ours)", 1, 4e9)};
+                         "(17 bytes each; value ours)", 1, 4e9),
+                boolParam("evaporateBelowBase", false,
+                          "ours: drop the cloud particles under the condensation level, the "
+                          "lowest condensation particle at this frame (a particle condenses at "
+                          "its condensation level and rises afterwards), as real cloud droplets "
+                          "evaporate below the base; off keeps every particle (the paper)")};
     d.create = [] { return std::make_unique<GenerateCloudNode>(); };
     registry.addNode(std::move(d));
 }

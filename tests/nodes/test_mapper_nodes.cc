@@ -14,6 +14,7 @@
 #include "nodes/data/CloudParticles.h"
 #include "nodes/data/CloudSources.h"
 #include "nodes/data/PrimitiveSet.h"
+#include "nodes/data/VapourParticles.h"
 #include "support/FixtureNodes.h"
 #include "support/TestUtil.h"
 
@@ -93,6 +94,32 @@ TEST_F(MapperNodes, CloudIsBitIdenticalForOneAndTwoThreads)
     }
     EXPECT_FALSE(results[0].empty());
     EXPECT_EQ(results[0], results[1]);
+}
+
+TEST_F(MapperNodes, EvaporateBelowBaseDropsExactlyTheParticlesUnderTheLowestCondensationParticle)
+{
+    Graph g = parseGraph(kGraph, "mapper.json", registry);
+    g.setParam("primitive", "sink", 1.0);  // the copies hang below their origins, as real puffs' wakes
+    Evaluator ev(registry, {});
+    const int frame = 125;
+    const auto full = std::dynamic_pointer_cast<const CloudParticlesData>(ev.pull(g, "cloud", frame)->at("particles"));
+    const auto condensation =
+        std::dynamic_pointer_cast<const CondensationData>(ev.pull(g, "condense", frame)->at("condensation"));
+    float base = INFINITY;
+    for (std::size_t i = 0; i < condensation->particles->size(); ++i)
+        if (condensation->condensed(i)) base = std::min(base, condensation->particles->z[i]);
+    ASSERT_TRUE(std::isfinite(base));
+    std::vector<float> expected;  // the full frame's particles at or above the base, in order
+    for (std::size_t i = 0; i < full->size(); ++i)
+        if (full->positions[3 * i + 2] >= base)
+            expected.insert(expected.end(), &full->positions[3 * i], &full->positions[3 * i] + 3);
+    ASSERT_LT(expected.size(), 3 * full->size());  // the copies hang below the base: the test can fail
+
+    g.setParam("cloud", "evaporateBelowBase", true);
+    const auto kept = std::dynamic_pointer_cast<const CloudParticlesData>(ev.pull(g, "cloud", frame)->at("particles"));
+    EXPECT_EQ(std::vector<float>(kept->positions), expected);
+    ASSERT_EQ(kept->levels.size(), expected.size() / 3);
+    for (std::size_t i = 0; i < kept->size(); ++i) EXPECT_GE(kept->positions[3 * i + 2], base);
 }
 
 TEST_F(MapperNodes, PrimitiveSubsetKeepsEveryKthParticleOnItsTrajectory)

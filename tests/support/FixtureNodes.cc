@@ -142,10 +142,13 @@ void registerFixtureNodes(Registry& registry)
     NodeDecl primitive = decl("TestPrimitiveSource", "a small synthetic primitive set: a growing ball");
     primitive.outputs = {port("primitive", "PrimitiveSet", "the primitive set")};
     primitive.params = {intParam("frames", 8, "", "frames", 1, 1000),
-                        floatParam("radius", 10.0, "m", "final radius", 0)};
+                        floatParam("radius", 10.0, "m", "final radius", 0),
+                        floatParam("sink", 0.0, "radii", "how far the ball hangs below its origin "
+                                   "(0: it sits on it; 1: centred on it)", 0, 2)};
     primitive.create = counted([](CookContext& ctx) {
         const auto frames = static_cast<int>(ctx.params().getInt("frames"));
         const double radius = ctx.params().getFloat("radius");
+        const double lift = 1.0 - ctx.params().getFloat("sink");
         std::vector<std::uint32_t> counts;
         std::vector<float> positions;
         for (int s = 0; s < frames; ++s) {
@@ -158,7 +161,7 @@ void registerFixtureNodes(Registry& registry)
                 const double rho = std::sqrt(1.0 - z * z);
                 positions.insert(positions.end(), {static_cast<float>(r * rho * std::cos(a)),
                                                    static_cast<float>(r * rho * std::sin(a)),
-                                                   static_cast<float>(r * z + r)});
+                                                   static_cast<float>(r * z + lift * r)});
             }
         }
         ctx.setOutput("primitive", std::make_shared<PrimitiveSetData>(1.0, std::move(counts), std::move(positions)));

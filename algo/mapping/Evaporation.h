@@ -1,0 +1,21 @@
+#pragma once
+/// Cloud particles under the condensation level would evaporate (ours; the paper keeps every
+/// mapped particle): the primitive's copies hang below their origins, and a level 1 origin is
+/// a condensation particle, so a copy's lower half lies under the cloud base.
+
+#include <optional>
+
+#include "algo/mapping/Mapping.h"
+
+namespace cg::algo {
+
+/// The condensation level at this frame: the lowest condensation particle. A particle
+/// condenses at its own condensation level and rises afterwards, so the lowest one is the
+/// freshest base; nullopt while nothing has condensed.
+std::optional<float> condensationLevel(const CondensationView& c);
+
+/// Keeps the particles whose height is at least zMin, in their order (levels and sources
+/// with them), and shrinks the arrays to them.
+void dropCloudParticlesBelow(CloudParticleArrays& cloud, float zMin);
+
+}  // namespace cg::algo
