@@ -71,9 +71,63 @@ void primitivePosition(const PrimitiveView& p, std::uint32_t i, double s, float 
     for (int k = 0; k < 3; ++k) out[k] = a[k] + w * (b[k] - a[k]);
 }
 
+namespace {
+
+/// Eq. 10 for one particle: fluid id i of the copy of `src` whose origin is `origin`, with the
+/// arithmetic of sourceSlice ((origin + r shift) + r P_f), so a child's origin is bit for bit
+/// its parent particle.
+void cloudParticlePosition(const Source& src, const float* origin, std::uint32_t i, int frame,
+                           const PrimitiveView& p, const MappingSettings& s, const float drift[3],
+                           float out[3]);
+
+}  // namespace
+
+void primitiveDrift(const PrimitiveView& p, float out[3])
+{
+    out[0] = out[1] = out[2] = 0.0f;
+    if (p.frameCount < 2) return;
+    const int last = p.frameCount - 1;
+    const int first = std::max(0, last - kDriftFrames);
+    const std::uint32_t n = std::min(p.counts[first], p.counts[last]);
+    if (n == 0) return;
+    // In double and in id order: the same drift for any thread count.
+    double sum[3] = {0.0, 0.0, 0.0};
+    for (std::uint32_t i = 0; i < n; ++i)
+        for (int k = 0; k < 3; ++k)
+            sum[k] += static_cast<double>(p.frames[last][3 * i + k]) - p.frames[first][3 * i + k];
+    for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(sum[k] / n / (last - first));
+}
+
+void copyShift(const PrimitiveView& p, const MappingSettings& s, const float drift[3], double time,
+               float out[3])
+{
+    const double past = time - (p.frameCount - 1);
+    const bool drifting = s.pastLastFrame == PastLastFrame::Drift && past > 0.0;
+    const double travelled = drifting ? kDriftDecayFrames * -std::expm1(-past / kDriftDecayFrames) : 0.0;
+    for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(travelled * drift[k]);
+}
+
+namespace {
+
+void cloudParticlePosition(const Source& src, const float* origin, std::uint32_t i, int frame,
+                           const PrimitiveView& p, const MappingSettings& s, const float drift[3],
+                           float out[3])
+{
+    const double time = primitiveTime(src, frame, s, p);
+    float f[3], shift[3];
+    primitivePosition(p, i, time, f);
+    copyShift(p, s, drift, time, shift);
+    const auto r = static_cast<float>(s.metresPerPrimitiveMetre * src.scale);
+    for (int k = 0; k < 3; ++k) out[k] = (origin[k] + r * shift[k]) + r * f[k];
+}
+
+}  // namespace
+
 std::vector<float> sourceOrigins(const SourceTable& table, int frame, const CondensationView& c,
                                  const PrimitiveView& p, const MappingSettings& s)
 {
+    float drift[3];
+    primitiveDrift(p, drift);
     // Parents precede children in the table, so one pass in order suffices.
     std::vector<float> origins(3 * table.sources.size());
     for (std::size_t j = 0; j < table.sources.size(); ++j) {
@@ -84,13 +138,9 @@ std::vector<float> sourceOrigins(const SourceTable& table, int frame, const Cond
             o[0] = c.x[src.parent], o[1] = c.y[src.parent], o[2] = c.z[src.parent];
             continue;
         }
-        // Eq. 12, L >= 2: the parent cloud particle, placed by Eq. 10.
-        const Source& parent = table.sources[src.parent];
-        const float* po = &origins[3 * static_cast<std::size_t>(src.parent)];
-        float f[3];
-        primitivePosition(p, src.parentFluid, primitiveTime(parent, frame, s, p), f);
-        const auto r = static_cast<float>(s.metresPerPrimitiveMetre * parent.scale);
-        for (int k = 0; k < 3; ++k) o[k] = po[k] + r * f[k];
+        // Eq. 12, L >= 2: the parent cloud particle, placed by Eq. 10 (as sourceSlice does).
+        cloudParticlePosition(table.sources[src.parent], &origins[3 * static_cast<std::size_t>(src.parent)],
+                              src.parentFluid, frame, p, s, drift, o);
     }
     return origins;
 }
@@ -203,6 +253,8 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
 {
     SourceTable table = previous;
     const std::uint32_t stride = copyStride(s, p);
+    float drift[3];
+    primitiveDrift(p, drift);
     table.condensationTaken.resize(c.count, 0);
     table.levelStart.assign(static_cast<std::size_t>(s.maxLevel), -1);
     const int first = s.firstStart >= 0 ? s.firstStart : firstCondensation;
@@ -263,12 +315,11 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
                 src.parent = static_cast<std::uint32_t>(key >> 32);
                 src.parentFluid = copyFluidId(table.sources[src.parent], key & 0xffffffffu, stride);
                 // Eq. 16 reads the map under the parent cloud particle's position (Eq. 10).
-                const Source& parent = table.sources[src.parent];
-                float f[3];
-                primitivePosition(p, src.parentFluid, primitiveTime(parent, frame, s, p), f);
-                const double r = s.metresPerPrimitiveMetre * parent.scale;
-                x = origins[3 * src.parent] + r * f[0];
-                y = origins[3 * src.parent + 1] + r * f[1];
+                float at[3];
+                cloudParticlePosition(table.sources[src.parent], &origins[3 * src.parent], src.parentFluid,
+                                      frame, p, s, drift, at);
+                x = at[0];
+                y = at[1];
             }
             // Which of the primitive's particles this copy carries, keyed by the source's index,
             // so it never depends on thread order.
@@ -297,6 +348,7 @@ namespace {
 /// offset[j] <= q < offset[j + 1].
 struct FramePlan {
     std::uint32_t stride = 1;  ///< k of thinned copies
+    float drift[3] = {0.0f, 0.0f, 0.0f};  ///< the primitive's drift (primitiveDrift)
     std::vector<float> origins;
     std::vector<std::uint64_t> offset;
     std::uint64_t total() const { return offset.back(); }
@@ -307,6 +359,7 @@ FramePlan planFrame(const SourceTable& table, int frame, const CondensationView&
 {
     FramePlan plan;
     plan.stride = copyStride(s, p);
+    primitiveDrift(p, plan.drift);
     plan.origins = sourceOrigins(table, frame, c, p, s);
     const std::size_t n = table.sources.size();
     plan.offset.assign(n + 1, 0);
@@ -344,12 +397,16 @@ void copySlice(const float* __restrict a, const float* __restrict b, float w, bo
 }
 
 /// Eq. 10 for particles [i0, i1) of source j's copy.
-void sourceSlice(const Source& src, const float* origin, int frame, const PrimitiveView& p,
-                 const MappingSettings& s, std::uint32_t stride, std::uint64_t i0, std::uint64_t i1,
+void sourceSlice(const Source& src, const float* sourceOrigin, int frame, const PrimitiveView& p,
+                 const MappingSettings& s, const FramePlan& plan, std::uint64_t i0, std::uint64_t i1,
                  float* __restrict out)
 {
+    const std::uint32_t stride = plan.stride;
     const double time = primitiveTime(src, frame, s, p);
     const auto scale = static_cast<float>(s.metresPerPrimitiveMetre * src.scale);
+    float shift[3], origin[3];
+    copyShift(p, s, plan.drift, time, shift);
+    for (int k = 0; k < 3; ++k) origin[k] = sourceOrigin[k] + scale * shift[k];
     const double whole = std::floor(time);
     const bool past = whole >= p.frameCount - 1;
     const int f = past ? p.frameCount - 1 : static_cast<int>(whole);
@@ -375,7 +432,7 @@ void fillRange(const FramePlan& plan, const SourceTable& table, int frame, const
         const std::uint64_t end = std::min(last, offset[j + 1]);
         if (end == q) continue;  // a source not started yet: no cluster, no frame to look up
         const Source& src = table.sources[j];
-        sourceSlice(src, &plan.origins[3 * j], frame, p, s, plan.stride, q - offset[j], end - offset[j],
+        sourceSlice(src, &plan.origins[3 * j], frame, p, s, plan, q - offset[j], end - offset[j],
                     xyz + 3 * (q - first));
         if (levels != nullptr) std::fill_n(levels + (q - first), end - q, src.level);
         if (sources != nullptr) std::fill_n(sources + (q - first), end - q, static_cast<std::uint32_t>(j));

@@ -9,8 +9,9 @@
 /// primitive frame s = A (t - t0) dt / ds (Eq. 11 with the stochastic time step dt and the
 /// primitive's frame time ds; the paper uses dt = ds). N_f at a fractional s is N_f(floor s)
 /// (particles appear at whole primitive frames); a particle's position at fractional s is
-/// interpolated linearly between frames floor s and floor s + 1; past the primitive's last
-/// frame, the last frame holds.
+/// interpolated linearly between frames floor s and floor s + 1. Past the primitive's last
+/// frame a copy keeps its last shape and, by default, drifts on as a whole with the
+/// primitive's mean motion over its last frames (PastLastFrame).
 
 #include <algorithm>
 #include <cstddef>
@@ -86,6 +87,24 @@ enum class ParentRule : std::uint8_t {
     PerParticle,
 };
 
+/// What a copy does past the primitive's last frame (ours; the paper's primitive outlasts its
+/// animation, ours is shorter than most copies live).
+enum class PastLastFrame : std::uint8_t {
+    /// The copy keeps the last frame's shape and moves on as a whole, starting at the
+    /// primitive's drift (the mean displacement per frame of its particles over its last
+    /// kDriftFrames frames) and slowing down with the time constant kDriftDecayFrames, as a
+    /// thermal does that has spent its buoyancy: a grown turret keeps rising, ever slower,
+    /// instead of freezing, and rises at most kDriftDecayFrames times the drift.
+    Drift,
+    /// The last frame holds: a grown copy stands still (the rule before mapper version 3).
+    Hold,
+};
+
+/// Frames over which the drift is measured: long enough to average out the puff's churning.
+inline constexpr int kDriftFrames = 10;
+/// The drift's decay time, primitive frames (value ours).
+inline constexpr double kDriftDecayFrames = 30.0;
+
 struct MappingSettings {
     int maxLevel = 5;                           ///< cap on L_max
     std::vector<double> selectionRatio{0.2};    ///< M[L]; the last value repeats for higher L
@@ -104,6 +123,7 @@ struct MappingSettings {
     /// 0: every copy carries all N_f(s) (the paper).
     std::uint32_t particlesPerCopy = 0;
     ParentRule parentRule = ParentRule::PerSource;  ///< Eq. 15's draw of a parent particle
+    PastLastFrame pastLastFrame = PastLastFrame::Drift;
 };
 
 /// k, the fluid-id stride of thinned copies: ceil(N_f(last) / K), at least 1, at most 65,536
@@ -123,8 +143,19 @@ inline std::uint32_t copyFluidId(const Source& src, std::uint64_t q, std::uint32
 {
     return static_cast<std::uint32_t>(src.phase + q * stride);
 }
-/// Position of fluid particle i of the primitive at fractional primitive frame s (Eq. 10's P_f).
+/// Position of fluid particle i of the primitive at fractional primitive frame s (Eq. 10's P_f);
+/// past the last frame, the last frame's.
 void primitivePosition(const PrimitiveView& p, std::uint32_t i, double s, float out[3]);
+
+/// The primitive's drift: the mean displacement per frame, over its last kDriftFrames frames
+/// (fewer if it is shorter), of the particles present at both ends; zero for one frame.
+void primitiveDrift(const PrimitiveView& p, float out[3]);
+
+/// How far a copy at primitive frame s has moved as a whole (in primitive metres): past the
+/// last frame with PastLastFrame::Drift, drift tau (1 - exp(-(s - last) / tau)) with tau =
+/// kDriftDecayFrames; else zero.
+void copyShift(const PrimitiveView& p, const MappingSettings& s, const float drift[3], double time,
+               float out[3]);
 
 /// Origins P_s[L, j](t) of every source at frame t (Eq. 12), 3 floats each; zero for sources
 /// that start after t.

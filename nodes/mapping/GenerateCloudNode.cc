@@ -61,7 +61,8 @@ void registerGenerateCloudNode(Registry& registry)
             "particle (L, j, i) is at P_s[L, j](t) + scale R[L, j] P_f[i](s), s = A[L, j] "
             "(t - t0[L, j]) dt / ds (Eq. 10-11), with P_s the condensation particle (L = 1) or "
             "the parent cloud particle (L >= 2, Eq. 12). P_f at a fractional s is interpolated "
-            "between primitive frames; past the last frame the last frame holds. Particles are "
+            "between primitive frames; past the last frame the copy keeps its last shape and drifts "
+            "on or holds (PrimitiveMapper's pastLastFrame). Particles are "
             "in source-table order, with their level and source index; the result does not "
             "depend on the thread count. Nothing is kept between frames. With evaporateBelowBase "
             "(ours), particles under the condensation level are dropped.";

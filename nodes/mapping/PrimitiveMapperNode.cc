@@ -24,6 +24,7 @@ algo::MappingSettings settingsFrom(const CookContext& ctx)
     s.selectionRatio = p.getFloatList("selectionRatio");
     s.firstStart = static_cast<int>(p.getInt("firstStart"));
     s.levelDelay = static_cast<int>(p.getInt("levelDelay"));
+    s.windowLength.clear();  // the graph's list replaces the default, it does not extend it
     for (std::int64_t w : p.getIntList("windowLength")) s.windowLength.push_back(static_cast<int>(w));
     s.scaleCoefficient = p.getFloat("scaleCoefficient");
     s.speedCoefficient = p.getFloat("speedCoefficient");
@@ -34,6 +35,8 @@ algo::MappingSettings settingsFrom(const CookContext& ctx)
     s.particlesPerCopy = static_cast<std::uint32_t>(p.getInt("particlesPerCopy"));
     s.parentRule = p.getString("parentRule") == "particle" ? algo::ParentRule::PerParticle
                                                             : algo::ParentRule::PerSource;
+    s.pastLastFrame = p.getString("pastLastFrame") == "hold" ? algo::PastLastFrame::Hold
+                                                              : algo::PastLastFrame::Drift;
     return s;
 }
 
@@ -74,7 +77,7 @@ void registerPrimitiveMapperNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "PrimitiveMapper";
-    d.version = 3;  // 2: source records carry the copy phase; 3: Eq. 15 draws per source
+    d.version = 3;  // 2: source records carry the copy phase; 3: Eq. 15 per source, drift
     d.category = "mapping";
     d.doc =
         "The recursive mapping of Sec. 5.2 (pseudocode lines 15-28). Each frame t, every active "
@@ -151,6 +154,12 @@ void registerPrimitiveMapperNode(Registry& registry)
                     "version 3: uniformly over all level L-1 particles, which favours big "
                     "parents; a taken draw probes forward to the next free particle)",
                     {"source", "particle"}),
+        stringParam("pastLastFrame", "drift",
+                    "ours: what a copy does past the primitive's last frame: 'drift' keeps its "
+                    "last shape and moves on as a whole with the primitive's mean motion over "
+                    "its last 10 frames, so grown turrets keep rising to the end of the "
+                    "animation; 'hold' freezes it (before version 3)",
+                    {"drift", "hold"}),
     };
     d.create = [] { return std::make_unique<PrimitiveMapperNode>(); };
     registry.addNode(std::move(d));

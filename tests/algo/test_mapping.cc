@@ -94,12 +94,34 @@ std::uint64_t expectedClusterSize(const Scene& scene, const Source& src, int t)
     return scene.counts[static_cast<std::size_t>(f)];
 }
 
-/// P_f[i](s) with linear interpolation, written out independently.
+/// The drift past the last frame, written out: the mean of P_f(last) - P_f(last - 10) over
+/// the ids present at both frames, divided by 10.
+void expectedDrift(const Scene& scene, double out[3])
+{
+    const int last = Scene::kPrimitiveFrames - 1, first = last - 10;
+    const std::uint32_t n = std::min(scene.counts[static_cast<std::size_t>(first)], scene.counts[static_cast<std::size_t>(last)]);
+    for (int k = 0; k < 3; ++k) {
+        double sum = 0.0;
+        for (std::uint32_t i = 0; i < n; ++i)
+            sum += scene.primitiveFrames[static_cast<std::size_t>(last)][3 * i + k] -
+                   scene.primitiveFrames[static_cast<std::size_t>(first)][3 * i + k];
+        out[k] = sum / n / 10.0;
+    }
+}
+
+/// P_f[i](s) with linear interpolation, written out independently; past the last frame the
+/// last frame moved by 30 (1 - exp(-(s - last) / 30)) times the drift (PastLastFrame::Drift,
+/// the default).
 void expectedFluid(const Scene& scene, std::uint32_t i, double s, double out[3])
 {
     const int last = Scene::kPrimitiveFrames - 1;
     if (s >= last) {
-        for (int k = 0; k < 3; ++k) out[k] = scene.primitiveFrames[static_cast<std::size_t>(last)][3 * i + k];
+        double drift[3];
+        expectedDrift(scene, drift);
+        const bool drifting = scene.settings.pastLastFrame == PastLastFrame::Drift;
+        for (int k = 0; k < 3; ++k)
+            out[k] = scene.primitiveFrames[static_cast<std::size_t>(last)][3 * i + k] +
+                     (drifting ? 30.0 * (1.0 - std::exp(-(s - last) / 30.0)) * drift[k] : 0.0);
         return;
     }
     const int a = static_cast<int>(std::floor(s));
@@ -200,9 +222,16 @@ TEST(Mapping, Eq14SourcesFollowTheRatioInsideTheWindowOnly)
     }
 }
 
-TEST(Mapping, Eq10To12PositionsMatchTheRecursiveFormula)
+class MappingPastLastFrame : public ::testing::TestWithParam<PastLastFrame> {};
+
+INSTANTIATE_TEST_SUITE_P(Mapping, MappingPastLastFrame,
+                         ::testing::Values(PastLastFrame::Drift, PastLastFrame::Hold));
+
+// Frames 20 and 29 are past the primitive's end for every copy started before frame 14.
+TEST_P(MappingPastLastFrame, Eq10To12PositionsMatchTheRecursiveFormula)
 {
     Scene scene;
+    scene.settings.pastLastFrame = GetParam();
     const MappingRun r = run(scene, 30);
     std::set<int> levelsSeen;
     for (int t : {5, 12, 20, 29}) {
