@@ -71,17 +71,6 @@ void primitivePosition(const PrimitiveView& p, std::uint32_t i, double s, float 
     for (int k = 0; k < 3; ++k) out[k] = a[k] + w * (b[k] - a[k]);
 }
 
-namespace {
-
-/// Eq. 10 for one particle: fluid id i of the copy of `src` whose origin is `origin`, with the
-/// arithmetic of sourceSlice ((origin + r shift) + r P_f), so a child's origin is bit for bit
-/// its parent particle.
-void cloudParticlePosition(const Source& src, const float* origin, std::uint32_t i, int frame,
-                           const PrimitiveView& p, const MappingSettings& s, const float drift[3],
-                           float out[3]);
-
-}  // namespace
-
 void primitiveDrift(const PrimitiveView& p, float out[3])
 {
     out[0] = out[1] = out[2] = 0.0f;
@@ -109,6 +98,9 @@ void copyShift(const PrimitiveView& p, const MappingSettings& s, const float dri
 
 namespace {
 
+/// Eq. 10 for one particle: fluid id i of the copy of `src` whose origin is `origin`, with the
+/// arithmetic of sourceSlice ((origin + r shift) + r P_f), so a child's origin is bit for bit
+/// its parent particle.
 void cloudParticlePosition(const Source& src, const float* origin, std::uint32_t i, int frame,
                            const PrimitiveView& p, const MappingSettings& s, const float drift[3],
                            float out[3])
@@ -174,7 +166,6 @@ std::uint64_t pickCandidate(const MappingSettings& s, int level, int frame, std:
     while (taken(u)) u = u + 1 == n ? 0 : u + 1;
     return u;
 }
-
 
 /// The level L-1 cloud particles a level L >= 2 source may start from at one frame: source
 /// parents[n] holds candidates [parentOffset[n], parentOffset[n + 1]) (or up to `count`).
