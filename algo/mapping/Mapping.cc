@@ -115,11 +115,13 @@ void cloudParticlePosition(const Source& src, const float* origin, std::uint32_t
 
 }  // namespace
 
-std::vector<float> sourceOrigins(const SourceTable& table, int frame, const CondensationView& c,
-                                 const PrimitiveView& p, const MappingSettings& s)
+namespace {
+
+/// sourceOrigins with the primitive's drift given, so a caller that needs the drift too
+/// measures it once.
+std::vector<float> originsWithDrift(const SourceTable& table, int frame, const CondensationView& c,
+                                    const PrimitiveView& p, const MappingSettings& s, const float drift[3])
 {
-    float drift[3];
-    primitiveDrift(p, drift);
     // Parents precede children in the table, so one pass in order suffices.
     std::vector<float> origins(3 * table.sources.size());
     for (std::size_t j = 0; j < table.sources.size(); ++j) {
@@ -135,6 +137,16 @@ std::vector<float> sourceOrigins(const SourceTable& table, int frame, const Cond
                               src.parentFluid, frame, p, s, drift, o);
     }
     return origins;
+}
+
+}  // namespace
+
+std::vector<float> sourceOrigins(const SourceTable& table, int frame, const CondensationView& c,
+                                 const PrimitiveView& p, const MappingSettings& s)
+{
+    float drift[3];
+    primitiveDrift(p, drift);
+    return originsWithDrift(table, frame, c, p, s, drift);
 }
 
 std::vector<std::uint64_t> cloudCounts(const SourceTable& table, int frame, const PrimitiveView& p,
@@ -283,7 +295,7 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
         if (fresh == 0) continue;
 
         const std::vector<float> origins =
-            level == 1 ? std::vector<float>() : sourceOrigins(table, frame, c, p, s);
+            level == 1 ? std::vector<float>() : originsWithDrift(table, frame, c, p, s, drift);
         const std::vector<std::uint64_t> parentKeys =
             level == 1 ? std::vector<std::uint64_t>()
                        : pickParents(table, ParentCandidates{level, frame, parents, parentOffset, candidates}, fresh, s);
@@ -351,7 +363,7 @@ FramePlan planFrame(const SourceTable& table, int frame, const CondensationView&
     FramePlan plan;
     plan.stride = copyStride(s, p);
     primitiveDrift(p, plan.drift);
-    plan.origins = sourceOrigins(table, frame, c, p, s);
+    plan.origins = originsWithDrift(table, frame, c, p, s, plan.drift);
     const std::size_t n = table.sources.size();
     plan.offset.assign(n + 1, 0);
     for (std::size_t j = 0; j < n; ++j) plan.offset[j + 1] = plan.offset[j] + clusterSize(table.sources[j], frame, s, p);
