@@ -406,7 +406,7 @@ void BM_FreshFrameArrays(benchmark::State& state)
     LastFrame& f = lastFrame();
     for (auto _ : state) {
         CloudParticleArrays out{UninitArray<float>(3 * f.particles), UninitArray<std::uint8_t>(f.particles),
-                                UninitArray<std::uint32_t>(f.particles)};
+                                UninitArray<std::uint32_t>(f.particles), UninitArray<float>()};
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, f.particles, kCloudChunkParticles),
                           [&](const tbb::blocked_range<std::size_t>& r) {
                               std::fill(out.positions.data() + 3 * r.begin(), out.positions.data() + 3 * r.end(), 1.0f);

@@ -98,19 +98,30 @@ void copyShift(const PrimitiveView& p, const MappingSettings& s, const float dri
 
 namespace {
 
+/// Where source src's copy stands at primitive time `time`: its origin (Eq. 12) plus its drift
+/// past the primitive's end; its particles are this plus R P_f (Eq. 10).
+void copyOrigin(const Source& src, const float* sourceOrigin, double time, const PrimitiveView& p,
+                const MappingSettings& s, const float drift[3], float out[3])
+{
+    const auto scale = static_cast<float>(s.metresPerPrimitiveMetre * src.scale);
+    float shift[3];
+    copyShift(p, s, drift, time, shift);
+    for (int k = 0; k < 3; ++k) out[k] = sourceOrigin[k] + scale * shift[k];
+}
+
 /// Eq. 10 for one particle: fluid id i of the copy of `src` whose origin is `origin`, with the
-/// arithmetic of sourceSlice ((origin + r shift) + r P_f), so a child's origin is bit for bit
-/// its parent particle.
+/// arithmetic of sourceSlice (copyOrigin + r P_f), so a child's origin is bit for bit its
+/// parent particle.
 void cloudParticlePosition(const Source& src, const float* origin, std::uint32_t i, int frame,
                            const PrimitiveView& p, const MappingSettings& s, const float drift[3],
                            float out[3])
 {
     const double time = primitiveTime(src, frame, s, p);
-    float f[3], shift[3];
+    float f[3], at[3];
     primitivePosition(p, i, time, f);
-    copyShift(p, s, drift, time, shift);
+    copyOrigin(src, origin, time, p, s, drift, at);
     const auto r = static_cast<float>(s.metresPerPrimitiveMetre * src.scale);
-    for (int k = 0; k < 3; ++k) out[k] = (origin[k] + r * shift[k]) + r * f[k];
+    for (int k = 0; k < 3; ++k) out[k] = at[k] + r * f[k];
 }
 
 }  // namespace
@@ -407,9 +418,8 @@ void sourceSlice(const Source& src, const float* sourceOrigin, int frame, const 
     const std::uint32_t stride = plan.stride;
     const double time = primitiveTime(src, frame, s, p);
     const auto scale = static_cast<float>(s.metresPerPrimitiveMetre * src.scale);
-    float shift[3], origin[3];
-    copyShift(p, s, plan.drift, time, shift);
-    for (int k = 0; k < 3; ++k) origin[k] = sourceOrigin[k] + scale * shift[k];
+    float origin[3];
+    copyOrigin(src, sourceOrigin, time, p, s, plan.drift, origin);
     const double whole = std::floor(time);
     const bool past = whole >= p.frameCount - 1;
     const int f = past ? p.frameCount - 1 : static_cast<int>(whole);
@@ -518,7 +528,8 @@ CloudParticleArrays generateCloudParticles(const SourceTable& table, int frame,
     const FramePlan plan = planFrame(table, frame, c, p, s);
     const auto n = static_cast<std::size_t>(plan.total());
     // Uninitialised: each chunk's writer touches its own pages first (no zero-fill on one thread).
-    CloudParticleArrays out{UninitArray<float>(3 * n), UninitArray<std::uint8_t>(n), UninitArray<std::uint32_t>(n)};
+    CloudParticleArrays out{UninitArray<float>(3 * n), UninitArray<std::uint8_t>(n), UninitArray<std::uint32_t>(n),
+                            UninitArray<float>(3 * table.sources.size())};
     CloudChunkOptions o;
     o.levels = o.sources = true;
     o.positionsOut = out.positions.data();
@@ -526,6 +537,15 @@ CloudParticleArrays generateCloudParticles(const SourceTable& table, int frame,
     o.sourcesOut = out.sources.data();
     o.checkCancelled = checkCancelled;
     runChunks(plan, table, frame, p, s, {}, o);
+    for (std::size_t j = 0; j < table.sources.size(); ++j) {
+        const Source& src = table.sources[j];
+        float* o3 = &out.copyOrigins[3 * j];
+        if (frame < src.startFrame) {  // no copy yet, no particle points here
+            o3[0] = o3[1] = o3[2] = 0.0f;
+            continue;
+        }
+        copyOrigin(src, &plan.origins[3 * j], primitiveTime(src, frame, s, p), p, s, plan.drift, o3);
+    }
     return out;
 }
 

@@ -256,11 +256,15 @@ std::uint64_t forEachCloudChunk(const SourceTable& table, int frame, const Conde
 
 /// Cloud particles of frame t (Eq. 10), in table order, parallel and deterministic: the
 /// chunks of forEachCloudChunk written straight into fresh, uninitialised frame arrays
-/// (17 bytes a particle).
+/// (17 bytes a particle), and the copies' origins (12 bytes a source).
 struct CloudParticleArrays {
     UninitArray<float> positions;         ///< x, y, z per particle
     UninitArray<std::uint8_t> levels;     ///< level L per particle
     UninitArray<std::uint32_t> sources;   ///< source index j per particle
+    /// Per source j, 3 floats: where its copy stands (its origin, Eq. 12, plus its drift past
+    /// the primitive's end), so particle i of the copy is copyOrigins[j] + R P_f(i) (Eq. 10);
+    /// zero for sources not started. What detail evaluated in copy coordinates needs.
+    UninitArray<float> copyOrigins;
 };
 CloudParticleArrays generateCloudParticles(const SourceTable& table, int frame,
                                            const CondensationView& c, const PrimitiveView& p,

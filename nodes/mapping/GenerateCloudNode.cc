@@ -41,7 +41,8 @@ public:
             if (const auto base = algo::condensationLevel(condensed)) algo::dropCloudParticlesBelow(arrays, *base);
         ctx.setOutput("particles", std::make_shared<CloudParticlesData>(std::move(arrays.positions),
                                                                         std::move(arrays.levels),
-                                                                        std::move(arrays.sources)));
+                                                                        std::move(arrays.sources),
+                                                                        std::move(arrays.copyOrigins)));
     }
 };
 

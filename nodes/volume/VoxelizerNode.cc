@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "algo/volume/SurfaceDetail.h"
 #include "algo/volume/Voxelize.h"
 #include "core/Error.h"
 #include "core/Node.h"
@@ -41,6 +42,15 @@ public:
         } catch (const std::invalid_argument& e) {
             throw InputError(ctx.nodeId(), e.what());
         }
+        algo::SurfaceDetailSettings detail;
+        detail.amplitude = p.getFloat("detailAmplitude");
+        detail.frequency = p.getFloat("detailFrequency") / s.radius;
+        detail.octaves = static_cast<int>(p.getInt("detailOctaves"));
+        const algo::DetailParticles detailParticles{
+            particles->positions.data(), particles->sources.data(), particles->size(),
+            particles->copyOrigins.empty() ? nullptr : particles->copyOrigins.data(),
+            particles->copyOrigins.size() / 3};
+        algo::erodeSurface(*grid, detailParticles, s.radius, detail, [&] { ctx.checkCancelled(); });
         algo::filterVolume(*grid, algo::voxelFilterFromName(p.getString("filter")),
                            static_cast<int>(p.getInt("filterWidth")),
                            static_cast<int>(p.getInt("filterIterations")));
@@ -63,7 +73,7 @@ void registerVoxelizerNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "Voxelizer";
-    d.version = 1;
+    d.version = 2;  // 2: surface detail
     d.category = "volume";
     d.doc =
         "Splats cloud particles into a sparse OpenVDB fog volume (Sec. 6.3: volume data with "
@@ -73,7 +83,13 @@ void registerVoxelizerNode(Registry& registry)
         "distance r < radius, with w = (1 - r^2/radius^2)^3 ('smooth', integral "
         "64 pi radius^3 / 315 m^3 per unit density) or w = 1 ('sphere', integral "
         "4/3 pi radius^3). Sums are clamped to [0, 1] unless clamp is off, then optionally "
-        "filtered on the active voxels. Only leaves that particles touch are allocated; the "
+        "filtered on the active voxels. Surface detail (ours, after production cloud tools): "
+        "where the summed density v lies strictly between 0 and 1 (the soft edge of the "
+        "splats), Perlin-Worley noise n in [0, 1] erodes it to (v - e) / (1 - e), e = "
+        "detailAmplitude (1 - n), evaluated at the voxel's place in its copy (the voxel minus "
+        "the copy's origin, R P_f of Eq. 10), so the detail moves with the copies instead of "
+        "swimming through them; detailAmplitude 0 leaves the splats untouched. Only leaves that "
+        "particles touch are allocated; the "
         "grid is identical for any thread count. Metadata: frame, units ('metres'), "
         "voxel_size_m, particle_radius_m, kernel, particle_count. See docs/voxelizer.md.";
     d.frameDependent = true;  // the frame is written into the grid's metadata
@@ -91,6 +107,15 @@ void registerVoxelizerNode(Registry& registry)
                    "density one particle adds at its centre (fog density, 1 = opaque; value ours)",
                    0.0, 1000.0),
         boolParam("clamp", true, "clamp summed density to [0, 1] (a fog volume's range)"),
+        floatParam("detailAmplitude", 0.8, "",
+                   "largest erosion of the surface's density by the detail noise; 0: no detail "
+                   "(value ours)",
+                   0.0, 1.0),
+        floatParam("detailFrequency", 1.5, "1/radius",
+                   "detail noise cycles per particle radius R, first octave (value ours)", 0.05,
+                   16.0),
+        intParam("detailOctaves", 2, "", "octaves of the detail noise, each twice as fine (value ours)",
+                 1, 8),
         stringParam("filter", "none", "OpenVDB smoothing of the active voxels after splatting",
                     {"none", "mean", "gaussian", "median"}),
         intParam("filterWidth", 1, "voxels", "filter half-width: the stencil is (2 w + 1)^3", 1, 8),

@@ -342,29 +342,34 @@ TEST(CachedValueDecoding, PrimitiveSetRoundTripsAndRefusesInconsistentFrames)
 TEST(CachedValueDecoding, CloudParticlesRoundTripAndRefuseBadLevelsAndLengths)
 {
     const std::vector<float> positions{0, 1, 2, 3, 4, kNaN};  // may honestly be non-finite
+    std::vector<float> origins(30, 0.0f);
+    origins[27] = 5.0f, origins[29] = -2.5f;  // source 9's copy
     const CloudParticlesData c(positions, std::vector<std::uint8_t>{0, kMaxCloudLevel},
-                               std::vector<std::uint32_t>{7, 9});
+                               std::vector<std::uint32_t>{7, 9}, origins);
     const auto back = roundTrip(c);
     EXPECT_EQ(std::vector<std::uint8_t>(back->levels),
               (std::vector<std::uint8_t>{0, kMaxCloudLevel}));
     EXPECT_EQ(std::vector<std::uint32_t>(back->sources), (std::vector<std::uint32_t>{7, 9}));
+    EXPECT_EQ(std::vector<float>(back->copyOrigins), origins);
 
-    const Bytes good = concat({podBytes(positions), podBytes(std::vector<std::uint8_t>{1, 2}),
-                               podBytes(std::vector<std::uint32_t>{0, 1})});
-    ASSERT_NO_THROW(decode("CloudParticles", good));
-    expectRefused(
-        "CloudParticles",
-        concat({podBytes(positions), podBytes(std::vector<std::uint8_t>{1, kMaxCloudLevel + 1}),
-                podBytes(std::vector<std::uint32_t>{0, 1})}),
-        "particle 1 has level 33");
-    expectRefused("CloudParticles",
-                  concat({podBytes(positions), podBytes(std::vector<std::uint8_t>{1}),
-                          podBytes(std::vector<std::uint32_t>{0})}),
-                  "arrays differ in length");
+    const auto payload = [&](const std::vector<std::uint8_t>& levels, const std::vector<std::uint32_t>& sources,
+                             const std::vector<float>& copyOrigins) {
+        return concat({podBytes(positions), podBytes(levels), podBytes(sources), podBytes(copyOrigins)});
+    };
+    ASSERT_NO_THROW(decode("CloudParticles", payload({1, 2}, {0, 1}, {})));
+    ASSERT_NO_THROW(decode("CloudParticles", payload({1, 2}, {0, 1}, std::vector<float>(6, 1.0f))));
+    expectRefused("CloudParticles", payload({1, kMaxCloudLevel + 1}, {0, 1}, {}), "particle 1 has level 33");
+    expectRefused("CloudParticles", payload({1}, {0}, {}), "arrays differ in length");
+    expectRefused("CloudParticles", payload({1, 2}, {0}, {}), "arrays differ in length");
+    expectRefused("CloudParticles", payload({1, 2}, {0, 1}, std::vector<float>(4, 1.0f)),
+                  "copy origins are not xyz triples");
+    expectRefused("CloudParticles", payload({1, 2}, {0, 2}, std::vector<float>(6, 1.0f)),
+                  "particle 1 names source 2, which has no copy origin");
+    // The version 1 payload (no copy origins) is refused, not misread.
     expectRefused("CloudParticles",
                   concat({podBytes(positions), podBytes(std::vector<std::uint8_t>{1, 2}),
-                          podBytes(std::vector<std::uint32_t>{0})}),
-                  "arrays differ in length");
+                          podBytes(std::vector<std::uint32_t>{0, 1})}),
+                  "truncated payload");
     ByteWriter huge;  // a count checked before allocating
     huge.u64(std::uint64_t{1} << 60);
     expectRefused("CloudParticles", huge.buffer(), "truncated payload");

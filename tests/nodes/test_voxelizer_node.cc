@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstring>
 #include <memory>
 #include <string>
 
@@ -21,6 +23,23 @@
 namespace cg {
 
 namespace {
+
+/// FNV-1a over every active voxel's coordinate and value bits, in the tree's (sorted) order.
+std::uint64_t gridChecksum(const openvdb::FloatGrid& grid)
+{
+    std::uint64_t h = 14695981039346656037ull;
+    const auto mix = [&h](std::uint32_t word) {
+        for (int b = 0; b < 4; ++b) h = (h ^ ((word >> (8 * b)) & 0xffu)) * 1099511628211ull;
+    };
+    for (auto it = grid.tree().cbeginValueOn(); it; ++it) {
+        const openvdb::Coord c = it.getCoord();
+        for (int a = 0; a < 3; ++a) mix(static_cast<std::uint32_t>(c[a]));
+        std::uint32_t bits;
+        std::memcpy(&bits, &*it, sizeof(bits));
+        mix(bits);
+    }
+    return h;
+}
 
 std::shared_ptr<const FogVolumeData> volumeAt(Evaluator& ev, const Graph& g, int frame)
 {
@@ -45,7 +64,7 @@ protected:
 const char* kGraph = R"({"cloudgraph": 1, "nodes": {
     "cloud": {"type": "TestCloudSource", "params": {"radius": 30, "spacing": 2}},
     "vox": {"type": "Voxelizer", "inputs": {"particles": "cloud.particles"},
-            "params": {"voxelSize": 1.5, "radius": 4.0, "density": 0.4}}}})";
+            "params": {"voxelSize": 1.5, "radius": 4.0, "density": 0.4, "detailAmplitude": 0}}}})";
 
 }  // namespace
 
@@ -84,6 +103,17 @@ TEST_F(VoxelizerNodeTest, OutputsTheAlgorithmsGridWithMetadata)
     const float lo = range.min(), hi = range.max();
     EXPECT_GT(lo, 0.0f);
     EXPECT_LE(hi, 1.0f);
+}
+
+// The grid the Voxelizer made before surface detail existed (version 1), pinned by its checksum:
+// with the detail off it must come out bit for bit the same.
+TEST_F(VoxelizerNodeTest, DetailOffReproducesTheVersion1GridBitForBit)
+{
+    Graph g = parse(kGraph);
+    Evaluator ev(registry, {});
+    const auto volume = volumeAt(ev, g, 3);
+    EXPECT_EQ(volume->grid->activeVoxelCount(), 45817u);
+    EXPECT_EQ(gridChecksum(*volume->grid), 2565534684775939884ull);
 }
 
 TEST_F(VoxelizerNodeTest, FrameOnlyChangesTheMetadata)

@@ -1,0 +1,127 @@
+#include "algo/noise/PerlinWorley.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <tbb/parallel_for.h>
+
+#include "algo/CounterRandom.h"
+#include "algo/noise/GradientNoise.h"
+
+namespace cg::algo {
+
+namespace {
+
+constexpr int kSize = kPerlinWorleyTextureSize;
+constexpr int kMask = kSize - 1;
+constexpr int kCycles = kSize / kPerlinWorleyTexelsPerCycle;  // cycles across the texture
+static_assert((kSize & kMask) == 0, "the texture wraps with a mask");
+static_assert(kSize % kPerlinWorleyTexelsPerCycle == 0, "whole cycles tile");
+
+constexpr std::uint64_t kWorleySeed = 0x5713a11d0f3e9c21ull;
+constexpr std::uint64_t kPerlinSeed = 0x2b7e151628aed2a6ull;
+
+/// Worley's F1 in cell units at point p (in cells) of a lattice of `cells` cells per axis
+/// that wraps: the distance to the nearest of the feature points, one per cell at a hashed
+/// place inside it.
+double worleyF1(const double p[3], int cells, std::uint64_t seed)
+{
+    int base[3];
+    for (int a = 0; a < 3; ++a) base[a] = static_cast<int>(std::floor(p[a]));
+    double best = 1e30;
+    for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dz = -1; dz <= 1; ++dz) {
+                const int c[3] = {base[0] + dx, base[1] + dy, base[2] + dz};
+                std::uint64_t h = seed;
+                for (int a = 0; a < 3; ++a)
+                    h = mix64(h ^ static_cast<std::uint64_t>(((c[a] % cells) + cells) % cells));
+                double d2 = 0.0;
+                for (int a = 0; a < 3; ++a) {
+                    const double jitter = static_cast<double>((h >> (21 * a)) & 0x1fffff) * 0x1.0p-21;
+                    const double d = c[a] + jitter - p[a];
+                    d2 += d * d;
+                }
+                best = std::min(best, d2);
+            }
+    return std::sqrt(best);
+}
+
+/// The noise at point p in cycles (periodic with kCycles): the texel value of the header.
+float perlinWorleyAt(const double p[3])
+{
+    const auto billow = [&](int factor, std::uint64_t seed) {
+        const double q[3] = {p[0] * factor, p[1] * factor, p[2] * factor};
+        return 1.0 - std::min(worleyF1(q, kCycles * factor, seed), 1.0);
+    };
+    const double worley = 0.75 * billow(1, kWorleySeed) + 0.25 * billow(2, kWorleySeed + 1);
+    const double perlin = 0.5 + 0.5 * gradientNoise(p[0], p[1], p[2], kPerlinSeed, kCycles);
+    return static_cast<float>(std::clamp(0.7 * worley + 0.3 * perlin, 0.0, 1.0));
+}
+
+/// The texture, x-major: texel (i, j, k) at index (i kSize + j) kSize + k.
+const std::vector<float>& texture()
+{
+    static const std::vector<float> texels = [] {
+        std::vector<float> t(static_cast<std::size_t>(kSize) * kSize * kSize);
+        tbb::parallel_for(0, kSize, [&t](int i) {
+            for (int j = 0; j < kSize; ++j)
+                for (int k = 0; k < kSize; ++k) {
+                    const double p[3] = {static_cast<double>(i) / kPerlinWorleyTexelsPerCycle,
+                                         static_cast<double>(j) / kPerlinWorleyTexelsPerCycle,
+                                         static_cast<double>(k) / kPerlinWorleyTexelsPerCycle};
+                    t[(static_cast<std::size_t>(i) * kSize + j) * kSize + k] = perlinWorleyAt(p);
+                }
+        });
+        return t;
+    }();
+    return texels;
+}
+
+}  // namespace
+
+float perlinWorleyTexel(float u, float v, float w)
+{
+    const std::vector<float>& t = texture();
+    const float fu = std::floor(u), fv = std::floor(v), fw = std::floor(w);
+    const float tu = u - fu, tv = v - fv, tw = w - fw;
+    // Wrapped lattice indices; the casts are exact for |coordinates| < 2^31.
+    const int i0 = static_cast<int>(static_cast<std::int64_t>(fu) & kMask), i1 = (i0 + 1) & kMask;
+    const int j0 = static_cast<int>(static_cast<std::int64_t>(fv) & kMask), j1 = (j0 + 1) & kMask;
+    const int k0 = static_cast<int>(static_cast<std::int64_t>(fw) & kMask), k1 = (k0 + 1) & kMask;
+    const auto at = [&t](int i, int j, int k) {
+        return t[(static_cast<std::size_t>(i) * kSize + j) * kSize + k];
+    };
+    const auto lerp = [](float a, float b, float s) { return a + s * (b - a); };
+    const float x00 = lerp(at(i0, j0, k0), at(i0, j0, k1), tw);
+    const float x01 = lerp(at(i0, j1, k0), at(i0, j1, k1), tw);
+    const float x10 = lerp(at(i1, j0, k0), at(i1, j0, k1), tw);
+    const float x11 = lerp(at(i1, j1, k0), at(i1, j1, k1), tw);
+    return lerp(lerp(x00, x01, tv), lerp(x10, x11, tv), tu);
+}
+
+float perlinWorleyFbm(const double x[3], double frequency, int octaves)
+{
+    // Incommensurate shifts (texels), so the octaves' tiles never line up.
+    constexpr double kShift[3] = {17.31, 41.07, 5.93};
+    double sum = 0.0, norm = 0.0, amplitude = 1.0;
+    double texelsPerMetre = frequency * kPerlinWorleyTexelsPerCycle;
+    for (int o = 0; o < octaves; ++o) {
+        // Coordinates reduced modulo the tile in double before the float sample: metres far
+        // from the origin keep their sub-texel precision.
+        float uvw[3];
+        for (int a = 0; a < 3; ++a) {
+            const double u = x[a] * texelsPerMetre + o * kShift[a];
+            uvw[a] = static_cast<float>(u - kSize * std::floor(u / kSize));
+        }
+        sum += amplitude * perlinWorleyTexel(uvw[0], uvw[1], uvw[2]);
+        norm += amplitude;
+        amplitude *= 0.5;
+        texelsPerMetre *= 2.0;
+    }
+    return static_cast<float>(sum / norm);
+}
+
+}  // namespace cg::algo

@@ -1,0 +1,151 @@
+#include "algo/volume/CopyOriginField.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <tbb/parallel_for.h>
+
+#include "algo/CounterRandom.h"
+
+namespace cg::algo {
+
+namespace {
+
+/// Cell coordinates lie in [-2^20, 2^20): 21 bits each, packed into one key.
+constexpr int kKeyBits = 21;
+constexpr std::int64_t kKeyBias = std::int64_t(1) << (kKeyBits - 1);
+/// Fixed work unit, so that the sums never depend on the thread count.
+constexpr std::size_t kChunk = std::size_t(1) << 16;
+
+int cellOf(double x, double cellSize) { return static_cast<int>(std::floor(x / cellSize)); }
+
+}  // namespace
+
+std::size_t CopyOriginField::KeyHash::operator()(std::uint64_t k) const
+{
+    return static_cast<std::size_t>(mix64(k));
+}
+
+std::uint64_t CopyOriginField::key(int i, int j, int k)
+{
+    const std::int64_t c[3] = {i, j, k};
+    std::uint64_t out = 0;
+    for (const std::int64_t v : c) {
+        if (v < -kKeyBias || v >= kKeyBias)
+            throw std::invalid_argument("copy origin field: a particle lies beyond 2^20 cells");
+        out = (out << kKeyBits) | static_cast<std::uint64_t>(v + kKeyBias);
+    }
+    return out;
+}
+
+CopyOriginField::CopyOriginField(const float* xyz, const std::uint32_t* sources, std::size_t count,
+                                 const float* copyOrigins, std::size_t copyCount, double cellSize)
+    : mCellSize(cellSize)
+{
+    if (!(cellSize > 0.0) || !std::isfinite(cellSize))
+        throw std::invalid_argument("copy origin field: the cell size must be > 0");
+    struct Partial {
+        std::vector<std::uint64_t> keys;  ///< in order of first appearance
+        std::vector<Cell> cells;
+        bool badSource = false;
+    };
+    const std::size_t chunks = (count + kChunk - 1) / kChunk;
+    std::vector<Partial> partials(chunks);
+    tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+        Partial& part = partials[c];
+        std::unordered_map<std::uint64_t, std::uint32_t, KeyHash> local;
+        std::uint64_t lastKey = ~std::uint64_t(0);
+        std::uint32_t last = 0;
+        const std::size_t end = std::min(count, (c + 1) * kChunk);
+        for (std::size_t i = c * kChunk; i < end; ++i) {
+            const std::uint32_t s = sources[i];
+            if (s >= copyCount) {
+                part.badSource = true;
+                return;
+            }
+            const float* p = xyz + 3 * i;
+            const std::uint64_t k = key(cellOf(p[0], cellSize), cellOf(p[1], cellSize), cellOf(p[2], cellSize));
+            if (k != lastKey) {  // neighbours in a copy mostly share a cell: skip the hash
+                const auto [it, fresh] = local.try_emplace(k, static_cast<std::uint32_t>(part.cells.size()));
+                if (fresh) {
+                    part.keys.push_back(k);
+                    part.cells.emplace_back();
+                }
+                lastKey = k;
+                last = it->second;
+            }
+            Cell& cell = part.cells[last];
+            for (int a = 0; a < 3; ++a) cell.sum[a] += copyOrigins[3 * static_cast<std::size_t>(s) + a];
+            cell.count += 1.0;
+        }
+    });
+    for (const Partial& part : partials) {
+        if (part.badSource)
+            throw std::invalid_argument("copy origin field: a particle's source has no copy origin");
+        for (std::size_t n = 0; n < part.keys.size(); ++n) {
+            const auto [it, fresh] = mIndex.try_emplace(part.keys[n], static_cast<std::uint32_t>(mCells.size()));
+            if (fresh) mCells.emplace_back();
+            Cell& cell = mCells[it->second];
+            for (int a = 0; a < 3; ++a) cell.sum[a] += part.cells[n].sum[a];
+            cell.count += part.cells[n].count;
+        }
+    }
+}
+
+CopyOriginField::Block CopyOriginField::block(const double lo[3], const double hi[3]) const
+{
+    Block b;
+    b.mCellSize = mCellSize;
+    for (int a = 0; a < 3; ++a) {
+        // The corners of x are the cells floor(x / C - 1/2) and the next.
+        b.mLo[a] = static_cast<int>(std::floor(lo[a] / mCellSize - 0.5));
+        b.mDim[a] = static_cast<int>(std::floor(hi[a] / mCellSize - 0.5)) + 2 - b.mLo[a];
+    }
+    b.mCells.resize(static_cast<std::size_t>(b.mDim[0]) * b.mDim[1] * b.mDim[2]);
+    std::size_t n = 0;
+    for (int i = 0; i < b.mDim[0]; ++i)
+        for (int j = 0; j < b.mDim[1]; ++j)
+            for (int k = 0; k < b.mDim[2]; ++k, ++n) {
+                const int c[3] = {b.mLo[0] + i, b.mLo[1] + j, b.mLo[2] + k};
+                if (c[0] < -kKeyBias || c[0] >= kKeyBias || c[1] < -kKeyBias || c[1] >= kKeyBias ||
+                    c[2] < -kKeyBias || c[2] >= kKeyBias)
+                    continue;  // beyond every particle: empty
+                const auto it = mIndex.find(key(c[0], c[1], c[2]));
+                if (it != mIndex.end()) b.mCells[n] = mCells[it->second];
+            }
+    return b;
+}
+
+bool CopyOriginField::Block::origin(const double x[3], double out[3]) const
+{
+    int base[3];
+    double t[3];
+    for (int a = 0; a < 3; ++a) {
+        const double u = x[a] / mCellSize - 0.5;
+        const double f = std::floor(u);
+        base[a] = static_cast<int>(f) - mLo[a];
+        t[a] = u - f;
+        // A point outside the block's box has no corners here.
+        if (base[a] < 0 || base[a] + 1 >= mDim[a]) return false;
+    }
+    double sum[3] = {0.0, 0.0, 0.0}, count = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+        double w = 1.0;
+        std::size_t index = 0;
+        for (int a = 0; a < 3; ++a) {
+            const int bit = (corner >> (2 - a)) & 1;
+            w *= bit ? t[a] : 1.0 - t[a];
+            index = index * static_cast<std::size_t>(mDim[a]) + static_cast<std::size_t>(base[a] + bit);
+        }
+        const Cell& c = mCells[index];
+        if (c.count == 0.0) continue;
+        for (int a = 0; a < 3; ++a) sum[a] += w * c.sum[a];
+        count += w * c.count;
+    }
+    if (!(count > 0.0)) return false;
+    for (int a = 0; a < 3; ++a) out[a] = sum[a] / count;
+    return true;
+}
+
+}  // namespace cg::algo

@@ -1,0 +1,70 @@
+#pragma once
+/// Where each region of a cloud has its local origin: the origin of the copy (Eq. 10's
+/// P_s[L, j](t) plus the copy's drift) that its particles belong to, as a smooth field, so
+/// that noise evaluated at x - origin(x) moves with the copies instead of swimming through
+/// them.
+///
+/// Particles are binned into cubic cells of edge 2R (R the splat radius); a cell keeps the
+/// sum of its particles' copy origins and their count. origin(x) interpolates the sums and
+/// the counts trilinearly between the eight cell centres around x and divides: inside one
+/// copy every particle has the same origin, so the field is that origin exactly (to double
+/// rounding), wherever the copy has moved; where copies meet it is their particle-weighted
+/// mean. With cells of 2R, a point within R of any particle always has that particle's cell
+/// among its eight corners, so every voxel a splat reaches has an origin.
+///
+/// Deterministic for any thread count: fixed chunks of particles are summed in index order
+/// and merged in chunk order. No engine includes.
+
+#include <cstddef>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace cg::algo {
+
+class CopyOriginField {
+public:
+    /// Bins `count` particles at `xyz` (metres), particle i moving with the copy origin
+    /// copyOrigins[3 sources[i] ...]. Every sources[i] must be below `copyCount`
+    /// (std::invalid_argument otherwise). cellSize > 0, in metres.
+    CopyOriginField(const float* xyz, const std::uint32_t* sources, std::size_t count,
+                    const float* copyOrigins, std::size_t copyCount, double cellSize);
+
+    /// A cell: the sum of its particles' copy origins and their count.
+    struct Cell {
+        double sum[3] = {0.0, 0.0, 0.0};
+        double count = 0.0;
+    };
+
+    /// The cells whose centres surround the box [lo, hi] (metres) for interpolation, copied
+    /// into a dense block (empty cells are zero): what origin() reads for every point in
+    /// the box, fetched once instead of eight lookups a point.
+    class Block {
+    public:
+        /// The interpolated origin at x, inside the block's box; false where no particle's
+        /// cell is among the eight corners (x farther than R from every particle).
+        bool origin(const double x[3], double out[3]) const;
+
+    private:
+        friend class CopyOriginField;
+        double mCellSize = 1.0;
+        int mLo[3] = {0, 0, 0};   ///< first cell of the block per axis
+        int mDim[3] = {0, 0, 0};  ///< cells per axis
+        std::vector<Cell> mCells;
+    };
+    Block block(const double lo[3], const double hi[3]) const;
+
+    std::size_t cellCount() const { return mIndex.size(); }
+
+private:
+    struct KeyHash {
+        std::size_t operator()(std::uint64_t k) const;
+    };
+    static std::uint64_t key(int i, int j, int k);
+
+    double mCellSize;
+    std::unordered_map<std::uint64_t, std::uint32_t, KeyHash> mIndex;  ///< cell -> mCells index
+    std::vector<Cell> mCells;
+};
+
+}  // namespace cg::algo

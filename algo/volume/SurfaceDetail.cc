@@ -1,0 +1,86 @@
+#include "algo/volume/SurfaceDetail.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+
+#include <openvdb/tools/Prune.h>
+#include <openvdb/tree/LeafManager.h>
+
+#include "algo/noise/PerlinWorley.h"
+#include "algo/volume/CopyOriginField.h"
+
+namespace cg::algo {
+
+namespace {
+
+using LeafT = openvdb::FloatTree::LeafNodeType;
+
+/// v remapped from [e, 1] to [0, 1]; 0 below e.
+float erode(float v, float e)
+{
+    if (e >= 1.0f) return 0.0f;
+    return std::max(0.0f, (v - e) / (1.0f - e));
+}
+
+}  // namespace
+
+void erodeSurface(openvdb::FloatGrid& grid, const DetailParticles& particles, double radius,
+                  const SurfaceDetailSettings& s, const std::function<void()>& checkCancelled)
+{
+    if (!(s.amplitude >= 0.0 && s.amplitude <= 1.0))
+        throw std::invalid_argument("surface detail: amplitude must lie in [0, 1]");
+    if (!(s.frequency > 0.0) || !std::isfinite(s.frequency))
+        throw std::invalid_argument("surface detail: frequency must be > 0");
+    if (s.octaves < 1 || s.octaves > 8)
+        throw std::invalid_argument("surface detail: octaves must lie in 1..8");
+    if (!(radius > 0.0)) throw std::invalid_argument("surface detail: radius must be > 0");
+    if (s.amplitude == 0.0 || grid.tree().activeVoxelCount() == 0) return;
+
+    const double voxel = grid.voxelSize()[0];
+    // Cells of at least 2R: every voxel a splat reaches has its particle's cell as a corner.
+    std::optional<CopyOriginField> field;
+    if (particles.copyOrigins != nullptr)
+        field.emplace(particles.xyz, particles.sources, particles.count, particles.copyOrigins,
+                      particles.copyCount, std::max(2.0 * radius, voxel));
+    if (checkCancelled) checkCancelled();
+
+    const auto amplitude = static_cast<float>(s.amplitude);
+    openvdb::tree::LeafManager<openvdb::FloatTree> leaves(grid.tree());
+    leaves.foreach([&](LeafT& leaf, std::size_t) {
+        std::optional<CopyOriginField::Block> block;
+        if (field) {
+            const openvdb::CoordBBox box = leaf.getNodeBoundingBox();
+            double lo[3], hi[3];
+            for (int a = 0; a < 3; ++a) {
+                lo[a] = box.min()[a] * voxel;
+                hi[a] = box.max()[a] * voxel;
+            }
+            block = field->block(lo, hi);
+        }
+        for (auto it = leaf.beginValueOn(); it; ++it) {
+            const float v = *it;
+            if (!(v < 1.0f)) continue;  // the interior keeps its density
+            const openvdb::Coord c = it.getCoord();
+            double x[3] = {c.x() * voxel, c.y() * voxel, c.z() * voxel};
+            double origin[3] = {0.0, 0.0, 0.0};
+            // Every voxel a splat reached has an origin; a grid changed since (filtered,
+            // combined) may have others, which keep world coordinates.
+            if (block && !block->origin(x, origin)) origin[0] = origin[1] = origin[2] = 0.0;
+            for (int a = 0; a < 3; ++a) x[a] -= origin[a];
+            const float e = amplitude * (1.0f - perlinWorleyFbm(x, s.frequency, s.octaves));
+            const float eroded = erode(v, e);
+            if (eroded > 0.0f) {
+                it.setValue(eroded);
+            } else {
+                it.setValue(0.0f);
+                it.setValueOff();  // the background, inactive: only sparser
+            }
+        }
+    });
+    openvdb::tools::pruneInactive(grid.tree());  // leaves eroded away entirely
+    if (checkCancelled) checkCancelled();
+}
+
+}  // namespace cg::algo
