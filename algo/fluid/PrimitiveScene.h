@@ -25,7 +25,7 @@ struct PrimitiveSettings {
     int maxParticles = 4000000;    ///< refuse boxes that would need more fluid particles
 };
 
-/// The default settings (PrimitiveSim's defaults): 57,344 fluid particles, 150 frames of 2 s
+/// The default settings (PrimitiveSim's defaults): 58,870 fluid particles, 150 frames of 2 s
 /// (see docs/primitive.md for what they give).
 PrimitiveSettings defaultPrimitiveSettings();
 

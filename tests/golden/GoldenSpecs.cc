@@ -13,9 +13,9 @@ void set(Graph& g, const std::string& node, const std::string& param, const nloh
     g.setParam(node, param, value, "golden " + node + "." + param);
 }
 
-/// A primitive of 644 cloud particles in about a second and a half: an eighth of the default
-/// box (half as wide and high, the same lattice) over 40 frames; the source, scaled with the
-/// box, is saturated so that it condenses before it reaches the lid.
+/// A primitive of 644 cloud particles in about a second and a half: a small box (400 x 400 x
+/// 700 m, the default lattice) over 40 frames; the source, half the default's, is saturated
+/// so that it condenses before it reaches the lid.
 void smallPrimitive(Graph& g, const std::string& node)
 {
     set(g, node, "frames", 40);
