@@ -33,15 +33,6 @@ public:
         s.clamp = p.getBool("clamp");
         s.maxBytes = util::nodeAllocationLimitBytes();
 
-        openvdb::FloatGrid::Ptr grid;
-        try {
-            grid = algo::voxelizeParticles(particles->positions.data(), particles->size(), s,
-                                           [&] { ctx.checkCancelled(); });
-        } catch (const algo::VoxelizeTooLarge& e) {
-            throw InputError(ctx.nodeId() + "/params/voxelSize", e.what());
-        } catch (const std::invalid_argument& e) {
-            throw InputError(ctx.nodeId(), e.what());
-        }
         algo::SurfaceDetailSettings detail;
         detail.amplitude = p.getFloat("detailAmplitude");
         detail.frequency = p.getFloat("detailFrequency") / s.radius;
@@ -50,7 +41,17 @@ public:
             particles->positions.data(), particles->sources.data(), particles->size(),
             particles->copyOrigins.empty() ? nullptr : particles->copyOrigins.data(),
             particles->copyOrigins.size() / 3};
-        algo::erodeSurface(*grid, detailParticles, s.radius, detail, [&] { ctx.checkCancelled(); });
+
+        openvdb::FloatGrid::Ptr grid;
+        try {
+            grid = algo::voxelizeParticles(particles->positions.data(), particles->size(), s,
+                                           [&] { ctx.checkCancelled(); });
+            algo::erodeSurface(*grid, detailParticles, s.radius, detail, [&] { ctx.checkCancelled(); });
+        } catch (const algo::VoxelizeTooLarge& e) {
+            throw InputError(ctx.nodeId() + "/params/voxelSize", e.what());
+        } catch (const std::invalid_argument& e) {
+            throw InputError(ctx.nodeId(), e.what());
+        }
         algo::filterVolume(*grid, algo::voxelFilterFromName(p.getString("filter")),
                            static_cast<int>(p.getInt("filterWidth")),
                            static_cast<int>(p.getInt("filterIterations")));
