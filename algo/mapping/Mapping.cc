@@ -124,10 +124,6 @@ void cloudParticlePosition(const Source& src, const float* origin, std::uint32_t
     for (int k = 0; k < 3; ++k) out[k] = at[k] + r * f[k];
 }
 
-}  // namespace
-
-namespace {
-
 /// sourceOrigins with the primitive's drift given, so a caller that needs the drift too
 /// measures it once.
 std::vector<float> originsWithDrift(const SourceTable& table, int frame, const CondensationView& c,
@@ -357,13 +353,12 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
 
 namespace {
 
-/// What every chunk of frame t needs: the origin of each source (Eq. 12) and the prefix sums
-/// of the cluster sizes (Eq. 13), so particle q belongs to the source j with
-/// offset[j] <= q < offset[j + 1].
+/// What every chunk of frame t needs: where each source's copy stands (copyOrigin: Eq. 12's
+/// origin plus its drift; zero before the source starts) and the prefix sums of the cluster
+/// sizes (Eq. 13), so particle q belongs to the source j with offset[j] <= q < offset[j + 1].
 struct FramePlan {
     std::uint32_t stride = 1;  ///< k of thinned copies
-    float drift[3] = {0.0f, 0.0f, 0.0f};  ///< the primitive's drift (primitiveDrift)
-    std::vector<float> origins;
+    std::vector<float> copyOrigins;
     std::vector<std::uint64_t> offset;
     std::uint64_t total() const { return offset.back(); }
 };
@@ -373,9 +368,16 @@ FramePlan planFrame(const SourceTable& table, int frame, const CondensationView&
 {
     FramePlan plan;
     plan.stride = copyStride(s, p);
-    primitiveDrift(p, plan.drift);
-    plan.origins = originsWithDrift(table, frame, c, p, s, plan.drift);
+    float drift[3];
+    primitiveDrift(p, drift);
+    // In place: each source's origin becomes its copy's origin (a source not started has
+    // origin zero and no drift, so it stays zero).
+    plan.copyOrigins = originsWithDrift(table, frame, c, p, s, drift);
     const std::size_t n = table.sources.size();
+    for (std::size_t j = 0; j < n; ++j) {
+        float* o = &plan.copyOrigins[3 * j];
+        copyOrigin(table.sources[j], o, primitiveTime(table.sources[j], frame, s, p), p, s, drift, o);
+    }
     plan.offset.assign(n + 1, 0);
     for (std::size_t j = 0; j < n; ++j) plan.offset[j + 1] = plan.offset[j] + clusterSize(table.sources[j], frame, s, p);
     return plan;
@@ -410,16 +412,13 @@ void copySlice(const float* __restrict a, const float* __restrict b, float w, bo
     }
 }
 
-/// Eq. 10 for particles [i0, i1) of source j's copy.
-void sourceSlice(const Source& src, const float* sourceOrigin, int frame, const PrimitiveView& p,
-                 const MappingSettings& s, const FramePlan& plan, std::uint64_t i0, std::uint64_t i1,
+/// Eq. 10 for particles [i0, i1) of the copy of `src` that stands at `origin` (copyOrigin).
+void sourceSlice(const Source& src, const float* origin, int frame, const PrimitiveView& p,
+                 const MappingSettings& s, std::uint32_t stride, std::uint64_t i0, std::uint64_t i1,
                  float* __restrict out)
 {
-    const std::uint32_t stride = plan.stride;
     const double time = primitiveTime(src, frame, s, p);
     const auto scale = static_cast<float>(s.metresPerPrimitiveMetre * src.scale);
-    float origin[3];
-    copyOrigin(src, sourceOrigin, time, p, s, plan.drift, origin);
     const double whole = std::floor(time);
     const bool past = whole >= p.frameCount - 1;
     const int f = past ? p.frameCount - 1 : static_cast<int>(whole);
@@ -445,7 +444,7 @@ void fillRange(const FramePlan& plan, const SourceTable& table, int frame, const
         const std::uint64_t end = std::min(last, offset[j + 1]);
         if (end == q) continue;  // a source not started yet: no cluster, no frame to look up
         const Source& src = table.sources[j];
-        sourceSlice(src, &plan.origins[3 * j], frame, p, s, plan, q - offset[j], end - offset[j],
+        sourceSlice(src, &plan.copyOrigins[3 * j], frame, p, s, plan.stride, q - offset[j], end - offset[j],
                     xyz + 3 * (q - first));
         if (levels != nullptr) std::fill_n(levels + (q - first), end - q, src.level);
         if (sources != nullptr) std::fill_n(sources + (q - first), end - q, static_cast<std::uint32_t>(j));
@@ -529,7 +528,7 @@ CloudParticleArrays generateCloudParticles(const SourceTable& table, int frame,
     const auto n = static_cast<std::size_t>(plan.total());
     // Uninitialised: each chunk's writer touches its own pages first (no zero-fill on one thread).
     CloudParticleArrays out{UninitArray<float>(3 * n), UninitArray<std::uint8_t>(n), UninitArray<std::uint32_t>(n),
-                            UninitArray<float>(3 * table.sources.size())};
+                            UninitArray<float>(plan.copyOrigins)};
     CloudChunkOptions o;
     o.levels = o.sources = true;
     o.positionsOut = out.positions.data();
@@ -537,15 +536,6 @@ CloudParticleArrays generateCloudParticles(const SourceTable& table, int frame,
     o.sourcesOut = out.sources.data();
     o.checkCancelled = checkCancelled;
     runChunks(plan, table, frame, p, s, {}, o);
-    for (std::size_t j = 0; j < table.sources.size(); ++j) {
-        const Source& src = table.sources[j];
-        float* o3 = &out.copyOrigins[3 * j];
-        if (frame < src.startFrame) {  // no copy yet, no particle points here
-            o3[0] = o3[1] = o3[2] = 0.0f;
-            continue;
-        }
-        copyOrigin(src, &plan.origins[3 * j], primitiveTime(src, frame, s, p), p, s, plan.drift, o3);
-    }
     return out;
 }
 

@@ -20,6 +20,8 @@ constexpr std::size_t kChunk = std::size_t(1) << 16;
 
 int cellOf(double x, double cellSize) { return static_cast<int>(std::floor(x / cellSize)); }
 
+bool keyable(std::int64_t cell) { return cell >= -kKeyBias && cell < kKeyBias; }
+
 }  // namespace
 
 std::size_t CopyOriginField::KeyHash::operator()(std::uint64_t k) const
@@ -32,7 +34,7 @@ std::uint64_t CopyOriginField::key(int i, int j, int k)
     const std::int64_t c[3] = {i, j, k};
     std::uint64_t out = 0;
     for (const std::int64_t v : c) {
-        if (v < -kKeyBias || v >= kKeyBias)
+        if (!keyable(v))
             throw std::invalid_argument("copy origin field: a particle lies beyond 2^20 cells");
         out = (out << kKeyBits) | static_cast<std::uint64_t>(v + kKeyBias);
     }
@@ -108,9 +110,7 @@ CopyOriginField::Block CopyOriginField::block(const double lo[3], const double h
         for (int j = 0; j < b.mDim[1]; ++j)
             for (int k = 0; k < b.mDim[2]; ++k, ++n) {
                 const int c[3] = {b.mLo[0] + i, b.mLo[1] + j, b.mLo[2] + k};
-                if (c[0] < -kKeyBias || c[0] >= kKeyBias || c[1] < -kKeyBias || c[1] >= kKeyBias ||
-                    c[2] < -kKeyBias || c[2] >= kKeyBias)
-                    continue;  // beyond every particle: empty
+                if (!keyable(c[0]) || !keyable(c[1]) || !keyable(c[2])) continue;  // beyond every particle: empty
                 const auto it = mIndex.find(key(c[0], c[1], c[2]));
                 if (it != mIndex.end()) b.mCells[n] = mCells[it->second];
             }

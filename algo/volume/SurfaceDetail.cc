@@ -36,7 +36,7 @@ void erodeSurface(openvdb::FloatGrid& grid, const DetailParticles& particles, do
     if (s.octaves < 1 || s.octaves > 8)
         throw std::invalid_argument("surface detail: octaves must lie in 1..8");
     if (!(radius > 0.0)) throw std::invalid_argument("surface detail: radius must be > 0");
-    if (s.amplitude == 0.0 || grid.tree().activeVoxelCount() == 0) return;
+    if (s.amplitude == 0.0 || grid.empty()) return;
 
     const double voxel = grid.voxelSize()[0];
     // Cells of at least 2R: every voxel a splat reaches has its particle's cell as a corner.
