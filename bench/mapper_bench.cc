@@ -196,7 +196,11 @@ const Scene& scene()
 struct Condensation {
     std::vector<float> x, y, z;
     std::vector<std::int32_t> condensed;
-    Condensation() : x(kCondensation), y(kCondensation), z(kCondensation), condensed(kCondensation) {}
+    std::vector<float> condensedZ;
+    Condensation()
+        : x(kCondensation), y(kCondensation), z(kCondensation), condensed(kCondensation), condensedZ(kCondensation)
+    {
+    }
     CondensationView at(const Scene& sc, int t)
     {
         for (std::size_t k = 0; k < kCondensation; ++k) {
@@ -206,8 +210,9 @@ struct Condensation {
             z[k] = t < c ? 1000.0f * static_cast<float>(t) / static_cast<float>(c)
                          : 1000.0f + static_cast<float>(t - c);
             condensed[k] = t >= c ? c : -1;
+            condensedZ[k] = t >= c ? 1000.0f : NAN;
         }
-        return {x.data(), y.data(), z.data(), condensed.data(), kCondensation};
+        return {x.data(), y.data(), z.data(), condensed.data(), condensedZ.data(), kCondensation};
     }
 };
 

@@ -73,6 +73,8 @@ std::vector<float> noiseMap(const NoiseMapSettings& s, const std::function<void(
         throw std::invalid_argument("noiseMap: centreBias must be in [0, 1]");
     if (!(s.centreRadius > 0.0) || !std::isfinite(s.centreRadius))
         throw std::invalid_argument("noiseMap: centreRadius must be finite and > 0");
+    if (!(s.largestWavelength >= 0.0) || !std::isfinite(s.largestWavelength))
+        throw std::invalid_argument("noiseMap: largestWavelength must be finite and >= 0");
 
     const auto cancel = [&] {
         if (checkCancelled) checkCancelled();
@@ -119,7 +121,9 @@ std::vector<float> noiseMap(const NoiseMapSettings& s, const std::function<void(
 
     // 3. Amplitude filter 1 / f^(beta/2): power 1 / f^beta. The r2c half spectrum holds
     //    kx = 0 .. nx/2; ky runs 0 .. ny-1 and is signed by wrapping the upper half.
+    //    Frequencies under fMin (wavelengths over largestWavelength) are dropped.
     const double halfBeta = 0.5 * s.beta;
+    const double fMin2 = s.largestWavelength > 0.0 ? 1.0 / (s.largestWavelength * s.largestWavelength) : 0.0;
     for (std::size_t j = 0; j < ny; ++j) {
         if ((j * nxc) % kCancelEvery < nxc) cancel();
         const double ky = (2 * j <= ny) ? double(j) : double(j) - double(ny);
@@ -128,7 +132,7 @@ std::vector<float> noiseMap(const NoiseMapSettings& s, const std::function<void(
             const double fx = double(i) / double(nx);
             const double f2 = fx * fx + fy * fy;
             // f^(-beta/2) = (f^2)^(-beta/4); the DC coefficient carries only the mean: drop it.
-            const double gain = (f2 > 0.0) ? std::pow(f2, -0.5 * halfBeta) : 0.0;
+            const double gain = (f2 > 0.0 && f2 >= fMin2) ? std::pow(f2, -0.5 * halfBeta) : 0.0;
             fftw_complex& c = spec[j * nxc + i];
             c[0] *= gain;
             c[1] *= gain;

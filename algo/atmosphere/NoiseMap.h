@@ -9,7 +9,9 @@
 ///  3. Each coefficient is scaled by 1 / f^(beta/2), so the power spectrum falls as 1/f^beta,
 ///     with f = sqrt((kx/nx)^2 + (ky/ny)^2) in cycles per cell and kx, ky the signed
 ///     frequency indices. Frequencies are in cycles per cell on both axes, so a non-square
-///     map has an isotropic spectrum on the ground. The DC coefficient is set to 0.
+///     map has an isotropic spectrum on the ground. The DC coefficient is set to 0, and
+///     so is every coefficient with a wavelength 1/f longer than `largestWavelength` cells
+///     when that is > 0 (ours, not the paper's: a cumulus field has a spacing).
 ///  4. Inverse FFT, then min-max normalisation to [0, 1]: the smallest cell is exactly 0 and
 ///     the largest exactly 1. A constant field (only a 1x1 map) becomes 0.5 everywhere.
 ///  5. Optional centre bias (Figure 6: "high density at the center"), applied to the
@@ -35,6 +37,11 @@ struct NoiseMapSettings {
     std::uint64_t seed = 0;     ///< white-noise seed
     double centreBias = 0.0;    ///< b in [0, 1]: 0 = pure noise, 1 = full Gaussian falloff
     double centreRadius = 0.5;  ///< R as a fraction of the half-diagonal, > 0
+    /// Wavelengths longer than this many cells are removed; 0 keeps them all (the paper).
+    /// A pure 1/f^beta map puts most of its power in its largest scale, which gathers the
+    /// dense cells into one or two regions; without it the dense cells form separate
+    /// patches about half this wavelength across, like the cells of a cumulus field.
+    double largestWavelength = 0.0;
 };
 
 /// Returns nx * ny values in [0, 1], row-major (index = iy * nx + ix), min exactly 0 and max

@@ -8,7 +8,7 @@ std::optional<float> condensationLevel(const CondensationView& c)
 {
     std::optional<float> lowest;
     for (std::size_t i = 0; i < c.count; ++i)
-        if (c.condensedFrame[i] >= 0 && (!lowest || c.z[i] < *lowest)) lowest = c.z[i];
+        if (c.condensedFrame[i] >= 0 && (!lowest || c.condensedZ[i] < *lowest)) lowest = c.condensedZ[i];
     return lowest;
 }
 

@@ -9,9 +9,9 @@
 
 namespace cg::algo {
 
-/// The condensation level at this frame: the lowest condensation particle. A particle
-/// condenses at its own condensation level and rises afterwards, so the lowest one is the
-/// freshest base; nullopt while nothing has condensed.
+/// The condensation level at this frame: the lowest height at which a condensation particle
+/// condensed (each condenses at its own level, which a moisture map or a sounding varies);
+/// nullopt while nothing has condensed.
 std::optional<float> condensationLevel(const CondensationView& c);
 
 /// Keeps the particles whose height is at least zMin, in their order (levels and sources

@@ -136,7 +136,8 @@ std::vector<float> originsWithDrift(const SourceTable& table, int frame, const C
         float* o = &origins[3 * j];
         if (frame < src.startFrame) continue;  // not started yet: no cluster, no origin
         if (src.level == 1) {  // Eq. 12, L = 1: the condensation particle itself
-            o[0] = c.x[src.parent], o[1] = c.y[src.parent], o[2] = c.z[src.parent];
+            o[0] = c.x[src.parent], o[1] = c.y[src.parent];
+            o[2] = s.level1Origin == Level1Origin::CondensationLevel ? c.condensedZ[src.parent] : c.z[src.parent];
             continue;
         }
         // Eq. 12, L >= 2: the parent cloud particle, placed by Eq. 10 (as sourceSlice does).

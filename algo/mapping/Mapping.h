@@ -64,6 +64,7 @@ struct CondensationView {
     const float* y = nullptr;
     const float* z = nullptr;
     const std::int32_t* condensedFrame = nullptr;  ///< -1 while still vapour
+    const float* condensedZ = nullptr;             ///< height at condensation; NaN while vapour
     std::size_t count = 0;
 };
 
@@ -100,10 +101,23 @@ enum class PastLastFrame : std::uint8_t {
     Hold,
 };
 
+/// Where a level 1 copy stands (Eq. 12, L = 1).
+enum class Level1Origin : std::uint8_t {
+    /// The paper: on its condensation particle, which keeps rising after it condensed.
+    Particle,
+    /// Ours: below the particle, at the height where it condensed (its condensation level),
+    /// following it across the ground. The copy's own primitive already grows upwards from
+    /// its base; riding the rising particle as well lifts each copy's base by however far
+    /// its particle has risen since, which scatters the bases over hundreds of metres where
+    /// a cumulus has a flat one.
+    CondensationLevel,
+};
+
 /// Frames over which the drift is measured: long enough to average out the puff's churning.
 inline constexpr int kDriftFrames = 10;
-/// The drift's decay time, primitive frames (value ours).
-inline constexpr double kDriftDecayFrames = 30.0;
+/// The drift's decay time, primitive frames (value ours: 30 let the tops of Figures 1 and 7.A
+/// stand still in their last tenths once level 1 copies stood on the condensation level).
+inline constexpr double kDriftDecayFrames = 60.0;
 
 struct MappingSettings {
     int maxLevel = 5;                           ///< cap on L_max
@@ -124,6 +138,7 @@ struct MappingSettings {
     std::uint32_t particlesPerCopy = 0;
     ParentRule parentRule = ParentRule::PerSource;  ///< Eq. 15's draw of a parent particle
     PastLastFrame pastLastFrame = PastLastFrame::Drift;
+    Level1Origin level1Origin = Level1Origin::Particle;
 };
 
 /// k, the fluid-id stride of thinned copies: ceil(N_f(last) / K), at least 1, at most 65,536

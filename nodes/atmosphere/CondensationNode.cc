@@ -42,25 +42,28 @@ public:
         const Atmosphere& atmosphere = data->atmosphere;
         const auto previous = ctx.previous<CondensationData>("condensation");
         std::optional<algo::CondensationState> before;
-        if (previous) before = algo::CondensationState{previous->condensedFrame, previous->firstFrame, 0};
+        if (previous)
+            before = algo::CondensationState{previous->condensedFrame, previous->condensedHeight,
+                                             previous->firstFrame, 0};
         algo::CondensationState now;
         try {
             const auto frame = static_cast<std::int32_t>(ctx.frame());
             if (atmosphere.profile || !particles->statics->dewpointOffset.empty()) {
                 const std::vector<float> dewpoints = particleDewpoints(*data, *particles);
                 now = algo::condenseStep(before ? &*before : nullptr, particles->temperature.data(),
-                                         dewpoints.data(), particles->size(), frame);
+                                         dewpoints.data(), particles->z.data(), particles->size(), frame);
             } else {
                 now = algo::condenseStep(before ? &*before : nullptr, particles->temperature.data(),
-                                         particles->size(), atmosphere.dewPoint, frame);
+                                         particles->z.data(), particles->size(), atmosphere.dewPoint, frame);
             }
         } catch (const std::invalid_argument& e) {
             throw InputError(ctx.nodeId(), e.what());
         }
         ctx.setOutput("firstFrame", std::make_shared<IntData>(now.firstFrame));
         ctx.setOutput("count", std::make_shared<IntData>(static_cast<std::int64_t>(now.count)));
-        ctx.setOutput("condensation", std::make_shared<CondensationData>(
-                                          particles, std::move(now.condensedFrame), now.firstFrame));
+        ctx.setOutput("condensation",
+                      std::make_shared<CondensationData>(particles, std::move(now.condensedFrame),
+                                                         std::move(now.condensedHeight), now.firstFrame));
     }
 };
 
@@ -73,12 +76,13 @@ void registerCondensationNode(Registry& registry)
     d.category = "atmosphere";
     d.doc = "Marks vapour particles whose temperature T_v has fallen below the dew point T_dp as "
             "condensation particles (pseudocode lines 9-14) and remembers the frame at which each "
-            "condensed; once condensed, a particle stays a condensation particle. Also gives the "
+            "condensed and its height then (its condensation level); once condensed, a particle stays a condensation particle. Also gives the "
             "frame at which the first condensation particle appeared: t_s[1] of Sec. 5.2. A "
             "simulation: each frame builds on the previous one. Ours (issue 14): with an "
             "Atmosphere profile each particle has its own dew point, the profile's at its start "
             "height falling 1.8 degC/km as it rises, so it condenses at its lifting condensation "
             "level; a VapourEmitter moisture map adds each particle's perturbation.";
+    d.version = 2;  // 2: the condensation height of each particle
     d.simulation = true;
     d.inputs = {port("particles", "VapourParticles", "the particles at this frame"),
                 port("atmosphere", "Atmosphere", "the environment (its dew point T_dp)")};

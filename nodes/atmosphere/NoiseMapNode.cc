@@ -31,6 +31,7 @@ public:
         s.seed = static_cast<std::uint64_t>(p.getInt("seed"));
         s.centreBias = p.getFloat("centreBias");
         s.centreRadius = p.getFloat("centreRadius");
+        s.largestWavelength = p.getFloat("largestWavelength");
         std::vector<float> values = algo::noiseMap(s, [&ctx] { ctx.checkCancelled(); });
         ctx.setOutput("map", std::make_shared<Map2DData>(s.nx, s.ny, p.getFloat("cellSize"),
                                                          std::move(values)));
@@ -52,6 +53,8 @@ void registerNoiseMapNode(Registry& registry)
         "cell on both axes, so non-square maps stay isotropic; mean removed), then normalised "
         "to exactly [0, 1]. An optional centre bias (ours, for Figure 6's \"high density at the "
         "center\") multiplies the map by (1 - b) + b exp(-(r/R)^2) and normalises again. "
+        "Also ours: largestWavelength drops the scales longer than it, so the dense cells form "
+        "separate patches (a cumulus field's spacing) instead of one or two continents. "
         "Frame-independent: cooks once per animation; identical for any thread count.";
     d.outputs = {port("map", "Map2D",
                       "fNoise(ix, iy) in [0, 1] (min 0, max 1), row iy = 0 at the ground's y = 0")};
@@ -73,7 +76,13 @@ void registerNoiseMapNode(Registry& registry)
                    0.0, 1.0),
         floatParam("centreRadius", 0.5, "",
                    "R of the centre Gaussian as a fraction of the half-diagonal (ours)", 0.01,
-                   10.0)};
+                   10.0),
+        floatParam("largestWavelength", 0.0, "cells",
+                   "ours: Fourier components with a longer wavelength are removed, so dense "
+                   "patches are about half of it across and spaced about it apart (a cumulus "
+                   "field's spacing, a few boundary-layer depths); 0 keeps every scale (the "
+                   "paper)",
+                   0.0, 1e6)};
     d.validate = [](const ParamSet& p, const ParamChecker& check) {
         check.checkAllocation("width", {p.getInt("width"), p.getInt("height")}, kBytesPerCell);
     };

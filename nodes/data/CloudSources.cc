@@ -56,6 +56,9 @@ algo::MappingSettings readSettings(ByteReader& in)
         static_cast<std::uint64_t>(checks::intIn(in.u64(), 1, L::kMaxSources, kType, "maxSources"));
     s.particlesPerCopy = static_cast<std::uint32_t>(
         checks::uintUpTo(in.u64(), L::kMaxParticlesPerCopy, kType, "particlesPerCopy"));
+    s.parentRule = static_cast<algo::ParentRule>(checks::uintUpTo(in.u64(), 1, kType, "parentRule"));
+    s.pastLastFrame = static_cast<algo::PastLastFrame>(checks::uintUpTo(in.u64(), 1, kType, "pastLastFrame"));
+    s.level1Origin = static_cast<algo::Level1Origin>(checks::uintUpTo(in.u64(), 1, kType, "level1Origin"));
     return s;
 }
 
@@ -113,6 +116,9 @@ bool CloudSourcesData::serialize(ByteWriter& out) const
     out.u64(s.seed);
     out.u64(s.maxSources);
     out.u64(s.particlesPerCopy);
+    for (auto choice : {static_cast<std::uint8_t>(s.parentRule), static_cast<std::uint8_t>(s.pastLastFrame),
+                        static_cast<std::uint8_t>(s.level1Origin)})
+        out.u64(choice);
     return true;
 }
 

@@ -60,13 +60,15 @@ std::shared_ptr<const VapourParticlesData> readParticles(ByteReader& in, const c
                                                  std::move(z), std::move(vz), std::move(t));
 }
 
-/// Condensation frames are -1 (still vapour) or the frame a particle condensed, and the first
-/// condensation frame is the earliest of them (-1 while there is none).
+/// Condensation frames are -1 (still vapour) or the frame a particle condensed, with a finite
+/// height exactly when it condensed, and the first condensation frame is the earliest of them
+/// (-1 while there is none).
 DataPtr readCondensation(ByteReader& in)
 {
     constexpr const char* kType = "Condensation";
     auto particles = readParticles(in, kType);
     auto frames = in.podVector<std::int32_t>();
+    auto heights = in.podVector<float>();
     const auto first = static_cast<std::int32_t>(
         checks::intIn(in.u64(), -1, checks::kMaxFrame, kType, "first frame"));
     std::int64_t earliest = -1;
@@ -75,12 +77,17 @@ DataPtr readCondensation(ByteReader& in)
             checks::refuse(kType, "particle " + std::to_string(i) + " condensed at frame " +
                                       std::to_string(frames[i]));
         if (frames[i] >= 0 && (earliest < 0 || frames[i] < earliest)) earliest = frames[i];
+        if (i < heights.size() && std::isfinite(heights[i]) != (frames[i] >= 0))
+            checks::refuse(kType, "particle " + std::to_string(i) + " has condensation height " +
+                                      std::to_string(heights[i]) + " at condensation frame " +
+                                      std::to_string(frames[i]));
     }
     if (first != earliest)
         checks::refuse(kType, "first condensation frame " + std::to_string(first) +
                                   " but the earliest is " + std::to_string(earliest));
-    // The constructor checks that there is one frame per particle.
-    return std::make_shared<CondensationData>(std::move(particles), std::move(frames), first);
+    // The constructor checks that there is one frame and one height per particle.
+    return std::make_shared<CondensationData>(std::move(particles), std::move(frames), std::move(heights),
+                                              first);
 }
 
 }  // namespace
@@ -140,10 +147,13 @@ std::shared_ptr<const VapourParticlesData> VapourParticlesData::deserialize(Byte
 }
 
 CondensationData::CondensationData(std::shared_ptr<const VapourParticlesData> particles_,
-                                   std::vector<std::int32_t> condensedFrame_, std::int32_t firstFrame_)
-    : particles(std::move(particles_)), condensedFrame(std::move(condensedFrame_)), firstFrame(firstFrame_)
+                                   std::vector<std::int32_t> condensedFrame_,
+                                   std::vector<float> condensedHeight_, std::int32_t firstFrame_)
+    : particles(std::move(particles_)), condensedFrame(std::move(condensedFrame_)),
+      condensedHeight(std::move(condensedHeight_)), firstFrame(firstFrame_)
 {
-    if (!particles || condensedFrame.size() != particles->size())
+    if (!particles || condensedFrame.size() != particles->size() ||
+        condensedHeight.size() != particles->size())
         throw std::invalid_argument("Condensation: arrays differ in length");
 }
 
@@ -155,13 +165,15 @@ std::size_t CondensationData::condensedCount() const
 
 std::size_t CondensationData::byteSize() const
 {
-    return sizeof(*this) + condensedFrame.size() * sizeof(std::int32_t) + particles->byteSize();
+    return sizeof(*this) + condensedFrame.size() * sizeof(std::int32_t) +
+           condensedHeight.size() * sizeof(float) + particles->byteSize();
 }
 
 bool CondensationData::serialize(ByteWriter& out) const
 {
     particles->serialize(out);
     out.podVector(condensedFrame);
+    out.podVector(condensedHeight);
     out.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(firstFrame)));
     return true;
 }

@@ -65,12 +65,16 @@ private:
 class CondensationData final : public Data {
 public:
     CondensationData(std::shared_ptr<const VapourParticlesData> particles,
-                     std::vector<std::int32_t> condensedFrame, std::int32_t firstFrame);
+                     std::vector<std::int32_t> condensedFrame, std::vector<float> condensedHeight,
+                     std::int32_t firstFrame);
 
     /// The particles at this frame.
     const std::shared_ptr<const VapourParticlesData> particles;
     /// Frame at which particle i first had T_v < T_dp; -1 while it is still vapour.
     const std::vector<std::int32_t> condensedFrame;
+    /// Height z of particle i at the frame it condensed (its condensation level); NaN while
+    /// it is still vapour.
+    const std::vector<float> condensedHeight;
     /// Frame at which the first condensation particle appeared (t_s[1]); -1 if none yet.
     const std::int32_t firstFrame;
 

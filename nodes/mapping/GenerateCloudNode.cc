@@ -52,6 +52,7 @@ void registerGenerateCloudNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "GenerateCloud";
+    d.version = 2;  // 2: evaporateBelowBase cuts at the lowest condensation height, not particle
     d.category = "mapping";
     // A frame's particles take longer to store and read back than to generate (and would
     // keep every frame's particles on disk, which the mapper's memory model rules out).
@@ -76,9 +77,9 @@ void registerGenerateCloudNode(Registry& registry)
                          "(17 bytes each; value ours)", 1, 4e9),
                 boolParam("evaporateBelowBase", false,
                           "ours: drop the cloud particles under the condensation level, the "
-                          "lowest condensation particle at this frame (a particle condenses at "
-                          "its condensation level and rises afterwards), as real cloud droplets "
-                          "evaporate below the base; off keeps every particle (the paper)")};
+                          "lowest height at which a condensation particle condensed, as real "
+                          "cloud droplets evaporate below the base; off keeps every particle "
+                          "(the paper)")};
     d.create = [] { return std::make_unique<GenerateCloudNode>(); };
     registry.addNode(std::move(d));
 }

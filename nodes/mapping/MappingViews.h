@@ -17,6 +17,7 @@ inline algo::CondensationView condensationView(const CondensationData& c)
     v.y = c.particles->ys().data();
     v.z = c.particles->z.data();
     v.condensedFrame = c.condensedFrame.data();
+    v.condensedZ = c.condensedHeight.data();
     v.count = c.particles->size();
     return v;
 }

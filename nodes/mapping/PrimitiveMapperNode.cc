@@ -37,6 +37,9 @@ algo::MappingSettings settingsFrom(const CookContext& ctx)
                                                             : algo::ParentRule::PerSource;
     s.pastLastFrame = p.getString("pastLastFrame") == "hold" ? algo::PastLastFrame::Hold
                                                               : algo::PastLastFrame::Drift;
+    s.level1Origin = p.getString("level1Origin") == "condensationLevel"
+                         ? algo::Level1Origin::CondensationLevel
+                         : algo::Level1Origin::Particle;
     return s;
 }
 
@@ -77,7 +80,9 @@ void registerPrimitiveMapperNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "PrimitiveMapper";
-    d.version = 3;  // 2: source records carry the copy phase; 3: Eq. 15 per source, drift
+    // 2: source records carry the copy phase; 3: Eq. 15 per source, drift; 4: the table keeps
+    // parentRule, pastLastFrame and level1Origin (a table read back from disk lost the first two)
+    d.version = 4;
     d.category = "mapping";
     d.doc =
         "The recursive mapping of Sec. 5.2 (pseudocode lines 15-28). Each frame t, every active "
@@ -160,6 +165,12 @@ void registerPrimitiveMapperNode(Registry& registry)
                     "its last 10 frames, so grown turrets keep rising to the end of the "
                     "animation; 'hold' freezes it (before version 3)",
                     {"drift", "hold"}),
+        stringParam("level1Origin", "particle",
+                    "where a level 1 copy stands: 'particle' (the paper: on its condensation "
+                    "particle, which keeps rising) or 'condensationLevel' (ours: below it, at the "
+                    "height where it condensed, so the copies' bases line up on the condensation "
+                    "level and the cloud has a flat base)",
+                    {"particle", "condensationLevel"}),
     };
     d.create = [] { return std::make_unique<PrimitiveMapperNode>(); };
     registry.addNode(std::move(d));

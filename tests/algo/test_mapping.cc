@@ -66,6 +66,7 @@ struct Scene {
     struct Frame {
         std::vector<float> x, y, z;
         std::vector<std::int32_t> condensed;
+        std::vector<float> condensedZ;
     };
     Frame condensation(int frame) const
     {
@@ -76,12 +77,13 @@ struct Scene {
             f.z.push_back(1400.0f + 10.0f * static_cast<float>(frame));
             const int at = 3 + k % 6;
             f.condensed.push_back(frame >= at ? at : -1);
+            f.condensedZ.push_back(frame >= at ? 1400.0f + 10.0f * static_cast<float>(at) : NAN);
         }
         return f;
     }
     static CondensationView view(const Frame& f)
     {
-        return {f.x.data(), f.y.data(), f.z.data(), f.condensed.data(), f.x.size()};
+        return {f.x.data(), f.y.data(), f.z.data(), f.condensed.data(), f.condensedZ.data(), f.x.size()};
     }
 };
 
@@ -110,7 +112,7 @@ void expectedDrift(const Scene& scene, double out[3])
 }
 
 /// P_f[i](s) with linear interpolation, written out independently; past the last frame the
-/// last frame moved by 30 (1 - exp(-(s - last) / 30)) times the drift (PastLastFrame::Drift,
+/// last frame moved by 60 (1 - exp(-(s - last) / 60)) times the drift (PastLastFrame::Drift,
 /// the default).
 void expectedFluid(const Scene& scene, std::uint32_t i, double s, double out[3])
 {
@@ -121,7 +123,7 @@ void expectedFluid(const Scene& scene, std::uint32_t i, double s, double out[3])
         const bool drifting = scene.settings.pastLastFrame == PastLastFrame::Drift;
         for (int k = 0; k < 3; ++k)
             out[k] = scene.primitiveFrames[static_cast<std::size_t>(last)][3 * i + k] +
-                     (drifting ? 30.0 * (1.0 - std::exp(-(s - last) / 30.0)) * drift[k] : 0.0);
+                     (drifting ? 60.0 * (1.0 - std::exp(-(s - last) / 60.0)) * drift[k] : 0.0);
         return;
     }
     const int a = static_cast<int>(std::floor(s));
@@ -140,7 +142,9 @@ void expectedCloudParticle(const Scene& scene, const SourceTable& table, const S
     const Source& src = table.sources[j];
     double origin[3];
     if (src.level == 1) {
-        origin[0] = c.x[src.parent], origin[1] = c.y[src.parent], origin[2] = c.z[src.parent];
+        const bool atCondensation = scene.settings.level1Origin == Level1Origin::CondensationLevel;
+        origin[0] = c.x[src.parent], origin[1] = c.y[src.parent];
+        origin[2] = atCondensation ? c.condensedZ[src.parent] : c.z[src.parent];
     } else {
         expectedCloudParticle(scene, table, c, src.parent, src.parentFluid, t, origin);
     }
@@ -228,10 +232,10 @@ INSTANTIATE_TEST_SUITE_P(Mapping, MappingPastLastFrame,
                          ::testing::Values(PastLastFrame::Drift, PastLastFrame::Hold));
 
 // Frames 20 and 29 are past the primitive's end for every copy started before frame 14.
-TEST_P(MappingPastLastFrame, Eq10To12PositionsMatchTheRecursiveFormula)
+namespace {
+
+void expectPositionsMatchTheRecursiveFormula(const Scene& scene)
 {
-    Scene scene;
-    scene.settings.pastLastFrame = GetParam();
     const MappingRun r = run(scene, 30);
     std::set<int> levelsSeen;
     for (int t : {5, 12, 20, 29}) {
@@ -255,6 +259,43 @@ TEST_P(MappingPastLastFrame, Eq10To12PositionsMatchTheRecursiveFormula)
         EXPECT_EQ(q, out.levels.size());
     }
     EXPECT_TRUE(levelsSeen.count(1) && levelsSeen.count(2));
+}
+
+}  // namespace
+
+TEST_P(MappingPastLastFrame, Eq10To12PositionsMatchTheRecursiveFormula)
+{
+    Scene scene;
+    scene.settings.pastLastFrame = GetParam();
+    expectPositionsMatchTheRecursiveFormula(scene);
+}
+
+TEST(Mapping, Level1CopiesCanStandAtTheirCondensationHeight)
+{
+    Scene scene;
+    scene.settings.level1Origin = Level1Origin::CondensationLevel;
+    expectPositionsMatchTheRecursiveFormula(scene);
+    // The origin follows its particle across the ground and stays at the height it condensed
+    // at, while the particle itself rises 10 m a frame (the paper's origin).
+    const MappingRun r = run(scene, 30);
+    const SourceTable& table = r.tables.back();
+    const auto& c = r.frames.back();
+    const auto origins = sourceOrigins(table, 29, Scene::view(c), scene.primitive(), scene.settings);
+    scene.settings.level1Origin = Level1Origin::Particle;
+    const auto paper = sourceOrigins(table, 29, Scene::view(c), scene.primitive(), scene.settings);
+    int level1 = 0;
+    for (std::size_t j = 0; j < table.sources.size(); ++j) {
+        const Source& src = table.sources[j];
+        if (src.level != 1) continue;
+        ++level1;
+        const int condensed = c.condensed[src.parent];
+        EXPECT_EQ(origins[3 * j], c.x[src.parent]);
+        EXPECT_EQ(origins[3 * j + 1], c.y[src.parent]);
+        EXPECT_EQ(origins[3 * j + 2], 1400.0f + 10.0f * static_cast<float>(condensed));
+        EXPECT_EQ(paper[3 * j + 2], c.z[src.parent]);
+        EXPECT_EQ(paper[3 * j + 2] - origins[3 * j + 2], 10.0f * static_cast<float>(29 - condensed));
+    }
+    EXPECT_GT(level1, 0);
 }
 
 TEST(Mapping, ThinnedCopiesCarryEveryKthParticleFromTheirOwnPhase)

@@ -180,6 +180,50 @@ TEST(NoiseMap, ZeroBiasIsThePlainMap)
     EXPECT_NE(algo::noiseMap(s), plain);
 }
 
+/// The share of a map's power (mean removed) at frequencies under fCut cycles per cell.
+double powerShareBelow(const std::vector<float>& map, int nx, int ny, double fCut)
+{
+    const auto w = static_cast<std::size_t>(nx);
+    const auto h = static_cast<std::size_t>(ny);
+    const std::size_t wc = w / 2 + 1;
+    std::vector<double> real(map.begin(), map.end());
+    std::vector<fftw_complex> spec(h * wc);
+    fftw_plan plan = fftw_plan_dft_r2c_2d(ny, nx, real.data(), spec.data(), FFTW_ESTIMATE);
+    fftw_execute(plan);
+    fftw_destroy_plan(plan);
+    double below = 0.0, total = 0.0;
+    for (std::size_t j = 0; j < h; ++j) {
+        const double fy = ((2 * j <= h) ? double(j) : double(j) - double(h)) / double(h);
+        for (std::size_t i = 0; i < wc; ++i) {
+            const double f = std::hypot(double(i) / double(w), fy);
+            if (f == 0.0) continue;
+            const double p = spec[j * wc + i][0] * spec[j * wc + i][0] + spec[j * wc + i][1] * spec[j * wc + i][1];
+            total += p;
+            if (f < fCut) below += p;
+        }
+    }
+    return below / total;
+}
+
+TEST(NoiseMap, LargestWavelengthRemovesTheLongerScalesOnly)
+{
+    algo::NoiseMapSettings s = settings(128, 96, 4.0, 5);
+    const auto plain = algo::noiseMap(s);
+    // A 1/f^4 map keeps most of its power in its longest waves.
+    EXPECT_GT(powerShareBelow(plain, 128, 96, 1.0 / 24.0), 0.5);
+    s.largestWavelength = 24.0;
+    const auto cut = algo::noiseMap(s);
+    expectUnitRange(cut);
+    // What is left down there is the float rounding of the output.
+    EXPECT_LT(powerShareBelow(cut, 128, 96, 1.0 / 24.0), 1e-9);
+    EXPECT_GT(powerShareBelow(cut, 128, 96, 1.0 / 20.0), 0.01);
+    // 0 is the paper's map, and a wavelength longer than the map removes nothing either.
+    s.largestWavelength = 0.0;
+    EXPECT_EQ(algo::noiseMap(s), plain);
+    s.largestWavelength = 200.0;
+    EXPECT_EQ(algo::noiseMap(s), plain);
+}
+
 TEST(NoiseMap, BadSettingsAreRefused)
 {
     EXPECT_THROW(algo::noiseMap(settings(0, 4, 3.0, 0)), std::invalid_argument);
@@ -191,6 +235,9 @@ TEST(NoiseMap, BadSettingsAreRefused)
     EXPECT_THROW(algo::noiseMap(s), std::invalid_argument);
     s.centreBias = 0.5;
     s.centreRadius = 0.0;
+    EXPECT_THROW(algo::noiseMap(s), std::invalid_argument);
+    s.centreRadius = 0.5;
+    s.largestWavelength = -1.0;
     EXPECT_THROW(algo::noiseMap(s), std::invalid_argument);
 }
 

@@ -226,6 +226,7 @@ struct MappedCopy {
         CondensationView c;
         c.x = &where[0], c.y = &where[1], c.z = &where[2];
         c.condensedFrame = &condensed;
+        c.condensedZ = &where[2];
         c.count = 1;
         return generateCloudParticles(table, frame, c, p, settings);
     }

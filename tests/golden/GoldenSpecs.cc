@@ -28,14 +28,15 @@ void smallPrimitive(Graph& g, const std::string& node)
 
 const ParamSet& paramsOf(const Graph& g, const std::string& node) { return g.nodes()[g.indexOf(node)].params; }
 
-/// Halves the map's resolution on cells twice as large: the same ground, a quarter of the
-/// vapour.
+/// Halves the map's resolution on cells twice as large: the same ground (its largest
+/// wavelength too), a quarter of the vapour.
 void coarserMap(Graph& g)
 {
     const ParamSet& p = paramsOf(g, "noise");
     set(g, "noise", "cellSize", p.getFloat("cellSize") * 2);
     set(g, "noise", "width", p.getInt("width") / 2);
     set(g, "noise", "height", p.getInt("height") / 2);
+    set(g, "noise", "largestWavelength", p.getFloat("largestWavelength") / 2);
 }
 
 /// Voxels twice as large (an eighth of them); the radius in metres stays.

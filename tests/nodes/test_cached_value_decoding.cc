@@ -476,14 +476,28 @@ TEST(CachedValueDecoding, VapourParticlesRoundTripAndRefuseBrokenStatics)
     forged([](VapourFields& g) { g.releaseTime = {1.0f}; }, "particle arrays differ in length");
 }
 
-Bytes condensationBytes(const VapourFields& f, const std::vector<std::int32_t>& frames,
-                        std::int64_t first)
+/// A condensation height for each condensation frame: 1000 m + 10 m a frame, NaN for -1.
+std::vector<float> heightsOf(const std::vector<std::int32_t>& frames)
 {
-    return concat({vapourBytes(f), podBytes(frames), [&] {
+    std::vector<float> heights;
+    for (std::int32_t f : frames) heights.push_back(f >= 0 ? 1000.0f + 10.0f * static_cast<float>(f) : kNaN);
+    return heights;
+}
+
+Bytes condensationBytes(const VapourFields& f, const std::vector<std::int32_t>& frames,
+                        std::int64_t first, const std::vector<float>& heights)
+{
+    return concat({vapourBytes(f), podBytes(frames), podBytes(heights), [&] {
                        ByteWriter out;
                        out.u64(asU64(first));
                        return out.buffer();
                    }()});
+}
+
+Bytes condensationBytes(const VapourFields& f, const std::vector<std::int32_t>& frames,
+                        std::int64_t first)
+{
+    return condensationBytes(f, frames, first, heightsOf(frames));
 }
 
 TEST(CachedValueDecoding, CondensationRoundTripsAndRefusesInconsistentFrames)
@@ -492,13 +506,26 @@ TEST(CachedValueDecoding, CondensationRoundTripsAndRefusesInconsistentFrames)
     std::vector<std::int32_t> frames(f.id.size(), -1);
     frames[2] = 7;
     frames[4] = 5;
-    const auto back = roundTrip(CondensationData(particlesOf(f), frames, 5));
+    const auto back = roundTrip(CondensationData(particlesOf(f), frames, heightsOf(frames), 5));
     EXPECT_EQ(back->condensedFrame, frames);
+    EXPECT_EQ(back->condensedHeight[2], 1070.0f);
+    EXPECT_TRUE(std::isnan(back->condensedHeight[3]));
     EXPECT_EQ(back->firstFrame, 5);
     EXPECT_EQ(back->particles->size(), f.id.size());
     ASSERT_NO_THROW(decode("Condensation",
                            condensationBytes(f, std::vector<std::int32_t>(f.id.size(), -1), -1)));
 
+    auto heights = heightsOf(frames);
+    heights[3] = 1200.0f;  // a height for a particle that has not condensed
+    expectRefused("Condensation", condensationBytes(f, frames, 5, heights),
+                  "particle 3 has condensation height 1200.000000 at condensation frame -1");
+    heights = heightsOf(frames);
+    heights[4] = kInf;
+    expectRefused("Condensation", condensationBytes(f, frames, 5, heights),
+                  "particle 4 has condensation height inf at condensation frame 5");
+    heights = heightsOf(frames);
+    heights.pop_back();
+    expectRefused("Condensation", condensationBytes(f, frames, 5, heights), "differ in length");
     expectRefused("Condensation", condensationBytes(f, frames, 4),
                   "first condensation frame 4 but the earliest is 5");
     expectRefused("Condensation", condensationBytes(f, frames, -1),
@@ -538,7 +565,7 @@ struct MapperScene {
         std::vector<std::int32_t> frames(f.id.size());
         for (std::size_t i = 0; i < frames.size(); ++i)
             frames[i] = i % 5 == 0 ? -1 : static_cast<std::int32_t>(i % 4);
-        condensation = std::make_shared<CondensationData>(particlesOf(f), frames, 0);
+        condensation = std::make_shared<CondensationData>(particlesOf(f), frames, heightsOf(frames), 0);
         settings.maxLevel = 3;
         settings.selectionRatio = {0.25, 0.05};
         settings.levelDelay = 4;
@@ -576,7 +603,13 @@ void patchU64(Bytes& b, std::size_t at, std::uint64_t v)
 TEST(CachedValueDecoding, CloudSourcesRoundTripAMapperRun)
 {
     for (std::uint32_t perCopy : {0u, 12u}) {
-        const MapperScene scene(perCopy);
+        MapperScene scene(perCopy);
+        // The rules that place the particles travel with the table (GenerateCloud reads them).
+        if (perCopy > 0) {
+            scene.settings.parentRule = algo::ParentRule::PerParticle;
+            scene.settings.pastLastFrame = algo::PastLastFrame::Hold;
+            scene.settings.level1Origin = algo::Level1Origin::CondensationLevel;
+        }
         for (int level = 1; level <= 3; ++level) ASSERT_NO_THROW(scene.first(level)) << level;
         ASSERT_FALSE(scene.table.cloudTaken.empty());
         const auto back = roundTrip(CloudSourcesData(scene.table, scene.settings));
@@ -596,6 +629,9 @@ TEST(CachedValueDecoding, CloudSourcesRoundTripAMapperRun)
         EXPECT_EQ(back->settings.selectionRatio, scene.settings.selectionRatio);
         EXPECT_EQ(back->settings.windowLength, scene.settings.windowLength);
         EXPECT_EQ(back->settings.seed, scene.settings.seed);
+        EXPECT_EQ(back->settings.parentRule, scene.settings.parentRule);
+        EXPECT_EQ(back->settings.pastLastFrame, scene.settings.pastLastFrame);
+        EXPECT_EQ(back->settings.level1Origin, scene.settings.level1Origin);
         EXPECT_NO_THROW(
             checkSourcesFit(back->table, back->settings, *scene.condensation, scene.primitive));
     }
@@ -642,6 +678,12 @@ TEST(CachedValueDecoding, CloudSourcesRefuseSettingsTheMapperCannotHave)
                          "over maxSources");
     expectSourcesRefused([](S& s) { s.settings.particlesPerCopy = (1u << 30) + 1; },
                          "particlesPerCopy");
+    expectSourcesRefused([](S& s) { s.settings.parentRule = static_cast<algo::ParentRule>(2); },
+                         "parentRule 2 is above 1");
+    expectSourcesRefused([](S& s) { s.settings.pastLastFrame = static_cast<algo::PastLastFrame>(7); },
+                         "pastLastFrame 7 is above 1");
+    expectSourcesRefused([](S& s) { s.settings.level1Origin = static_cast<algo::Level1Origin>(2); },
+                         "level1Origin 2 is above 1");
 }
 
 TEST(CachedValueDecoding, CloudSourcesRefuseFieldsThatDoNotFit)
@@ -776,7 +818,7 @@ TEST(CachedValueDecoding, CloudSourcesFitTheirInputsOrAreRefused)
             const algo::Source& src = s.table.sources[s.first(1)];
             frames[src.parent] = src.startFrame + 1;
             s.condensation =
-                std::make_shared<CondensationData>(s.condensation->particles, frames, 0);
+                std::make_shared<CondensationData>(s.condensation->particles, frames, heightsOf(frames), 0);
         },
         "had not condensed when it started");
     expectMisfit([](MapperScene& s) { s.table.sources[s.first(3)].parentFluid = 1000; },

@@ -96,10 +96,11 @@ TEST_F(MapperNodes, CloudIsBitIdenticalForOneAndTwoThreads)
     EXPECT_EQ(results[0], results[1]);
 }
 
-TEST_F(MapperNodes, EvaporateBelowBaseDropsExactlyTheParticlesUnderTheLowestCondensationParticle)
+TEST_F(MapperNodes, EvaporateBelowBaseDropsExactlyTheParticlesUnderTheLowestCondensationHeight)
 {
     Graph g = parseGraph(kGraph, "mapper.json", registry);
     g.setParam("primitive", "sink", 1.0);  // the copies hang below their origins, as real puffs' wakes
+    g.setParam("mapper", "level1Origin", std::string("condensationLevel"));  // origins on the level
     Evaluator ev(registry, {});
     const int frame = 125;
     const auto full = std::dynamic_pointer_cast<const CloudParticlesData>(ev.pull(g, "cloud", frame)->at("particles"));
@@ -107,7 +108,7 @@ TEST_F(MapperNodes, EvaporateBelowBaseDropsExactlyTheParticlesUnderTheLowestCond
         std::dynamic_pointer_cast<const CondensationData>(ev.pull(g, "condense", frame)->at("condensation"));
     float base = INFINITY;
     for (std::size_t i = 0; i < condensation->particles->size(); ++i)
-        if (condensation->condensed(i)) base = std::min(base, condensation->particles->z[i]);
+        if (condensation->condensed(i)) base = std::min(base, condensation->condensedHeight[i]);
     ASSERT_TRUE(std::isfinite(base));
     std::vector<float> expected;  // the full frame's particles at or above the base, in order
     for (std::size_t i = 0; i < full->size(); ++i)

@@ -252,7 +252,8 @@ TEST_F(VapourEmitterNodeTest, WriterMarksCondensedParticles)
         statics, std::vector<float>{10, 20, 30, 40}, std::vector<float>{0.5f, 0, -1, 2},
         std::vector<float>{29, 28, 27, 26});
     auto condensation =
-        std::make_shared<CondensationData>(particles, std::vector<std::int32_t>{-1, 3, -1, 0}, 0);
+        std::make_shared<CondensationData>(particles, std::vector<std::int32_t>{-1, 3, -1, 0},
+                                           std::vector<float>{NAN, 20, NAN, 40}, 0);
 
     const NodeDecl* decl = registry.findNode("WriteParticles");
     ASSERT_TRUE(decl);
