@@ -76,8 +76,9 @@ void registerCondensationNode(Registry& registry)
     d.category = "atmosphere";
     d.doc = "Marks vapour particles whose temperature T_v has fallen below the dew point T_dp as "
             "condensation particles (pseudocode lines 9-14) and remembers the frame at which each "
-            "condensed and its height then (its condensation level); once condensed, a particle stays a condensation particle. Also gives the "
-            "frame at which the first condensation particle appeared: t_s[1] of Sec. 5.2. A "
+            "condensed and its height then (its condensation level); once condensed, a particle "
+            "stays a condensation particle. Also gives the frame at which the first condensation "
+            "particle appeared: t_s[1] of Sec. 5.2. A "
             "simulation: each frame builds on the previous one. Ours (issue 14): with an "
             "Atmosphere profile each particle has its own dew point, the profile's at its start "
             "height falling 1.8 degC/km as it rises, so it condenses at its lifting condensation "
