@@ -57,4 +57,32 @@ Wind WindProfile::at(double heightM) const
     return {(1.0 - w) * lo.east + w * hi.east, (1.0 - w) * lo.north + w * hi.north};
 }
 
+Wind WindProfile::meanBelow(double topM) const
+{
+    if (mLevels.empty() || !(topM > 0.0)) return {};
+    // Trapezoids between the level heights inside [0, topM] are exact for a linear profile.
+    std::vector<double> heights{0.0};
+    for (const WindLevel& l : mLevels)
+        if (l.heightM > 0.0 && l.heightM < topM) heights.push_back(l.heightM);
+    heights.push_back(topM);
+    Wind sum;
+    for (std::size_t i = 1; i < heights.size(); ++i) {
+        const Wind a = at(heights[i - 1]), b = at(heights[i]);
+        const double dz = heights[i] - heights[i - 1];
+        sum.east += 0.5 * (a.east + b.east) * dz;
+        sum.north += 0.5 * (a.north + b.north) * dz;
+    }
+    return {sum.east / topM, sum.north / topM};
+}
+
+WindProfile WindProfile::relativeTo(Wind motion) const
+{
+    std::vector<WindLevel> levels = mLevels;
+    for (WindLevel& l : levels) {
+        l.east -= motion.east;
+        l.north -= motion.north;
+    }
+    return WindProfile(std::move(levels));
+}
+
 }  // namespace cg::algo

@@ -31,10 +31,19 @@ public:
     bool calm() const { return mLevels.empty(); }
     const std::vector<WindLevel>& levels() const { return mLevels; }
     Wind at(double heightM) const;
+    /// The mean wind between the ground and `topM` (the integral of at() over height divided by
+    /// topM, exact for the piecewise-linear profile); calm for topM <= 0.
+    Wind meanBelow(double topM) const;
+    /// The same winds seen from a frame that moves at `motion` (every level minus it).
+    WindProfile relativeTo(Wind motion) const;
 
 private:
     std::vector<WindLevel> mLevels;
 };
+
+/// Depth of the layer whose mean wind estimates an ordinary storm's motion (the 0-6 km mean
+/// wind; supercells deviate from it, Bunkers et al. 2000).
+inline constexpr double kStormSteeringDepthM = 6000.0;
 
 /// The east and north components of a wind of `speed` blowing from `fromDegrees`.
 Wind windFromDirection(double speed, double fromDegrees);

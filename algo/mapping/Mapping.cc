@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <unordered_set>
 
@@ -136,6 +137,10 @@ std::vector<float> originsWithDrift(const SourceTable& table, int frame, const C
         float* o = &origins[3 * j];
         if (frame < src.startFrame) continue;  // not started yet: no cluster, no origin
         if (src.level == 1) {  // Eq. 12, L = 1: the condensation particle itself
+            if (s.level1Origin == Level1Origin::Trail && !std::isnan(table.anchors[3 * j])) {
+                std::copy_n(&table.anchors[3 * j], 3, o);  // laid: it stays where it was laid
+                continue;
+            }
             o[0] = c.x[src.parent], o[1] = c.y[src.parent];
             o[2] = s.level1Origin == Level1Origin::CondensationLevel ? c.condensedZ[src.parent] : c.z[src.parent];
             continue;
@@ -339,6 +344,15 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
             const double noise = map.at(x, y);  // Eq. 16
             src.scale = static_cast<float>(s.scaleCoefficient * noise);
             src.speed = static_cast<float>(1.0 + s.speedCoefficient * noise);
+            if (s.level1Origin == Level1Origin::Trail) {
+                // Deeper copies stand on their parents (zero); a level 1 copy is laid where a
+                // rising particle is, or rides one that has stopped rising (NaN).
+                const bool rises = level == 1 && c.vz[src.parent] >= s.trailRiseSpeed;
+                const float none = level == 1 ? std::numeric_limits<float>::quiet_NaN() : 0.0f;
+                table.anchors.push_back(rises ? c.x[src.parent] : none);
+                table.anchors.push_back(rises ? c.y[src.parent] : none);
+                table.anchors.push_back(rises ? c.z[src.parent] : none);
+            }
             table.sources.push_back(src);
         }
         if (!parentKeys.empty()) {

@@ -48,6 +48,10 @@ struct SourceTable {
     /// Cloud particles already selected, as (j' << 32 | q), q the particle's index in its
     /// copy, sorted: each at most once.
     std::vector<std::uint64_t> cloudTaken;
+    /// With Level1Origin::Trail, 3 floats per source: where a level 1 copy was laid (its
+    /// condensation particle's position at its start frame), or three NaNs for a copy that
+    /// rides its particle; zero for deeper sources. Empty with the other rules.
+    std::vector<float> anchors;
 };
 
 /// A read-only view of the primitive set: N_f(s) and frame positions (xyz floats).
@@ -66,6 +70,7 @@ struct CondensationView {
     const std::int32_t* condensedFrame = nullptr;  ///< -1 while still vapour
     const float* condensedZ = nullptr;             ///< height at condensation; NaN while vapour
     std::size_t count = 0;
+    const float* vz = nullptr;  ///< vertical speed, m/s; read by Level1Origin::Trail only
 };
 
 /// A read-only view of the density map fNoise.
@@ -111,6 +116,13 @@ enum class Level1Origin : std::uint8_t {
     /// its particle has risen since, which scatters the bases over hundreds of metres where
     /// a cumulus has a flat one.
     CondensationLevel,
+    /// Ours: a copy selected while its particle rises at least trailRiseSpeed is laid where
+    /// the particle is and stays there: the rising air leaves its copies behind along its
+    /// path. In a steady updraft the cloud stands still in the storm's frame while air flows
+    /// through it (Atmosphere windFrame 'storm'), so a cumulonimbus's stem is cloud at every
+    /// height the air passed. A copy selected on a particle that has stopped rising (the top
+    /// of its tower) rides it, as the paper's do, so the anvil spreads with the outflow.
+    Trail,
 };
 
 /// Frames over which the drift is measured: long enough to average out the puff's churning.
@@ -139,6 +151,10 @@ struct MappingSettings {
     ParentRule parentRule = ParentRule::PerSource;  ///< Eq. 15's draw of a parent particle
     PastLastFrame pastLastFrame = PastLastFrame::Drift;
     Level1Origin level1Origin = Level1Origin::Particle;
+    /// With Level1Origin::Trail: the vertical speed (m/s) from which a particle lays its copy
+    /// rather than carrying it (value ours: updrafts rise at 5-20 m/s, a tower's top settles
+    /// around its equilibrium level at a few m/s).
+    double trailRiseSpeed = 3.0;
 };
 
 /// k, the fluid-id stride of thinned copies: ceil(N_f(last) / K), at least 1, at most 65,536

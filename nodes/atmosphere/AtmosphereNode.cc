@@ -47,8 +47,8 @@ std::shared_ptr<const algo::EnvironmentProfile> profileFrom(const ParamSet& p)
     return nullptr;  // linear: the paper's Eq. 9
 }
 
-/// The wind the parameters ask for; heights above the ground.
-algo::WindProfile windFrom(const ParamSet& p, const algo::EnvironmentProfile* profile)
+/// The wind the parameters ask for, seen from the ground; heights above the ground.
+algo::WindProfile groundWindFrom(const ParamSet& p, const algo::EnvironmentProfile* profile)
 {
     const std::string& kind = p.getString("wind");
     if (kind == "layers")
@@ -62,6 +62,16 @@ algo::WindProfile windFrom(const ParamSet& p, const algo::EnvironmentProfile* pr
         return algo::WindProfile(std::move(levels));
     }
     return {};
+}
+
+/// The wind in the frame the parameters ask for: the ground's, or the storm's (minus the
+/// 0-6 km mean wind), so a tower fed from a fixed patch of ground stands as a storm carried
+/// by the mean wind does, and only the shear around that mean tilts it.
+algo::WindProfile windFrom(const ParamSet& p, const algo::EnvironmentProfile* profile)
+{
+    const algo::WindProfile ground = groundWindFrom(p, profile);
+    if (p.getString("windFrame") != "storm") return ground;
+    return ground.relativeTo(ground.meanBelow(algo::kStormSteeringDepthM));
 }
 
 Atmosphere atmosphereFrom(const ParamSet& p)
@@ -123,7 +133,7 @@ void registerAtmosphereNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "Atmosphere";
-    d.version = 2;
+    d.version = 3;
     d.category = "atmosphere";
     d.doc = "The environment of Sec. 5.1: by default the paper's, ground temperature and "
             "environmental lapse rate (Eq. 9, T_e = T_sl_max - C_e z), one dew-point threshold "
@@ -186,6 +196,12 @@ void registerAtmosphereNode(Registry& registry)
         floatListParam("windDirections", {}, "deg",
                        "wind 'layers': the direction the wind blows from at each height, "
                        "clockwise from north (270: from the west, toward +x)", 0.0, 360.0),
+        stringParam("windFrame", "ground",
+                    "ours: 'ground' (winds as the sounding or layers give them) or 'storm' "
+                    "(minus the 0-6 km mean wind, the usual estimate of an ordinary storm's "
+                    "motion: the emission map moves with the storm, the ground slides beneath "
+                    "it, and only the shear around the mean wind tilts the tower)",
+                    {"ground", "storm"}),
     };
     d.validate = validate;
     d.hashExtra = [](const ParamSet& p, Hasher& h) {

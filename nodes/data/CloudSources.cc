@@ -58,7 +58,8 @@ algo::MappingSettings readSettings(ByteReader& in)
         checks::uintUpTo(in.u64(), L::kMaxParticlesPerCopy, kType, "particlesPerCopy"));
     s.parentRule = static_cast<algo::ParentRule>(checks::uintUpTo(in.u64(), 1, kType, "parentRule"));
     s.pastLastFrame = static_cast<algo::PastLastFrame>(checks::uintUpTo(in.u64(), 1, kType, "pastLastFrame"));
-    s.level1Origin = static_cast<algo::Level1Origin>(checks::uintUpTo(in.u64(), 1, kType, "level1Origin"));
+    s.level1Origin = static_cast<algo::Level1Origin>(checks::uintUpTo(in.u64(), 2, kType, "level1Origin"));
+    s.trailRiseSpeed = checks::finiteIn(in.f64(), 0.0, L::kMaxTrailRiseSpeed, kType, "trailRiseSpeed");
     return s;
 }
 
@@ -75,6 +76,7 @@ DataPtr readCloudSources(ByteReader& in)
     t.levelStart = in.podVector<std::int32_t>();
     t.condensationTaken = in.podVector<std::uint8_t>();
     t.cloudTaken = in.podVector<std::uint64_t>();
+    t.anchors = in.podVector<float>();
     algo::MappingSettings s = readSettings(in);
     checkSourceTable(t, s);
     return std::make_shared<CloudSourcesData>(std::move(t), std::move(s));
@@ -85,7 +87,7 @@ DataPtr readCloudSources(ByteReader& in)
 std::size_t CloudSourcesData::byteSize() const
 {
     return sizeof(*this) + table.sources.size() * sizeof(algo::Source) +
-           table.condensationTaken.size() + table.cloudTaken.size() * 8;
+           table.condensationTaken.size() + table.cloudTaken.size() * 8 + table.anchors.size() * 4;
 }
 
 bool CloudSourcesData::serialize(ByteWriter& out) const
@@ -105,6 +107,7 @@ bool CloudSourcesData::serialize(ByteWriter& out) const
     out.podVector(table.levelStart);
     out.podVector(table.condensationTaken);
     out.podVector(table.cloudTaken);
+    out.podVector(table.anchors);
     const algo::MappingSettings& s = settings;
     out.u64(static_cast<std::uint64_t>(s.maxLevel));
     out.podVector(s.selectionRatio);
@@ -119,6 +122,7 @@ bool CloudSourcesData::serialize(ByteWriter& out) const
     for (auto choice : {static_cast<std::uint8_t>(s.parentRule), static_cast<std::uint8_t>(s.pastLastFrame),
                         static_cast<std::uint8_t>(s.level1Origin)})
         out.u64(choice);
+    out.f64(s.trailRiseSpeed);
     return true;
 }
 

@@ -35,6 +35,7 @@ struct MappingLimits {
     static constexpr double kMaxTimeStep = 86400.0;               ///< the graph's timeStep, seconds
     static constexpr std::int64_t kMaxSources = 1000000000;
     static constexpr std::uint64_t kMaxParticlesPerCopy = std::uint64_t{1} << 30;
+    static constexpr double kMaxTrailRiseSpeed = 100.0;  ///< m/s
 };
 
 /// Throws std::runtime_error unless `table` and `s` are a state PrimitiveMapper could have

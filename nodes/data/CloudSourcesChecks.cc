@@ -140,6 +140,28 @@ void checkCloudTaken(const algo::SourceTable& t)
     }
 }
 
+/// Trail copies' anchors: 3 floats per record with Level1Origin::Trail, none otherwise, so an
+/// origin is never read past the array: a level 1 record's are all finite (laid) or all NaN
+/// (riding its particle), a deeper record's zero.
+void checkAnchors(const algo::SourceTable& t, const algo::MappingSettings& s)
+{
+    const bool trail = s.level1Origin == algo::Level1Origin::Trail;
+    const std::size_t expected = trail ? 3 * t.sources.size() : 0;
+    if (t.anchors.size() != expected)
+        checks::refuse(kType, std::to_string(t.anchors.size()) + " anchor values for " +
+                                  std::to_string(expected / 3) + " trail records");
+    for (std::size_t j = 0; j < expected / 3; ++j) {
+        const float* a = &t.anchors[3 * j];
+        const bool riding = std::isnan(a[0]) && std::isnan(a[1]) && std::isnan(a[2]);
+        const bool laid = std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]);
+        const bool fits = t.sources[j].level == 1 ? riding || laid : a[0] == 0.0f && a[1] == 0.0f && a[2] == 0.0f;
+        if (!fits)
+            checks::refuse(kType, record(j) + "anchor (" + std::to_string(a[0]) + ", " + std::to_string(a[1]) +
+                                      ", " + std::to_string(a[2]) + ") does not fit a level " +
+                                      std::to_string(t.sources[j].level) + " record");
+    }
+}
+
 }  // namespace
 
 void checkSourceTable(const algo::SourceTable& t, const algo::MappingSettings& s)
@@ -154,6 +176,7 @@ void checkSourceTable(const algo::SourceTable& t, const algo::MappingSettings& s
     for (std::size_t j = 0; j < t.sources.size(); ++j) checkRecord(t, s, j);
     checkCondensationTaken(t);
     checkCloudTaken(t);
+    checkAnchors(t, s);
 }
 
 void checkSourcesFit(const algo::SourceTable& t, const algo::MappingSettings& s,

@@ -18,6 +18,7 @@ inline algo::CondensationView condensationView(const CondensationData& c)
     v.z = c.particles->z.data();
     v.condensedFrame = c.condensedFrame.data();
     v.condensedZ = c.condensedHeight.data();
+    v.vz = c.particles->vz.data();
     v.count = c.particles->size();
     return v;
 }

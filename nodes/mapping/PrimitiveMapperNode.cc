@@ -37,9 +37,11 @@ algo::MappingSettings settingsFrom(const CookContext& ctx)
                                                             : algo::ParentRule::PerSource;
     s.pastLastFrame = p.getString("pastLastFrame") == "hold" ? algo::PastLastFrame::Hold
                                                               : algo::PastLastFrame::Drift;
-    s.level1Origin = p.getString("level1Origin") == "condensationLevel"
-                         ? algo::Level1Origin::CondensationLevel
-                         : algo::Level1Origin::Particle;
+    const std::string& origin = p.getString("level1Origin");
+    s.level1Origin = origin == "condensationLevel" ? algo::Level1Origin::CondensationLevel
+                     : origin == "trail"           ? algo::Level1Origin::Trail
+                                                   : algo::Level1Origin::Particle;
+    s.trailRiseSpeed = p.getFloat("trailRiseSpeed");
     return s;
 }
 
@@ -82,7 +84,7 @@ void registerPrimitiveMapperNode(Registry& registry)
     d.type = "PrimitiveMapper";
     // 2: source records carry the copy phase; 3: Eq. 15 per source, drift; 4: the table keeps
     // parentRule, pastLastFrame and level1Origin (a table read back from disk lost the first two)
-    d.version = 4;
+    d.version = 5;
     d.category = "mapping";
     d.doc =
         "The recursive mapping of Sec. 5.2 (pseudocode lines 15-28). Each frame t, every active "
@@ -169,8 +171,18 @@ void registerPrimitiveMapperNode(Registry& registry)
                     "where a level 1 copy stands: 'particle' (the paper: on its condensation "
                     "particle, which keeps rising) or 'condensationLevel' (ours: below it, at the "
                     "height where it condensed, so the copies' bases line up on the condensation "
-                    "level and the cloud has a flat base)",
-                    {"particle", "condensationLevel"}),
+                    "level and the cloud has a flat base) or 'trail' (ours: where its particle "
+                    "was when the copy was selected, and there it stays, if the particle rose at "
+                    "least trailRiseSpeed then: the rising air leaves its copies behind, so a "
+                    "deep updraft's stem is cloud at every height the air passed (with "
+                    "Atmosphere windFrame 'storm'); a copy selected on a particle that stopped "
+                    "rising rides it, so the anvil spreads with the outflow)",
+                    {"particle", "condensationLevel", "trail"}),
+        floatParam("trailRiseSpeed", 3.0, "m/s",
+                   "level1Origin 'trail': the vertical speed from which a particle lays its copy "
+                   "rather than carrying it (value ours: updrafts rise at 5-20 m/s, a tower's "
+                   "top settles around its equilibrium level at a few m/s)",
+                   0.0, L::kMaxTrailRiseSpeed),
     };
     d.create = [] { return std::make_unique<PrimitiveMapperNode>(); };
     registry.addNode(std::move(d));

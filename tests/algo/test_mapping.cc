@@ -62,11 +62,13 @@ struct Scene {
     }
     MapView mapView() const { return {map.data(), 8, 8, 100.0}; }
 
-    /// Particle k condenses at frame 3 + k % 6 and rises 10 m per frame.
+    /// Particle k condenses at frame 3 + k % 6 and rises 10 m per frame; its vertical speed
+    /// reads 20 m/s for even k and 0 for odd k (what Level1Origin::Trail looks at).
     struct Frame {
         std::vector<float> x, y, z;
         std::vector<std::int32_t> condensed;
         std::vector<float> condensedZ;
+        std::vector<float> vz;
     };
     Frame condensation(int frame) const
     {
@@ -78,12 +80,13 @@ struct Scene {
             const int at = 3 + k % 6;
             f.condensed.push_back(frame >= at ? at : -1);
             f.condensedZ.push_back(frame >= at ? 1400.0f + 10.0f * static_cast<float>(at) : NAN);
+            f.vz.push_back(k % 2 == 0 ? 20.0f : 0.0f);
         }
         return f;
     }
     static CondensationView view(const Frame& f)
     {
-        return {f.x.data(), f.y.data(), f.z.data(), f.condensed.data(), f.condensedZ.data(), f.x.size()};
+        return {f.x.data(), f.y.data(), f.z.data(), f.condensed.data(), f.condensedZ.data(), f.x.size(), f.vz.data()};
     }
 };
 
@@ -143,8 +146,12 @@ void expectedCloudParticle(const Scene& scene, const SourceTable& table, const S
     double origin[3];
     if (src.level == 1) {
         const bool atCondensation = scene.settings.level1Origin == Level1Origin::CondensationLevel;
+        // Trail: a rising particle (even k) left its copy where it was at the copy's start.
+        const bool laid = scene.settings.level1Origin == Level1Origin::Trail && src.parent % 2 == 0;
         origin[0] = c.x[src.parent], origin[1] = c.y[src.parent];
-        origin[2] = atCondensation ? c.condensedZ[src.parent] : c.z[src.parent];
+        origin[2] = atCondensation ? c.condensedZ[src.parent]
+                    : laid         ? 1400.0 + 10.0 * src.startFrame
+                                   : c.z[src.parent];
     } else {
         expectedCloudParticle(scene, table, c, src.parent, src.parentFluid, t, origin);
     }
@@ -296,6 +303,45 @@ TEST(Mapping, Level1CopiesCanStandAtTheirCondensationHeight)
         EXPECT_EQ(paper[3 * j + 2] - origins[3 * j + 2], 10.0f * static_cast<float>(29 - condensed));
     }
     EXPECT_GT(level1, 0);
+}
+
+TEST(Mapping, TrailCopiesStayWhereTheirRisingParticleLaidThemAndStoppedParticlesCarryTheirs)
+{
+    Scene scene;
+    scene.settings.level1Origin = Level1Origin::Trail;
+    scene.settings.trailRiseSpeed = 5.0;
+    expectPositionsMatchTheRecursiveFormula(scene);
+    const MappingRun r = run(scene, 30);
+    const SourceTable& table = r.tables.back();
+    const auto& c = r.frames.back();
+    ASSERT_EQ(table.anchors.size(), 3 * table.sources.size());
+    const auto origins = sourceOrigins(table, 29, Scene::view(c), scene.primitive(), scene.settings);
+    int laid = 0, carried = 0;
+    for (std::size_t j = 0; j < table.sources.size(); ++j) {
+        const Source& src = table.sources[j];
+        if (src.level != 1) {
+            EXPECT_EQ(table.anchors[3 * j] + table.anchors[3 * j + 1] + table.anchors[3 * j + 2], 0.0f);
+            continue;
+        }
+        const bool rising = src.parent % 2 == 0;  // 20 m/s against 5: laid
+        (rising ? laid : carried) += 1;
+        EXPECT_EQ(origins[3 * j], c.x[src.parent]);
+        EXPECT_EQ(origins[3 * j + 1], c.y[src.parent]);
+        // The particle is 10 m higher each frame; a laid copy stays at its start frame's height.
+        const float expectedZ = rising ? 1400.0f + 10.0f * static_cast<float>(src.startFrame) : c.z[src.parent];
+        EXPECT_EQ(origins[3 * j + 2], expectedZ) << "source " << j << " started at " << src.startFrame;
+        if (rising && src.startFrame < 29) {
+            EXPECT_LT(origins[3 * j + 2], c.z[src.parent]);
+        }
+    }
+    EXPECT_GT(laid, 0);
+    EXPECT_GT(carried, 0);
+    // Above every particle's rise speed nothing is laid: trail places copies as the paper does.
+    scene.settings.trailRiseSpeed = 25.0;
+    const SourceTable riding = run(scene, 30).tables.back();
+    const auto trail = sourceOrigins(riding, 29, Scene::view(c), scene.primitive(), scene.settings);
+    scene.settings.level1Origin = Level1Origin::Particle;
+    EXPECT_EQ(trail, sourceOrigins(riding, 29, Scene::view(c), scene.primitive(), scene.settings));
 }
 
 TEST(Mapping, ThinnedCopiesCarryEveryKthParticleFromTheirOwnPhase)

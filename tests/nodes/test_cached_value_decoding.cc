@@ -559,9 +559,12 @@ struct MapperScene {
     algo::MappingSettings settings;
     algo::SourceTable table;
 
-    explicit MapperScene(std::uint32_t particlesPerCopy = 0)
+    explicit MapperScene(std::uint32_t particlesPerCopy = 0,
+                         algo::Level1Origin origin = algo::Level1Origin::Particle)
     {
-        const VapourFields f = vapourFields();
+        VapourFields f = vapourFields();
+        if (origin == algo::Level1Origin::Trail)  // some rise (and lay their copies), some do not
+            for (std::size_t i = 0; i < f.vz.size(); ++i) f.vz[i] = i % 3 == 0 ? 0.0f : 2.0f;
         std::vector<std::int32_t> frames(f.id.size());
         for (std::size_t i = 0; i < frames.size(); ++i)
             frames[i] = i % 5 == 0 ? -1 : static_cast<std::int32_t>(i % 4);
@@ -574,6 +577,8 @@ struct MapperScene {
         settings.timeStep = 0.5;
         settings.seed = 11;
         settings.particlesPerCopy = particlesPerCopy;
+        settings.level1Origin = origin;
+        settings.trailRiseSpeed = 0.5;
         const PrimitiveViewHolder prim(primitive);
         for (int frame = 0; frame <= 16; ++frame)
             table = algo::stepSources(table, frame, condensation->firstFrame,
@@ -632,9 +637,27 @@ TEST(CachedValueDecoding, CloudSourcesRoundTripAMapperRun)
         EXPECT_EQ(back->settings.parentRule, scene.settings.parentRule);
         EXPECT_EQ(back->settings.pastLastFrame, scene.settings.pastLastFrame);
         EXPECT_EQ(back->settings.level1Origin, scene.settings.level1Origin);
+        EXPECT_TRUE(back->table.anchors.empty());
         EXPECT_NO_THROW(
             checkSourcesFit(back->table, back->settings, *scene.condensation, scene.primitive));
     }
+}
+
+TEST(CachedValueDecoding, CloudSourcesRoundTripTrailAnchors)
+{
+    const MapperScene scene(0, algo::Level1Origin::Trail);
+    const auto& a = scene.table.anchors;
+    ASSERT_EQ(a.size(), 3 * scene.table.sources.size());
+    std::size_t laid = 0, riding = 0;
+    for (std::size_t j = 0; j < scene.table.sources.size(); ++j)
+        if (scene.table.sources[j].level == 1) (std::isnan(a[3 * j]) ? riding : laid) += 1;
+    ASSERT_GT(laid, 0u);
+    ASSERT_GT(riding, 0u);
+    const auto back = roundTrip(CloudSourcesData(scene.table, scene.settings));
+    ASSERT_EQ(back->table.anchors.size(), a.size());
+    EXPECT_EQ(std::memcmp(back->table.anchors.data(), a.data(), a.size() * sizeof(float)), 0);  // NaNs too
+    EXPECT_EQ(back->settings.level1Origin, algo::Level1Origin::Trail);
+    EXPECT_EQ(back->settings.trailRiseSpeed, scene.settings.trailRiseSpeed);
 }
 
 using TableChange = std::function<void(MapperScene&)>;
@@ -682,8 +705,24 @@ TEST(CachedValueDecoding, CloudSourcesRefuseSettingsTheMapperCannotHave)
                          "parentRule 2 is above 1");
     expectSourcesRefused([](S& s) { s.settings.pastLastFrame = static_cast<algo::PastLastFrame>(7); },
                          "pastLastFrame 7 is above 1");
-    expectSourcesRefused([](S& s) { s.settings.level1Origin = static_cast<algo::Level1Origin>(2); },
-                         "level1Origin 2 is above 1");
+    expectSourcesRefused([](S& s) { s.settings.level1Origin = static_cast<algo::Level1Origin>(3); },
+                         "level1Origin 3 is above 2");
+    expectSourcesRefused([](S& s) { s.settings.trailRiseSpeed = -1.0; }, "trailRiseSpeed");
+    expectSourcesRefused([](S& s) { s.settings.trailRiseSpeed = double(kInf); }, "trailRiseSpeed");
+    // Trail anchors: one triple per record, whole (all finite or all NaN) on level 1, zero deeper.
+    expectSourcesRefused([](S& s) { s.settings.level1Origin = algo::Level1Origin::Trail; },
+                         "0 anchor values for");
+    expectSourcesRefused([](S& s) { s.table.anchors.assign(3, 1.0f); }, "3 anchor values for 0 trail");
+    const auto trail = [](const TableChange& change) {
+        return [change](S& s) {
+            s.settings.level1Origin = algo::Level1Origin::Trail;
+            s.table.anchors.assign(3 * s.table.sources.size(), 0.0f);
+            change(s);
+        };
+    };
+    expectSourcesRefused(trail([](S& s) { s.table.anchors[3 * s.first(1) + 1] = NAN; }), "does not fit a level 1");
+    expectSourcesRefused(trail([](S& s) { s.table.anchors[3 * s.first(1)] = kInf; }), "does not fit a level 1");
+    expectSourcesRefused(trail([](S& s) { s.table.anchors[3 * s.first(2) + 2] = 5.0f; }), "does not fit a level 2");
 }
 
 TEST(CachedValueDecoding, CloudSourcesRefuseFieldsThatDoNotFit)

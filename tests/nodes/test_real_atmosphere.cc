@@ -257,6 +257,34 @@ TEST_F(RealAtmosphere, LinearShearTiltsTheTowerByTheExpectedAngle)
     EXPECT_NEAR(measured, expected, 0.2 * expected);
 }
 
+TEST_F(RealAtmosphere, StormFrameSubtractsTheMeanWindOfTheLowestSixKilometres)
+{
+    // Under u = s z the 0-6 km mean wind is s 3000 m: in the storm's frame every particle ends
+    // s 3000 t further west than in the ground's, at the same height, whatever its path.
+    const int frames = 200;
+    const double timeStep = 0.5, shear = 4e-3;
+    json atmosphere = {{"environmentLapseRate", 10.0}, {"dewPoint", -60.0}, {"gravity", 0.0},
+                       {"wind", "layers"}, {"windHeights", {0.0, 20000.0}},
+                       {"windSpeeds", {0.0, shear * 20000.0}}, {"windDirections", {270.0, 270.0}}};
+    const json emitter = {{"minTemperature", 25.0}, {"maxTemperature", 30.0}};
+    const json thermal = {{"buoyancyCoefficient", 0.05}};
+    std::shared_ptr<const VapourParticlesData> ground, storm;
+    run(pipeline(frames, timeStep, atmosphere, emitter, thermal),
+        [&](int, const CondensationData& c) { ground = c.particles; });
+    atmosphere["windFrame"] = "storm";
+    run(pipeline(frames, timeStep, atmosphere, emitter, thermal),
+        [&](int, const CondensationData& c) { storm = c.particles; });
+    ASSERT_EQ(ground->size(), storm->size());
+    EXPECT_EQ(storm->z, ground->z);
+    const double shift = shear * 3000.0 * frames * timeStep;  // 240 m
+    for (std::size_t i = 0; i < storm->size(); ++i) {
+        const float x = ground->xs()[i];
+        const double ulps = 2.0 * frames * (static_cast<double>(std::nextafter(x, 1e9f)) - x);
+        ASSERT_NEAR(storm->xs()[i] - x, -shift, ulps) << "particle " << i;
+        ASSERT_EQ(storm->ys()[i], ground->ys()[i]) << "particle " << i;
+    }
+}
+
 TEST_F(RealAtmosphere, EmissionDurationReleasesEachParticleAtItsOwnTime)
 {
     // A particle released at r seconds is first stepped from the frame at or after r, so its
