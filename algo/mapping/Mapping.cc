@@ -110,46 +110,47 @@ void copyOrigin(const Source& src, const float* sourceOrigin, double time, const
     for (int k = 0; k < 3; ++k) out[k] = sourceOrigin[k] + scale * shift[k];
 }
 
-/// Eq. 10 for one particle: fluid id i of the copy of `src` whose origin is `origin`, with the
-/// arithmetic of sourceSlice (copyOrigin + r P_f), so a child's origin is bit for bit its
-/// parent particle.
-void cloudParticlePosition(const Source& src, const float* origin, std::uint32_t i, int frame,
-                           const PrimitiveView& p, const MappingSettings& s, const float drift[3],
-                           float out[3])
+/// Eq. 10 for one particle: fluid id i of the copy of `src` that stands at `copyAt` (its
+/// copyOrigin), with the arithmetic of sourceSlice (copyAt + r P_f), so a child's origin is bit
+/// for bit its parent particle.
+void cloudParticlePosition(const Source& src, const float* copyAt, std::uint32_t i, int frame,
+                           const PrimitiveView& p, const MappingSettings& s, float out[3])
 {
-    const double time = primitiveTime(src, frame, s, p);
-    float f[3], at[3];
-    primitivePosition(p, i, time, f);
-    copyOrigin(src, origin, time, p, s, drift, at);
+    float f[3];
+    primitivePosition(p, i, primitiveTime(src, frame, s, p), f);
     const auto r = static_cast<float>(s.metresPerPrimitiveMetre * src.scale);
-    for (int k = 0; k < 3; ++k) out[k] = at[k] + r * f[k];
+    for (int k = 0; k < 3; ++k) out[k] = copyAt[k] + r * f[k];
 }
 
-/// sourceOrigins with the primitive's drift given, so a caller that needs the drift too
-/// measures it once.
-std::vector<float> originsWithDrift(const SourceTable& table, int frame, const CondensationView& c,
-                                    const PrimitiveView& p, const MappingSettings& s, const float drift[3])
+/// Per source, 3 floats each: its origin P_s[L, j](t) (Eq. 12) and where its copy stands
+/// (copyOrigin: the origin plus its drift); zero for sources that start after t.
+struct Origins {
+    std::vector<float> origin;
+    std::vector<float> copy;
+};
+
+/// Origins in one pass in table order (parents precede children): a child's origin is its
+/// parent's particle, read off the parent's copy origin computed just before.
+Origins originsWithDrift(const SourceTable& table, int frame, const CondensationView& c,
+                         const PrimitiveView& p, const MappingSettings& s, const float drift[3])
 {
-    // Parents precede children in the table, so one pass in order suffices.
-    std::vector<float> origins(3 * table.sources.size());
+    Origins out{std::vector<float>(3 * table.sources.size()), std::vector<float>(3 * table.sources.size())};
     for (std::size_t j = 0; j < table.sources.size(); ++j) {
         const Source& src = table.sources[j];
-        float* o = &origins[3 * j];
+        float* o = &out.origin[3 * j];
         if (frame < src.startFrame) continue;  // not started yet: no cluster, no origin
-        if (src.level == 1) {  // Eq. 12, L = 1: the condensation particle itself
-            if (s.level1Origin == Level1Origin::Trail && !std::isnan(table.anchors[3 * j])) {
-                std::copy_n(&table.anchors[3 * j], 3, o);  // laid: it stays where it was laid
-                continue;
-            }
+        if (src.level == 1 && s.level1Origin == Level1Origin::Trail && !std::isnan(table.anchors[3 * j])) {
+            std::copy_n(&table.anchors[3 * j], 3, o);  // laid: it stays where it was laid
+        } else if (src.level == 1) {  // Eq. 12, L = 1: the condensation particle itself
             o[0] = c.x[src.parent], o[1] = c.y[src.parent];
             o[2] = s.level1Origin == Level1Origin::CondensationLevel ? c.condensedZ[src.parent] : c.z[src.parent];
-            continue;
+        } else {  // Eq. 12, L >= 2: the parent cloud particle, placed by Eq. 10 (as sourceSlice does)
+            cloudParticlePosition(table.sources[src.parent], &out.copy[3 * static_cast<std::size_t>(src.parent)],
+                                  src.parentFluid, frame, p, s, o);
         }
-        // Eq. 12, L >= 2: the parent cloud particle, placed by Eq. 10 (as sourceSlice does).
-        cloudParticlePosition(table.sources[src.parent], &origins[3 * static_cast<std::size_t>(src.parent)],
-                              src.parentFluid, frame, p, s, drift, o);
+        copyOrigin(src, o, primitiveTime(src, frame, s, p), p, s, drift, &out.copy[3 * j]);
     }
-    return origins;
+    return out;
 }
 
 }  // namespace
@@ -159,7 +160,7 @@ std::vector<float> sourceOrigins(const SourceTable& table, int frame, const Cond
 {
     float drift[3];
     primitiveDrift(p, drift);
-    return originsWithDrift(table, frame, c, p, s, drift);
+    return originsWithDrift(table, frame, c, p, s, drift).origin;
 }
 
 std::vector<std::uint64_t> cloudCounts(const SourceTable& table, int frame, const PrimitiveView& p,
@@ -267,6 +268,8 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
                         const CondensationView& c, const MapView& map, const PrimitiveView& p,
                         const MappingSettings& s)
 {
+    if (s.level1Origin == Level1Origin::Trail && c.vz == nullptr)
+        throw std::invalid_argument("stepSources: level1Origin trail needs the particles' vertical speeds");
     SourceTable table = previous;
     const std::uint32_t stride = copyStride(s, p);
     float drift[3];
@@ -307,8 +310,8 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
         fresh = std::min<std::uint64_t>(fresh, s.maxSources > table.sources.size() ? s.maxSources - table.sources.size() : 0);
         if (fresh == 0) continue;
 
-        const std::vector<float> origins =
-            level == 1 ? std::vector<float>() : originsWithDrift(table, frame, c, p, s, drift);
+        const std::vector<float> copies =
+            level == 1 ? std::vector<float>() : originsWithDrift(table, frame, c, p, s, drift).copy;
         const std::vector<std::uint64_t> parentKeys =
             level == 1 ? std::vector<std::uint64_t>()
                        : pickParents(table, ParentCandidates{level, frame, parents, parentOffset, candidates}, fresh, s);
@@ -332,8 +335,8 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
                 src.parentFluid = copyFluidId(table.sources[src.parent], key & 0xffffffffu, stride);
                 // Eq. 16 reads the map under the parent cloud particle's position (Eq. 10).
                 float at[3];
-                cloudParticlePosition(table.sources[src.parent], &origins[3 * src.parent], src.parentFluid,
-                                      frame, p, s, drift, at);
+                cloudParticlePosition(table.sources[src.parent], &copies[3 * src.parent], src.parentFluid,
+                                      frame, p, s, at);
                 x = at[0];
                 y = at[1];
             }
@@ -385,14 +388,8 @@ FramePlan planFrame(const SourceTable& table, int frame, const CondensationView&
     plan.stride = copyStride(s, p);
     float drift[3];
     primitiveDrift(p, drift);
-    // In place: each source's origin becomes its copy's origin (a source not started has
-    // origin zero and no drift, so it stays zero).
-    plan.copyOrigins = originsWithDrift(table, frame, c, p, s, drift);
+    plan.copyOrigins = originsWithDrift(table, frame, c, p, s, drift).copy;
     const std::size_t n = table.sources.size();
-    for (std::size_t j = 0; j < n; ++j) {
-        float* o = &plan.copyOrigins[3 * j];
-        copyOrigin(table.sources[j], o, primitiveTime(table.sources[j], frame, s, p), p, s, drift, o);
-    }
     plan.offset.assign(n + 1, 0);
     for (std::size_t j = 0; j < n; ++j) plan.offset[j + 1] = plan.offset[j] + clusterSize(table.sources[j], frame, s, p);
     return plan;

@@ -336,6 +336,10 @@ TEST(Mapping, TrailCopiesStayWhereTheirRisingParticleLaidThemAndStoppedParticles
     }
     EXPECT_GT(laid, 0);
     EXPECT_GT(carried, 0);
+    CondensationView noSpeeds = Scene::view(c);
+    noSpeeds.vz = nullptr;
+    EXPECT_THROW(stepSources(table, 30, 3, noSpeeds, scene.mapView(), scene.primitive(), scene.settings),
+                 std::invalid_argument);
     // Above every particle's rise speed nothing is laid: trail places copies as the paper does.
     scene.settings.trailRiseSpeed = 25.0;
     const SourceTable riding = run(scene, 30).tables.back();
