@@ -6,6 +6,7 @@
 /// θ is the angle between the direction light travels before scattering and the direction
 /// it travels after; cos θ = 1 is straight on (forward scattering).
 
+#include <algorithm>
 #include <cmath>
 
 namespace cg::algo {
@@ -27,6 +28,22 @@ inline double twoLobeHenyeyGreenstein(double cosTheta, double g1, double g2, dou
 {
     const double p1 = henyeyGreenstein(cosTheta, g1);
     return w > 0.0 ? (1.0 - w) * p1 + w * henyeyGreenstein(cosTheta, g2) : p1;
+}
+
+/// cos θ distributed as Henyey-Greenstein with asymmetry g, from a uniform u in [0, 1)
+/// (inverting its cumulative distribution).
+inline double sampleHenyeyGreenstein(double g, double u)
+{
+    if (std::abs(g) < 1e-4) return 1.0 - 2.0 * u;
+    const double s = (1.0 - g * g) / (1.0 - g + 2.0 * g * u);
+    return std::clamp((1.0 + g * g - s * s) / (2.0 * g), -1.0, 1.0);
+}
+
+/// cos θ distributed as twoLobeHenyeyGreenstein(·, g1, g2, w): lobe 2 when uLobe < w.
+inline double sampleTwoLobeHenyeyGreenstein(double g1, double g2, double w, double uLobe,
+                                            double u)
+{
+    return sampleHenyeyGreenstein(uLobe < w ? g2 : g1, u);
 }
 
 }  // namespace cg::algo

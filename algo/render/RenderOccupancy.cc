@@ -29,7 +29,7 @@ void forEachActiveBox(const openvdb::FloatTree& tree, Fn&& fn)
 
 }  // namespace
 
-RenderOccupancy::RenderOccupancy(const openvdb::FloatTree& tree)
+RenderOccupancy::RenderOccupancy(const openvdb::FloatTree& tree, bool majorants)
 {
     // A trilinear sample at x reads voxels floor(x) and floor(x) + 1, so it can be non-zero
     // anywhere within one voxel of an active box.
@@ -66,77 +66,83 @@ RenderOccupancy::RenderOccupancy(const openvdb::FloatTree& tree)
         for (int i = b0[0]; i <= b1[0]; ++i)
             for (int j = b0[1]; j <= b1[1]; ++j)
                 for (int k = b0[2]; k <= b1[2]; ++k)
-                    mOcc[(static_cast<std::size_t>(i) * static_cast<std::size_t>(mN[1]) +
-                          static_cast<std::size_t>(j)) * static_cast<std::size_t>(mN[2]) +
-                         static_cast<std::size_t>(k)] = 1;
+                    mOcc[blockIndex(i, j, k)] = 1;
     });
+    if (majorants) recordMajorants(tree);
 }
 
 void RenderOccupancy::spans(const RenderVec3& origin, const RenderVec3& dir, double tMin,
                             double tMax, std::vector<Span>& out) const
 {
-    if (mOcc.empty() || !(tMin < tMax)) return;
-    constexpr double kInf = std::numeric_limits<double>::infinity();
-    double lo[3], hi[3];
-    double t0 = tMin, t1 = tMax;
-    for (int a = 0; a < 3; ++a) {
-        lo[a] = double(mMin[a]) * kBlock;
-        hi[a] = double(mMin[a] + mN[a]) * kBlock;
-        if (dir[a] == 0.0) {
-            if (origin[a] < lo[a] || origin[a] >= hi[a]) return;
-            continue;
-        }
-        double ta = (lo[a] - origin[a]) / dir[a];
-        double tb = (hi[a] - origin[a]) / dir[a];
-        if (ta > tb) std::swap(ta, tb);
-        t0 = std::max(t0, ta);
-        t1 = std::min(t1, tb);
-    }
-    if (!(t0 < t1)) return;
-
-    int cell[3], step[3];
-    double tNext[3], tDelta[3];
-    for (int a = 0; a < 3; ++a) {
-        const double p = origin[a] + dir[a] * t0;
-        cell[a] = std::clamp(static_cast<int>(std::floor((p - lo[a]) / kBlock)), 0, mN[a] - 1);
-        if (dir[a] > 0.0) {
-            step[a] = 1;
-            tNext[a] = (lo[a] + double(cell[a] + 1) * kBlock - origin[a]) / dir[a];
-            tDelta[a] = kBlock / dir[a];
-        } else if (dir[a] < 0.0) {
-            step[a] = -1;
-            tNext[a] = (lo[a] + double(cell[a]) * kBlock - origin[a]) / dir[a];
-            tDelta[a] = -kBlock / dir[a];
-        } else {
-            step[a] = 0;
-            tNext[a] = kInf;
-            tDelta[a] = kInf;
-        }
-    }
-
-    double t = t0;
     bool open = false;
-    double start = 0.0;
-    for (;;) {
-        const int axis = tNext[0] < tNext[1] ? (tNext[0] < tNext[2] ? 0 : 2)
-                                             : (tNext[1] < tNext[2] ? 1 : 2);
-        const double tExit = std::min(tNext[axis], t1);
-        if (occupied(cell[0], cell[1], cell[2])) {
+    double start = 0.0, last = 0.0;
+    walk(origin, dir, tMin, tMax, [&](std::size_t block, double t0, double t1) {
+        if (mOcc[block] != 0) {
             if (!open) {
                 open = true;
-                start = t;
+                start = t0;
             }
         } else if (open) {
-            out.push_back({start, t});
+            out.push_back({start, t0});
             open = false;
         }
-        t = tExit;
-        if (t >= t1) break;
-        cell[axis] += step[axis];
-        if (cell[axis] < 0 || cell[axis] >= mN[axis]) break;
-        tNext[axis] += tDelta[axis];
+        last = t1;
+        return true;
+    });
+    if (open && start < last) out.push_back({start, last});
+}
+
+void RenderOccupancy::recordMajorants(const openvdb::FloatTree& tree)
+{
+    mMax.assign(mOcc.size(), 0.0f);
+    const auto raise = [this](int bi, int bj, int bk, float v) {
+        float& m = mMax[blockIndex(bi - mMin[0], bj - mMin[1], bk - mMin[2])];
+        m = std::max(m, v);
+    };
+    // A voxel at index i is read by trilinear samples in (i - 1, i + 1): its own block and,
+    // on a leaf's faces, the neighbouring block. Leaves are block-aligned (8^3, origin a
+    // multiple of 8), so each leaf raises the 27 blocks around it by the largest value of
+    // the voxels that touch each.
+    for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) {
+        if (leaf->isEmpty()) continue;  // outside the blocks, as in the occupancy
+        float near[27] = {};
+        for (auto v = leaf->cbeginValueAll(); v; ++v) {
+            const float value = *v;
+            if (!(value > 0.0f)) continue;
+            const openvdb::Coord local = v.getCoord() - leaf->origin();
+            int from[3], to[3];
+            for (int a = 0; a < 3; ++a) {
+                from[a] = local[a] == 0 ? 0 : 1;
+                to[a] = local[a] == kBlock - 1 ? 2 : 1;
+            }
+            for (int i = from[0]; i <= to[0]; ++i)
+                for (int j = from[1]; j <= to[1]; ++j)
+                    for (int k = from[2]; k <= to[2]; ++k) {
+                        float& m = near[(i * 3 + j) * 3 + k];
+                        m = std::max(m, value);
+                    }
+        }
+        const openvdb::Coord b(blockOf(leaf->origin().x()), blockOf(leaf->origin().y()),
+                               blockOf(leaf->origin().z()));
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                for (int k = 0; k < 3; ++k)
+                    if (near[(i * 3 + j) * 3 + k] > 0.0f)
+                        raise(b.x() + i - 1, b.y() + j - 1, b.z() + k - 1,
+                              near[(i * 3 + j) * 3 + k]);
     }
-    if (open && start < t) out.push_back({start, t});
+    auto it = tree.cbeginValueOn();
+    it.setMaxDepth(openvdb::FloatTree::ValueOnCIter::LEAF_DEPTH - 1);  // tiles only
+    for (; it; ++it) {
+        const float value = *it;
+        if (!(value > 0.0f)) continue;
+        openvdb::CoordBBox box;
+        it.getBoundingBox(box);
+        for (int i = blockOf(box.min().x() - 1); i <= blockOf(box.max().x() + 1); ++i)
+            for (int j = blockOf(box.min().y() - 1); j <= blockOf(box.max().y() + 1); ++j)
+                for (int k = blockOf(box.min().z() - 1); k <= blockOf(box.max().z() + 1); ++k)
+                    raise(i, j, k, value);
+    }
 }
 
 }  // namespace cg::algo

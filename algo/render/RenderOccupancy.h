@@ -2,9 +2,14 @@
 /// Empty-space skipping for the volume renderer: a dense bit per 8³-voxel block of index space
 /// (the size of an OpenVDB leaf), set where a trilinear sample of the grid can be non-zero,
 /// and a 3D DDA (Amanatides & Woo 1987) that turns a ray into the intervals it spends in
-/// such blocks. Inactive voxels are taken to hold zero, as in every fog volume.
+/// such blocks. Inactive voxels are taken to hold zero, as in every fog volume. On request it
+/// also keeps each block's majorant, the largest value a trilinear sample inside the block can
+/// take, which the path tracer's free-flight and shadow-ray tracking need.
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <openvdb/openvdb.h>
@@ -22,12 +27,24 @@ public:
         double t1;
     };
 
-    /// Marks every block within one voxel of an active leaf voxel or active tile.
-    /// Throws std::invalid_argument when the occupied blocks' bounding box exceeds 2^27 blocks
-    /// (about 6e10 voxels), which no single cloud needs.
-    explicit RenderOccupancy(const openvdb::FloatTree& tree);
+    /// Marks every block within one voxel of an active leaf voxel or active tile; with
+    /// `majorants`, also records each block's largest reachable value (negative values count
+    /// as zero). Throws std::invalid_argument when the occupied blocks' bounding box exceeds
+    /// 2^27 blocks (about 6e10 voxels), which no single cloud needs.
+    explicit RenderOccupancy(const openvdb::FloatTree& tree, bool majorants = false);
 
     bool empty() const { return mOcc.empty(); }
+
+    /// The largest trilinear sample in block `block` (an index walk() passes); 0 without
+    /// majorants.
+    float majorant(std::size_t block) const { return mMax.empty() ? 0.0f : mMax[block]; }
+
+    /// Calls fn(block, t0, t1) for every block the index-space ray origin + t * dir crosses
+    /// within [tMin, tMax], in increasing t, until fn returns false. `dir` need not be
+    /// normalised.
+    template <class Fn>
+    void walk(const RenderVec3& origin, const RenderVec3& dir, double tMin, double tMax,
+              Fn&& fn) const;
 
     /// Appends to `out`, in increasing t, the intervals [t0, t1] within [tMin, tMax] where the
     /// index-space ray origin + t * dir crosses occupied blocks; runs of adjacent occupied
@@ -36,16 +53,76 @@ public:
                std::vector<Span>& out) const;
 
 private:
-    bool occupied(int i, int j, int k) const
+    std::size_t blockIndex(int i, int j, int k) const
     {
-        return mOcc[(static_cast<std::size_t>(i) * static_cast<std::size_t>(mN[1]) +
-                     static_cast<std::size_t>(j)) * static_cast<std::size_t>(mN[2]) +
-                    static_cast<std::size_t>(k)] != 0;
+        return (static_cast<std::size_t>(i) * static_cast<std::size_t>(mN[1]) +
+                static_cast<std::size_t>(j)) * static_cast<std::size_t>(mN[2]) +
+               static_cast<std::size_t>(k);
     }
+
+    void recordMajorants(const openvdb::FloatTree& tree);
 
     int mMin[3] = {0, 0, 0};  ///< first block, in block units
     int mN[3] = {0, 0, 0};    ///< blocks per axis
     std::vector<std::uint8_t> mOcc;
+    std::vector<float> mMax;  ///< per block; empty unless majorants were asked for
 };
+
+template <class Fn>
+void RenderOccupancy::walk(const RenderVec3& origin, const RenderVec3& dir, double tMin,
+                           double tMax, Fn&& fn) const
+{
+    if (mOcc.empty() || !(tMin < tMax)) return;
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    double lo[3], hi[3];
+    double t0 = tMin, t1 = tMax;
+    for (int a = 0; a < 3; ++a) {
+        lo[a] = double(mMin[a]) * kBlock;
+        hi[a] = double(mMin[a] + mN[a]) * kBlock;
+        if (dir[a] == 0.0) {
+            if (origin[a] < lo[a] || origin[a] >= hi[a]) return;
+            continue;
+        }
+        double ta = (lo[a] - origin[a]) / dir[a];
+        double tb = (hi[a] - origin[a]) / dir[a];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+    }
+    if (!(t0 < t1)) return;
+
+    int cell[3], step[3];
+    double tNext[3], tDelta[3];
+    for (int a = 0; a < 3; ++a) {
+        const double p = origin[a] + dir[a] * t0;
+        cell[a] = std::clamp(static_cast<int>(std::floor((p - lo[a]) / kBlock)), 0, mN[a] - 1);
+        if (dir[a] > 0.0) {
+            step[a] = 1;
+            tNext[a] = (lo[a] + double(cell[a] + 1) * kBlock - origin[a]) / dir[a];
+            tDelta[a] = kBlock / dir[a];
+        } else if (dir[a] < 0.0) {
+            step[a] = -1;
+            tNext[a] = (lo[a] + double(cell[a]) * kBlock - origin[a]) / dir[a];
+            tDelta[a] = -kBlock / dir[a];
+        } else {
+            step[a] = 0;
+            tNext[a] = kInf;
+            tDelta[a] = kInf;
+        }
+    }
+
+    double t = t0;
+    for (;;) {
+        const int axis = tNext[0] < tNext[1] ? (tNext[0] < tNext[2] ? 0 : 2)
+                                             : (tNext[1] < tNext[2] ? 1 : 2);
+        const double tExit = std::min(tNext[axis], t1);
+        if (!fn(blockIndex(cell[0], cell[1], cell[2]), t, tExit)) return;
+        t = tExit;
+        if (t >= t1) return;
+        cell[axis] += step[axis];
+        if (cell[axis] < 0 || cell[axis] >= mN[axis]) return;
+        tNext[axis] += tDelta[axis];
+    }
+}
 
 }  // namespace cg::algo

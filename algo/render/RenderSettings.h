@@ -69,8 +69,14 @@ struct RenderMarch {
     double lightTexel = 2.0;      ///< light-map texel, voxels (grown if the map would be huge)
     double lightStep = 1.0;       ///< step when filling the light maps, voxels
     bool jitter = true;           ///< offset each pixel's samples by a per-pixel random fraction
-    std::uint64_t seed = 0;       ///< seed of that offset (counter-based: pixel index)
+    std::uint64_t seed = 0;       ///< seed of that offset and of the path tracer's paths
     double minTransmittance = 1e-4;  ///< stop a ray once less than this gets through
+};
+
+/// The reference path tracer (renderPathTraced).
+struct RenderPathTrace {
+    int samples = 64;        ///< paths per pixel
+    int maxBounces = 1000;   ///< scattering events and ground bounces before a path is cut
 };
 
 struct RenderSettings {
@@ -81,6 +87,7 @@ struct RenderSettings {
     RenderMedium medium;
     RenderMultiScatter multiScatter;
     RenderMarch march;
+    RenderPathTrace pathTrace;
 };
 
 }  // namespace cg::algo

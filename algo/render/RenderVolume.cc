@@ -13,6 +13,7 @@
 #include "algo/render/Phase.h"
 #include "algo/render/RenderLightMap.h"
 #include "algo/render/RenderOccupancy.h"
+#include "algo/render/RenderRays.h"
 
 namespace cg::algo {
 
@@ -27,19 +28,6 @@ using Span = RenderOccupancy::Span;
 void require(bool ok, const std::string& what)
 {
     if (!ok) throw std::invalid_argument(what);
-}
-
-/// A world ray mapped to index space: the index point at world distance t is o + t d.
-struct IndexRay {
-    RenderVec3 o;
-    RenderVec3 d;
-};
-
-IndexRay toIndex(const openvdb::math::Transform& xform, const RenderVec3& origin,
-                 const RenderVec3& dir)
-{
-    const RenderVec3 o = xform.worldToIndex(origin);
-    return {o, xform.worldToIndex(origin + dir) - o};
 }
 
 /// Visits density samples on the lattice t_k = (k + offset) dt, t in [0, tMax), inside the
@@ -62,23 +50,6 @@ void marchRay(const RenderOccupancy& occ, Accessor& acc, const IndexRay& ray, do
     }
 }
 
-double voxelSizeOf(const openvdb::FloatGrid& grid)
-{
-    require(grid.transform().isLinear(), "fog volume: the renderer needs a linear transform");
-    const openvdb::Vec3d v = grid.voxelSize();
-    return std::min({v.x(), v.y(), v.z()});
-}
-
-/// The ray through pixel (px, py) given the camera basis.
-RenderVec3 pixelRay(const RenderVec3& forward, const RenderVec3& right, const RenderVec3& up,
-                    double tanHalf, const RenderCamera& camera, int px, int py)
-{
-    const double aspect = double(camera.width) / double(camera.height);
-    const double sx = (2.0 * (px + 0.5) / camera.width - 1.0) * tanHalf * aspect;
-    const double sy = (1.0 - 2.0 * (py + 0.5) / camera.height) * tanHalf;
-    return (forward + right * sx + up * sy).unitSafe();
-}
-
 /// Everything constant over a frame.
 struct Frame {
     const RenderSettings& s;
@@ -93,8 +64,7 @@ struct Frame {
     RenderVec3 below;         ///< ambient × radiance from below (ground bounce or horizon)
     RenderVec3 groundSky;     ///< ground radiance from sky light alone
     double groundSun = 0.0;   ///< cos of the sun's zenith angle, clamped at 0
-    RenderVec3 forward, right, up;
-    double tanHalf = 0.0;
+    CameraRays rays;
     int octaves = 1;
     double octaveWeight[kMaxOctaves];  ///< b^i
     double octaveAtten[kMaxOctaves];   ///< a^i
@@ -102,23 +72,10 @@ struct Frame {
 
     Frame(const openvdb::FloatGrid& g, const RenderSettings& settings,
           const std::function<bool()>& cancelled)
-        : s(settings), grid(g), occupancy(g.tree())
+        : s(settings), grid(g), occupancy(g.tree()), rays(settings.camera)
     {
-        const double voxel = voxelSizeOf(g);
-        const RenderCamera& cam = s.camera;
-        require(cam.width >= 1 && cam.height >= 1, "image size must be at least 1 x 1");
-        require(cam.fovDegrees > 0.0 && cam.fovDegrees < 180.0,
-                "field of view must be in (0, 180) degrees");
+        const double voxel = renderVoxelSize(g);
         require(s.march.step > 0.0, "step must be positive");
-        const RenderVec3 view = cam.lookAt - cam.position;
-        require(view.length() > 0.0, "camera look-at equals its position");
-        forward = view.unitSafe();
-        right = forward.cross(cam.up);
-        require(right.length() > 1e-9 * cam.up.length() && cam.up.length() > 0.0,
-                "camera up is zero or parallel to the view direction");
-        right = right.unitSafe();
-        up = right.cross(forward);
-        tanHalf = std::tan(0.5 * cam.fovDegrees * kPi / 180.0);
         dt = s.march.step * voxel;
 
         require(s.sun.direction.length() > 0.0, "sun direction is zero");
@@ -158,31 +115,21 @@ struct Frame {
                                     std::size_t(4) << 20, cancelled);
     }
 
-    RenderVec3 rayDirection(int px, int py) const
-    {
-        return pixelRay(forward, right, up, tanHalf, s.camera, px, py);
-    }
-
     /// Radiance behind the volume: the lit, shadowed, hazed ground, or the sky.
     RenderVec3 background(const RenderVec3& dir, double tGround) const
     {
         if (!std::isfinite(tGround)) return skyRadiance(s.sky, dir);
         const RenderVec3 p = s.camera.position + dir * tGround;
         const double sunT = std::exp(-sunMap.opticalDepth(p));
-        RenderVec3 lit = s.ground.albedo * sunIrradiance * (groundSun * sunT / kPi) + groundSky;
-        if (s.ground.hazeDistance > 0.0) {
-            const double f = std::exp(-tGround / s.ground.hazeDistance);
-            lit = lit * f + s.sky.horizon * (1.0 - f);
-        }
-        return lit;
+        return hazedGround(
+            s, s.ground.albedo * sunIrradiance * (groundSun * sunT / kPi) + groundSky, tGround);
     }
 
     void shade(int px, int py, Accessor& acc, std::vector<Span>& spans, float* out) const
     {
-        const RenderVec3 dir = rayDirection(px, py);
+        const RenderVec3 dir = rays.direction(px, py);
         const RenderVec3& origin = s.camera.position;
-        double tGround = std::numeric_limits<double>::infinity();
-        if (s.ground.enabled && origin.z() > 0.0 && dir.z() < 0.0) tGround = -origin.z() / dir.z();
+        const double tGround = groundDistance(s.ground, origin, dir);
 
         // The phase functions depend only on the angle between sun light and the view ray.
         const double cosTheta = sunDir.dot(dir);
@@ -205,7 +152,7 @@ struct Frame {
         const bool skyOcclusion = !skyMap.empty();
         double T = 1.0;
         RenderVec3 L(0.0);
-        marchRay(occupancy, acc, toIndex(grid.transform(), origin, dir), tGround, dt, offset,
+        marchRay(occupancy, acc, toIndexRay(grid.transform(), origin, dir), tGround, dt, offset,
                  spans, [&](double t, double density) {
                      const double sigmaT = ext * density;
                      const double segT = std::exp(-sigmaT * dt);
@@ -240,15 +187,6 @@ struct Frame {
 
 }  // namespace
 
-RenderVec3 cameraRayDirection(const RenderCamera& camera, int px, int py)
-{
-    const RenderVec3 forward = (camera.lookAt - camera.position).unitSafe();
-    const RenderVec3 right = forward.cross(camera.up).unitSafe();
-    const RenderVec3 up = right.cross(forward);
-    const double tanHalf = std::tan(0.5 * camera.fovDegrees * kPi / 180.0);
-    return pixelRay(forward, right, up, tanHalf, camera, px, py);
-}
-
 RenderedImage renderFogVolume(const openvdb::FloatGrid& grid, const RenderSettings& settings,
                               const std::function<bool()>& cancelled)
 {
@@ -277,12 +215,12 @@ double fogTransmittance(const openvdb::FloatGrid& grid, const RenderVec3& origin
 {
     require(stepVoxels > 0.0, "step must be positive");
     require(direction.length() > 0.0, "direction is zero");
-    const double dt = stepVoxels * voxelSizeOf(grid);
+    const double dt = stepVoxels * renderVoxelSize(grid);
     const RenderOccupancy occ(grid.tree());
     Accessor acc = grid.getConstAccessor();
     std::vector<Span> spans;
     double tau = 0.0;
-    marchRay(occ, acc, toIndex(grid.transform(), origin, direction.unitSafe()),
+    marchRay(occ, acc, toIndexRay(grid.transform(), origin, direction.unitSafe()),
              std::numeric_limits<double>::infinity(), dt, 0.5, spans, [&](double, double d) {
                  tau += extinction * d * dt;
                  return true;

@@ -19,6 +19,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include "algo/render/RenderRays.h"
 #include "algo/render/RenderSettings.h"
 
 namespace cg::algo {
@@ -27,6 +28,9 @@ struct RenderedImage {
     int width = 0;
     int height = 0;
     std::vector<float> rgba;  ///< 4 floats per pixel, top row first
+    /// 3 floats (linear RGB) per pixel, top row first: the radiance behind the volume along
+    /// the pixel's ray (sky, or the ground with the cloud's shadow, hazed).
+    std::vector<float> background;
 };
 
 /// Renders `grid` (density in [0, 1], linear transform, metres). Throws std::invalid_argument
@@ -42,17 +46,5 @@ RenderedImage renderFogVolume(const openvdb::FloatGrid& grid, const RenderSettin
 /// every stepVoxels voxels, no jitter, no early stop).
 double fogTransmittance(const openvdb::FloatGrid& grid, const RenderVec3& origin,
                         const RenderVec3& direction, double extinction, double stepVoxels);
-
-/// Unit world direction of the ray through the centre of pixel (px, py), (0, 0) top left.
-RenderVec3 cameraRayDirection(const RenderCamera& camera, int px, int py);
-
-/// Radiance of the sky seen in unit direction `dir`: horizon + (zenith − horizon) sqrt(dir.z)
-/// for dir.z > 0, the horizon colour below.
-inline RenderVec3 skyRadiance(const RenderSky& sky, const RenderVec3& dir)
-{
-    if (!(dir.z() > 0.0)) return sky.horizon;
-    const double w = std::sqrt(std::min(dir.z(), 1.0));
-    return sky.horizon + (sky.zenith - sky.horizon) * w;
-}
 
 }  // namespace cg::algo

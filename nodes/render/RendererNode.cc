@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "algo/render/RenderPathTrace.h"
 #include "algo/render/RenderVolume.h"
 #include "core/Error.h"
 #include "core/Node.h"
@@ -58,6 +59,8 @@ algo::RenderSettings settingsFrom(const ParamSet& p)
     s.march.lightStep = p.getFloat("lightStep");
     s.march.jitter = p.getBool("jitter");
     s.march.seed = static_cast<std::uint64_t>(p.getInt("jitterSeed"));
+    s.pathTrace.samples = static_cast<int>(p.getInt("samples"));
+    s.pathTrace.maxBounces = static_cast<int>(p.getInt("maxBounces"));
     return s;
 }
 
@@ -67,10 +70,12 @@ public:
     {
         const auto volume = ctx.input<FogVolumeData>("volume");
         const algo::RenderSettings settings = settingsFrom(ctx.params());
+        const bool pathTrace = ctx.params().getString("mode") == "pathtrace";
+        const auto cancelled = [&ctx] { return ctx.cancelToken().cancelled(); };
         algo::RenderedImage img;
         try {
-            img = algo::renderFogVolume(*volume->grid, settings,
-                                        [&ctx] { return ctx.cancelToken().cancelled(); });
+            img = pathTrace ? algo::renderPathTraced(*volume->grid, settings, cancelled)
+                            : algo::renderFogVolume(*volume->grid, settings, cancelled);
         } catch (const std::invalid_argument& e) {
             throw InputError(ctx.nodeId(), e.what());
         }
@@ -104,6 +109,10 @@ void registerRendererNode(Registry& registry)
     d.inputs = {port("volume", "FogVolume", "the cloud density (fog volume, metres)")};
     d.outputs = {port("image", "Image", "linear radiance RGBA, alpha = volume opacity")};
     d.params = {
+        stringParam("mode", "fast",
+                    "fast = the ray marcher with light maps and octaves; pathtrace = the "
+                    "reference path tracer (unbiased, slow; samples and maxBounces)",
+                    {"fast", "pathtrace"}),
         intParam("width", def.camera.width, "px", "image width", 1, 16384),
         intParam("height", def.camera.height, "px", "image height", 1, 16384),
         floatParam("fov", def.camera.fovDegrees, "deg", "vertical field of view", 1, 170),
@@ -155,8 +164,14 @@ void registerRendererNode(Registry& registry)
         boolParam("jitter", def.march.jitter,
                   "offset each pixel's samples by a per-pixel random fraction of a step "
                   "(turns banding into fine grain)"),
-        intParam("jitterSeed", 0, "", "seed of the jitter (counter-based on the pixel index)", 0,
-                 1e15),
+        intParam("jitterSeed", 0, "",
+                 "seed of the jitter and of the path tracer's paths (counter-based on the pixel "
+                 "index)", 0, 1e15),
+        intParam("samples", def.pathTrace.samples, "",
+                 "pathtrace: paths a pixel (noise falls as 1/sqrt(samples))", 1, 1 << 20),
+        intParam("maxBounces", def.pathTrace.maxBounces, "",
+                 "pathtrace: events a path may have before it is cut (thick cumulus needs "
+                 "hundreds; Russian roulette ends most paths long before)", 1, 1 << 20),
     };
     d.validate = [](const ParamSet& p, const ParamChecker& check) {
         check.checkAllocation("width", {p.getInt("width"), p.getInt("height")}, 4 * sizeof(float));
