@@ -53,10 +53,20 @@ struct RenderMedium {
     double lobeBlend = 0.2;    ///< weight of the second lobe, 0 = single lobe
 };
 
-/// Multiple scattering by octaves (Wrenninge et al. 2013): octave i adds b^i times the
-/// single-scattering term with the sun's optical depth scaled by a^i and the phase
-/// asymmetries by c^i. 1 octave = single scattering only.
+/// How the fast renderer approximates light scattered more than once.
+enum class MultiScatterModel {
+    /// The fluence of scattered sun, sky and ground light solved on a coarse lattice in the
+    /// diffusion approximation (RenderDiffusion.h); single scattering of the sun stays exact.
+    Diffusion,
+    /// Octaves (Wrenninge et al. 2013): octave i adds b^i times the single-scattering term
+    /// with the sun's optical depth scaled by a^i and the phase asymmetries by c^i (1 octave =
+    /// single scattering only); sky light is occluded by the optical depth straight up and
+    /// down.
+    Octaves,
+};
+
 struct RenderMultiScatter {
+    MultiScatterModel model = MultiScatterModel::Diffusion;
     int octaves = 4;
     double attenuation = 0.5;    ///< a
     double contribution = 0.5;   ///< b

@@ -11,6 +11,7 @@
 
 #include "algo/CounterRandom.h"
 #include "algo/render/Phase.h"
+#include "algo/render/RenderDiffusion.h"
 #include "algo/render/RenderLightMap.h"
 #include "algo/render/RenderOccupancy.h"
 #include "algo/render/RenderRays.h"
@@ -57,6 +58,9 @@ struct Frame {
     RenderOccupancy occupancy;
     RenderLightMap sunMap;
     RenderLightMap skyMap;
+    RenderDiffusion diffusion;  ///< with MultiScatterModel::Diffusion
+    bool useDiffusion = false;
+    RenderVec3 envFluence;      ///< Φ_env: 2π (mean radiance above + radiance from below)
     double dt = 1.0;
     RenderVec3 sunDir;        ///< unit, toward the sun
     RenderVec3 sunIrradiance; ///< colour × intensity
@@ -81,7 +85,8 @@ struct Frame {
         require(s.sun.direction.length() > 0.0, "sun direction is zero");
         sunDir = s.sun.direction.unitSafe();
         sunIrradiance = s.sun.colour * s.sun.intensity;
-        octaves = std::clamp(s.multiScatter.octaves, 1, kMaxOctaves);
+        useDiffusion = s.multiScatter.model == MultiScatterModel::Diffusion;
+        octaves = useDiffusion ? 1 : std::clamp(s.multiScatter.octaves, 1, kMaxOctaves);
         for (int i = 0; i < octaves; ++i) {
             octaveWeight[i] = std::pow(s.multiScatter.contribution, i);
             octaveAtten[i] = std::pow(s.multiScatter.attenuation, i);
@@ -104,11 +109,13 @@ struct Frame {
         }
 
         const bool needSun = s.sun.intensity > 0.0;
-        const bool needSky = s.sky.ambient > 0.0 && s.sky.occlusion > 0.0;
+        const bool needSky = !useDiffusion && s.sky.ambient > 0.0 && s.sky.occlusion > 0.0;
         if (needSun)
             sunMap = RenderLightMap(g, occupancy, sunDir, s.medium.extinction,
                                     s.march.lightTexel, s.march.lightStep,
                                     std::size_t(8) << 20, cancelled);
+        envFluence = (skyUp + below) * (2.0 * kPi);
+        if (useDiffusion) diffusion = RenderDiffusion(g, sunMap, s.medium, cancelled);
         if (needSky)
             skyMap = RenderLightMap(g, occupancy, RenderVec3(0, 0, 1), s.medium.extinction,
                                     s.march.lightTexel * 4.0, s.march.lightStep * 2.0,
@@ -161,6 +168,16 @@ struct Frame {
                      double sun = 0.0;
                      for (int i = 0; i < octaves; ++i)
                          sun += sunPhase[i] * std::exp(-octaveAtten[i] * tauSun);
+                     if (useDiffusion) {
+                         // Scattered light of every order, taken as isotropic.
+                         const RenderDiffusion::Fluence phi = diffusion.at(p);
+                         const RenderVec3 source =
+                             sunIrradiance * (sun + phi.sun * kInvFourPi) +
+                             envFluence * (phi.env * kInvFourPi);
+                         L += source * (T * albedo * (1.0 - segT));
+                         T *= segT;
+                         return T >= minT;
+                     }
                      // Sky light from above and bounce light from below, each dimmed by the
                      // optical depth of the cloud above or below the sample.
                      double upT = 1.0, downT = 1.0;

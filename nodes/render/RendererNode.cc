@@ -50,6 +50,9 @@ algo::RenderSettings settingsFrom(const ParamSet& p)
     s.medium.g = p.getFloat("g");
     s.medium.g2 = p.getFloat("g2");
     s.medium.lobeBlend = p.getFloat("lobeBlend");
+    s.multiScatter.model = p.getString("multipleScattering") == "octaves"
+                               ? algo::MultiScatterModel::Octaves
+                               : algo::MultiScatterModel::Diffusion;
     s.multiScatter.octaves = static_cast<int>(p.getInt("octaves"));
     s.multiScatter.attenuation = p.getFloat("msAttenuation");
     s.multiScatter.contribution = p.getFloat("msContribution");
@@ -147,6 +150,12 @@ void registerRendererNode(Registry& registry)
         floatParam("g2", def.medium.g2, "", "asymmetry of the second HG lobe", -0.99, 0.99),
         floatParam("lobeBlend", def.medium.lobeBlend, "", "weight of the second lobe, 0 = one lobe",
                    0, 1),
+        stringParam("multipleScattering", "diffusion",
+                    "fast mode: diffusion = the fluence of scattered sun, sky and ground light "
+                    "solved on a coarse lattice (ours, checked against pathtrace); octaves = "
+                    "Wrenninge et al. 2013 with sky light straight up and down (the octave and "
+                    "skyOcclusion parameters apply only to it)",
+                    {"diffusion", "octaves"}),
         intParam("octaves", def.multiScatter.octaves, "",
                  "multiple-scattering octaves (1 = single scattering)", 1, 16),
         floatParam("msAttenuation", def.multiScatter.attenuation, "",
