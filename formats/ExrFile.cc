@@ -1,6 +1,7 @@
 #include "formats/ExrFile.h"
 
 #include <cstddef>
+#include <set>
 #include <stdexcept>
 
 #include <OpenEXR/ImfChannelList.h>
@@ -13,56 +14,133 @@ namespace cg::formats {
 
 namespace {
 
-constexpr const char* kChannels[4] = {"R", "G", "B", "A"};
-
-/// A frame buffer over interleaved RGBA floats, top row first: channel c of pixel (x, y) is
-/// base[4 (y w + x) + c], as OpenEXR's data window (0,0)-(w-1,h-1) addresses it.
-Imf::FrameBuffer rgbaSlices(float* base, int width, bool fillMissing)
+/// Adds the slices of `count` interleaved float channels to `fb`: channel c of pixel (x, y) is
+/// base[count (y w + x) + c], as OpenEXR's data window (0,0)-(w-1,h-1) addresses it. A channel
+/// missing from the file reads as fill(name).
+template <class Fill>
+void insertSlices(Imf::FrameBuffer& fb, float* base, int width,
+                  const std::vector<std::string>& channels, Fill fill)
 {
-    Imf::FrameBuffer fb;
-    const std::size_t xStride = 4 * sizeof(float);
+    const std::size_t count = channels.size();
+    const std::size_t xStride = count * sizeof(float);
     const std::size_t yStride = xStride * static_cast<std::size_t>(width);
-    for (int c = 0; c < 4; ++c)
-        fb.insert(kChannels[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(base + c), xStride,
-                                           yStride, 1, 1, fillMissing && c == 3 ? 1.0 : 0.0));
-    return fb;
+    for (std::size_t c = 0; c < count; ++c)
+        fb.insert(channels[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(base + c), xStride,
+                                          yStride, 1, 1, fill(channels[c])));
+}
+
+const std::vector<std::string>& rgbaNames()
+{
+    static const std::vector<std::string> names = {"R", "G", "B", "A"};
+    return names;
+}
+
+/// The data window of a file we can read: from (0, 0), at most 65536 pixels a side.
+void checkedSize(const Imf::Header& header, int& width, int& height)
+{
+    const Imath::Box2i dw = header.dataWindow();
+    width = dw.max.x - dw.min.x + 1;
+    height = dw.max.y - dw.min.y + 1;
+    if (dw.min.x != 0 || dw.min.y != 0 || width <= 0 || height <= 0 || width > (1 << 16) ||
+        height > (1 << 16))
+        throw std::runtime_error("unsupported data window");
 }
 
 }  // namespace
 
-void writeExrRgba32(const std::string& path, int width, int height, const std::vector<float>& rgba)
+void writeExrFloat32(const std::string& path, int width, int height,
+                     const std::vector<ExrPixels>& parts)
 {
-    if (width <= 0 || height <= 0 ||
-        rgba.size() != 4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
-        throw std::invalid_argument("writeExrRgba32: image size does not match its pixels");
+    const std::size_t pixels =
+        width > 0 && height > 0 ? static_cast<std::size_t>(width) * static_cast<std::size_t>(height)
+                                : 0;
+    std::set<std::string> names;
+    for (const ExrPixels& part : parts) {
+        if (pixels == 0 || part.channels.empty() ||
+            part.values.size() != part.channels.size() * pixels)
+            throw std::invalid_argument("writeExrFloat32: image size does not match its pixels");
+        for (const std::string& name : part.channels)
+            if (name.empty() || !names.insert(name).second)
+                throw std::invalid_argument("writeExrFloat32: channel name '" + name +
+                                            "' is empty or repeated");
+    }
     try {
         Imf::Header header(width, height);
         header.compression() = Imf::ZIP_COMPRESSION;
-        for (const char* c : kChannels) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+        for (const std::string& name : names)
+            header.channels().insert(name, Imf::Channel(Imf::FLOAT));
         Imf::OutputFile file(path.c_str(), header);
+        Imf::FrameBuffer fb;
         // OpenEXR only reads through the frame buffer; its API takes a non-const pointer.
-        file.setFrameBuffer(rgbaSlices(const_cast<float*>(rgba.data()), width, false));
+        for (const ExrPixels& part : parts)
+            insertSlices(fb, const_cast<float*>(part.values.data()), width, part.channels,
+                         [](const std::string&) { return 0.0; });
+        file.setFrameBuffer(fb);
         file.writePixels(height);
     } catch (const std::exception& e) {
         throw std::runtime_error(path + ": cannot write OpenEXR: " + e.what());
     }
 }
 
+void writeExrRgba32(const std::string& path, int width, int height, const std::vector<float>& rgba)
+{
+    if (width <= 0 || height <= 0 ||
+        rgba.size() != 4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
+        throw std::invalid_argument("writeExrRgba32: image size does not match its pixels");
+    writeExrFloat32(path, width, height, {{rgbaNames(), rgba}});
+}
+
 ExrRgbaImage readExrRgba(const std::string& path)
 {
     try {
         Imf::InputFile file(path.c_str());
-        const Imath::Box2i dw = file.header().dataWindow();
         ExrRgbaImage out;
-        out.width = dw.max.x - dw.min.x + 1;
-        out.height = dw.max.y - dw.min.y + 1;
-        if (dw.min.x != 0 || dw.min.y != 0 || out.width <= 0 || out.height <= 0 ||
-            out.width > (1 << 16) || out.height > (1 << 16))
-            throw std::runtime_error("unsupported data window");
-        out.rgba.resize(4 * static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height));
-        file.setFrameBuffer(rgbaSlices(out.rgba.data(), out.width, true));
-        file.readPixels(dw.min.y, dw.max.y);
+        checkedSize(file.header(), out.width, out.height);
+        out.rgba.resize(4 * static_cast<std::size_t>(out.width) *
+                        static_cast<std::size_t>(out.height));
+        Imf::FrameBuffer fb;
+        insertSlices(fb, out.rgba.data(), out.width, rgbaNames(),
+                     [](const std::string& name) { return name == "A" ? 1.0 : 0.0; });
+        file.setFrameBuffer(fb);
+        file.readPixels(0, out.height - 1);
         return out;
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path + ": cannot read OpenEXR: " + e.what());
+    }
+}
+
+ExrChannelImage readExrChannels(const std::string& path, const std::vector<std::string>& channels)
+{
+    try {
+        Imf::InputFile file(path.c_str());
+        ExrChannelImage out;
+        checkedSize(file.header(), out.width, out.height);
+        for (const std::string& name : channels)
+            if (!file.header().channels().findChannel(name))
+                throw std::runtime_error("no channel '" + name + "'");
+        out.channels = channels;
+        out.values.resize(channels.size() * static_cast<std::size_t>(out.width) *
+                          static_cast<std::size_t>(out.height));
+        if (channels.empty()) return out;
+        Imf::FrameBuffer fb;
+        insertSlices(fb, out.values.data(), out.width, channels,
+                     [](const std::string&) { return 0.0; });
+        file.setFrameBuffer(fb);
+        file.readPixels(0, out.height - 1);
+        return out;
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path + ": cannot read OpenEXR: " + e.what());
+    }
+}
+
+std::vector<std::string> exrChannelNames(const std::string& path)
+{
+    try {
+        Imf::InputFile file(path.c_str());
+        std::vector<std::string> names;
+        const Imf::ChannelList& list = file.header().channels();
+        for (auto it = list.begin(); it != list.end(); ++it) names.emplace_back(it.name());
+        return names;
     } catch (const std::exception& e) {
         throw std::runtime_error(path + ": cannot read OpenEXR: " + e.what());
     }

@@ -12,6 +12,23 @@ namespace cg::formats {
 /// failure, std::invalid_argument if rgba.size() != 4 width height.
 void writeExrRgba32(const std::string& path, int width, int height, const std::vector<float>& rgba);
 
+/// Interleaved float pixels and the names of their channels as the file stores them:
+/// channels.size() floats per pixel, top row first, channel c of pixel i at
+/// values[i * channels.size() + c]. A layer's channels are named "layer.channel" (OpenEXR's
+/// convention, which Nuke and Blender read as layers): {"cloud.R", "cloud.G", ...}.
+struct ExrPixels {
+    std::vector<std::string> channels;
+    const std::vector<float>& values;
+};
+
+/// Writes every channel of every `parts` entry as 32-bit float into one scanline OpenEXR file
+/// with ZIP compression, exactly to `path`, values unchanged. {{{"R", "G", "B", "A"}, rgba}}
+/// is writeExrRgba32's file. Throws std::invalid_argument if a part's values do not hold
+/// channels.size() floats per pixel, if a part has no channel or a name repeats;
+/// std::runtime_error naming the file on failure.
+void writeExrFloat32(const std::string& path, int width, int height,
+                     const std::vector<ExrPixels>& parts);
+
 struct ExrRgbaImage {
     int width = 0;
     int height = 0;
@@ -21,5 +38,22 @@ struct ExrRgbaImage {
 /// Reads R, G, B, A of an OpenEXR file as floats (a missing channel reads as 0, alpha as 1).
 /// Throws std::runtime_error naming the file.
 ExrRgbaImage readExrRgba(const std::string& path);
+
+/// Named channels of an OpenEXR file read as floats.
+struct ExrChannelImage {
+    int width = 0;
+    int height = 0;
+    std::vector<std::string> channels;  ///< those asked for, in that order
+    std::vector<float> values;          ///< channels.size() floats per pixel, top row first
+};
+
+/// Reads the named channels of an OpenEXR file (e.g. {"cloud.R", "cloud.A"}) as floats,
+/// interleaved in the order asked. Throws std::runtime_error naming the file and the channel
+/// if one is missing, or naming the file on any other failure.
+ExrChannelImage readExrChannels(const std::string& path, const std::vector<std::string>& channels);
+
+/// The names of every channel in an OpenEXR file, in the file's (alphabetical) order.
+/// Throws std::runtime_error naming the file.
+std::vector<std::string> exrChannelNames(const std::string& path);
 
 }  // namespace cg::formats

@@ -132,7 +132,8 @@ struct Frame {
             s, s.ground.albedo * sunIrradiance * (groundSun * sunT / kPi) + groundSky, tGround);
     }
 
-    void shade(int px, int py, Accessor& acc, std::vector<Span>& spans, float* out) const
+    void shade(int px, int py, Accessor& acc, std::vector<Span>& spans, float* out,
+               float* behind) const
     {
         const RenderVec3 dir = rays.direction(px, py);
         const RenderVec3& origin = s.camera.position;
@@ -194,7 +195,11 @@ struct Frame {
                      T *= segT;
                      return T >= minT;
                  });
-        L += background(dir, tGround) * T;
+        const RenderVec3 bg = background(dir, tGround);
+        L += bg * T;
+        behind[0] = static_cast<float>(bg.x());
+        behind[1] = static_cast<float>(bg.y());
+        behind[2] = static_cast<float>(bg.z());
         out[0] = static_cast<float>(L.x());
         out[1] = static_cast<float>(L.y());
         out[2] = static_cast<float>(L.z());
@@ -213,15 +218,18 @@ RenderedImage renderFogVolume(const openvdb::FloatGrid& grid, const RenderSettin
     img.height = settings.camera.height;
     const auto w = static_cast<std::size_t>(img.width);
     img.rgba.assign(w * static_cast<std::size_t>(img.height) * 4, 0.0f);
+    img.background.assign(w * static_cast<std::size_t>(img.height) * 3, 0.0f);
     tbb::parallel_for(tbb::blocked_range<int>(0, img.height, 1),
                       [&](const tbb::blocked_range<int>& rows) {
                           Accessor acc = grid.getConstAccessor();
                           std::vector<Span> spans;
                           for (int py = rows.begin(); py != rows.end(); ++py) {
                               if (cancelled && cancelled()) return;
-                              float* row = img.rgba.data() + static_cast<std::size_t>(py) * w * 4;
+                              const auto y = static_cast<std::size_t>(py);
+                              float* row = img.rgba.data() + y * w * 4;
+                              float* behind = img.background.data() + y * w * 3;
                               for (int px = 0; px < img.width; ++px)
-                                  frame.shade(px, py, acc, spans, row + 4 * px);
+                                  frame.shade(px, py, acc, spans, row + 4 * px, behind + 3 * px);
                           }
                       });
     return img;

@@ -8,7 +8,9 @@
 ///
 /// Output is linear radiance (scene-referred, before exposure and tone mapping), RGBA with 4
 /// floats per pixel, top row first; alpha is the volume's opacity 1 − T along the pixel's ray,
-/// and RGB already contains what lies behind the volume. Every pixel is computed
+/// and RGB already contains what lies behind the volume; `background` holds that radiance on
+/// its own, so the cloud alone is derived as RGB − (1 − alpha) background (CloudLayer.h).
+/// Every pixel is computed
 /// independently (jitter is counter-based on the pixel index), so the image does not depend
 /// on thread count.
 
@@ -27,9 +29,10 @@ namespace cg::algo {
 struct RenderedImage {
     int width = 0;
     int height = 0;
-    std::vector<float> rgba;  ///< 4 floats per pixel, top row first
+    std::vector<float> rgba;  ///< 4 floats per pixel, top row first: the beauty
     /// 3 floats (linear RGB) per pixel, top row first: the radiance behind the volume along
-    /// the pixel's ray (sky, or the ground with the cloud's shadow, hazed).
+    /// the pixel's ray (the sky, or the ground lit by sun and sky with the cloud's shadow,
+    /// hazed), before the volume's transmittance; empty where a renderer has none.
     std::vector<float> background;
 };
 

@@ -1,6 +1,15 @@
+/// Image's stored form, version 2, in ByteWriter's primitives (u64 little-endian; a float
+/// vector is a u64 count and the floats' bytes):
+///
+///   8 bytes  tag "CGIMAGE2" (version 1, untagged, began with the width: refused)
+///   u64      width, u64 height, each 1 to 2^20
+///   floats   rgba: 4 per pixel, top row first, finite
+///   floats   background: none, or 3 per pixel, top row first, finite
+
 #include "nodes/data/Image.h"
 
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 #include "core/Registry.h"
@@ -11,48 +20,76 @@ namespace cg {
 namespace {
 
 constexpr const char* kType = "Image";
+constexpr char kTag[8] = {'C', 'G', 'I', 'M', 'A', 'G', 'E', '2'};
 constexpr std::uint64_t kMaxSide = std::uint64_t{1} << 20;
+
+/// Every value finite: the renderer makes finite radiance, and the writers' tone map,
+/// quantisation and cloud layer assume it.
+void requireFinite(const std::vector<float>& values, std::size_t channels, const char* what)
+{
+    for (std::size_t i = 0; i < values.size(); ++i)
+        if (!std::isfinite(values[i]))
+            checks::refuse(kType, std::string(what) + "channel " + std::to_string(i % channels) +
+                                      " of pixel " + std::to_string(i / channels) +
+                                      " is not finite");
+}
 
 DataPtr readImage(ByteReader& in)
 {
+    char tag[8];
+    in.bytes(tag, 8);
+    if (std::memcmp(tag, kTag, 8) != 0)
+        checks::refuse(kType, "not a version 2 image (no CGIMAGE2 tag)");
     const std::uint64_t w = in.u64();
     const std::uint64_t h = in.u64();
     auto rgba = in.podVector<float>();
+    auto background = in.podVector<float>();
     if (w == 0 || h == 0 || w > kMaxSide || h > kMaxSide)
         checks::refuse(kType,
                        "size " + std::to_string(w) + " x " + std::to_string(h) + " is absurd");
     if (rgba.size() != 4 * w * h)
         checks::refuse(kType, std::to_string(rgba.size()) + " floats for " + std::to_string(w) +
                                   " x " + std::to_string(h) + " RGBA pixels");
-    // The renderer makes finite radiance; the writers' tone map and quantisation assume it.
-    for (std::size_t i = 0; i < rgba.size(); ++i)
-        if (!std::isfinite(rgba[i]))
-            checks::refuse(kType, "channel " + std::to_string(i % 4) + " of pixel " +
-                                      std::to_string(i / 4) + " is not finite");
-    return std::make_shared<ImageData>(static_cast<int>(w), static_cast<int>(h), std::move(rgba));
+    if (!background.empty() && background.size() != 3 * w * h)
+        checks::refuse(kType, std::to_string(background.size()) + " background floats for " +
+                                  std::to_string(w) + " x " + std::to_string(h) + " RGB pixels");
+    requireFinite(rgba, 4, "");
+    requireFinite(background, 3, "background ");
+    return std::make_shared<ImageData>(static_cast<int>(w), static_cast<int>(h), std::move(rgba),
+                                       std::move(background));
 }
 
 }  // namespace
 
-ImageData::ImageData(int width_, int height_, std::vector<float> rgba_)
-    : width(width_), height(height_), rgba(std::move(rgba_))
+ImageData::ImageData(int width_, int height_, std::vector<float> rgba_,
+                     std::vector<float> background_)
+    : width(width_), height(height_), rgba(std::move(rgba_)), background(std::move(background_))
 {
-    if (width <= 0 || height <= 0 ||
-        rgba.size() != 4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
+    const std::size_t pixels =
+        width > 0 && height > 0 ? static_cast<std::size_t>(width) * static_cast<std::size_t>(height)
+                                : 0;
+    if (pixels == 0 || rgba.size() != 4 * pixels)
         throw std::invalid_argument("Image: size does not match its pixels");
+    if (!background.empty() && background.size() != 3 * pixels)
+        throw std::invalid_argument("Image: background size does not match its pixels");
 }
 
 bool ImageData::serialize(ByteWriter& out) const
 {
+    out.bytes(kTag, 8);
     out.u64(static_cast<std::uint64_t>(width));
     out.u64(static_cast<std::uint64_t>(height));
     out.podVector(rgba);
+    out.podVector(background);
     return true;
 }
 
 void registerImageType(Registry& registry)
 {
-    registry.addDataType({"Image", "an image: float RGBA pixels, top row first", readImage});
+    registry.addDataType({"Image",
+                          "an image: float RGBA pixels, top row first, and optionally the "
+                          "radiance behind a rendered volume (RGB)",
+                          readImage});
 }
 
 }  // namespace cg

@@ -12,14 +12,24 @@ class Registry;
 
 class ImageData final : public Data {
 public:
-    ImageData(int width, int height, std::vector<float> rgba);
+    /// `background` is empty, or 3 floats per pixel. Throws std::invalid_argument if a size
+    /// does not match width x height.
+    ImageData(int width, int height, std::vector<float> rgba, std::vector<float> background = {});
 
     const int width;
     const int height;
     const std::vector<float> rgba;  ///< 4 floats per pixel, top row first
+    /// Optional, a renderer's: 3 floats (linear RGB) per pixel, top row first, the radiance
+    /// behind the volume, so rgba = cloud + (1 - alpha) background (algo/render/CloudLayer.h).
+    /// Empty for images that have none.
+    const std::vector<float> background;
 
+    bool hasBackground() const { return !background.empty(); }
     std::string typeName() const override { return "Image"; }
-    std::size_t byteSize() const override { return sizeof(*this) + rgba.size() * sizeof(float); }
+    std::size_t byteSize() const override
+    {
+        return sizeof(*this) + (rgba.size() + background.size()) * sizeof(float);
+    }
     bool serialize(ByteWriter& out) const override;
 };
 

@@ -83,8 +83,9 @@ public:
             throw InputError(ctx.nodeId(), e.what());
         }
         ctx.checkCancelled();
-        ctx.setOutput("image",
-                      std::make_shared<ImageData>(img.width, img.height, std::move(img.rgba)));
+        ctx.setOutput("image", std::make_shared<ImageData>(img.width, img.height,
+                                                           std::move(img.rgba),
+                                                           std::move(img.background)));
     }
 };
 
@@ -96,7 +97,7 @@ void registerRendererNode(Registry& registry)
     const auto v3 = [](const algo::RenderVec3& v) { return Vec3{v.x(), v.y(), v.z()}; };
     NodeDecl d;
     d.type = "Renderer";
-    d.version = 1;
+    d.version = 2;  // 2: the image carries its background
     d.category = "render";
     d.doc =
         "Ray-marches a fog volume (sigma_t = extinction x density, sigma_s = albedo x sigma_t) "
@@ -107,10 +108,13 @@ void registerRendererNode(Registry& registry)
         "occluded by the optical depth straight up. Behind the volume: the ground z = 0 (lit, "
         "with the cloud's shadow, hazed with distance) or a zenith/horizon sky gradient. Output: "
         "linear radiance RGBA, top row first, before exposure and tone map (WriteImage applies "
-        "them); alpha is the volume's opacity 1 - T. Independent of the thread count. See "
-        "docs/rendering.md.";
+        "them); alpha is the volume's opacity 1 - T. The image also carries the background "
+        "alone (the radiance behind the volume), so WriteImage can write the cloud as a "
+        "premultiplied layer of its own: beauty = cloud + (1 - alpha) x background. Independent "
+        "of the thread count. See docs/rendering.md.";
     d.inputs = {port("volume", "FogVolume", "the cloud density (fog volume, metres)")};
-    d.outputs = {port("image", "Image", "linear radiance RGBA, alpha = volume opacity")};
+    d.outputs = {port("image", "Image",
+                      "linear radiance RGBA, alpha = volume opacity, with the background")};
     d.params = {
         stringParam("mode", "fast",
                     "fast = the ray marcher with light maps and octaves; pathtrace = the "
@@ -183,7 +187,8 @@ void registerRendererNode(Registry& registry)
                  "hundreds; Russian roulette ends most paths long before)", 1, 1 << 20),
     };
     d.validate = [](const ParamSet& p, const ParamChecker& check) {
-        check.checkAllocation("width", {p.getInt("width"), p.getInt("height")}, 4 * sizeof(float));
+        // RGBA and the background: 7 floats a pixel.
+        check.checkAllocation("width", {p.getInt("width"), p.getInt("height")}, 7 * sizeof(float));
         const Vec3 a = p.getVec3("cameraPosition"), b = p.getVec3("cameraLookAt");
         if (a == b) check.fail("cameraLookAt", "equals cameraPosition");
         const Vec3 s = p.getVec3("sunDirection");

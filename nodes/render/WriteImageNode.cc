@@ -1,10 +1,12 @@
 // WriteImage: a linear radiance image to an 8-bit sRGB PNG (exposure, filmic tone map) or to a
-// linear OpenEXR file, chosen by the file's extension.
+// linear OpenEXR file, chosen by the file's extension; an image with a background becomes a
+// multi-layer EXR (beauty, cloud, background).
 
 #include <filesystem>
 #include <memory>
 #include <string>
 
+#include "algo/render/CloudLayer.h"
 #include "algo/render/Display.h"
 #include "core/CoreData.h"
 #include "core/Node.h"
@@ -28,6 +30,22 @@ bool endsWith(const std::string& s, const std::string& tail)
 
 bool isExr(const std::string& file) { return endsWith(file, ".exr"); }
 
+/// The beauty as R, G, B, A (what a reader of the default layer sees) and, where the image has
+/// a background, the layers "cloud" (premultiplied, background excluded) and "background".
+void writeExr(const std::string& path, const ImageData& image)
+{
+    if (!image.hasBackground()) {
+        formats::writeExrRgba32(path, image.width, image.height, image.rgba);
+        return;
+    }
+    const std::vector<float> cloud = algo::cloudLayer(image.rgba, image.background);
+    formats::writeExrFloat32(path, image.width, image.height,
+                             {{{"R", "G", "B", "A"}, image.rgba},
+                              {{"cloud.R", "cloud.G", "cloud.B", "cloud.A"}, cloud},
+                              {{"background.R", "background.G", "background.B"},
+                               image.background}});
+}
+
 class WriteImageNode final : public Node {
 public:
     void cook(CookContext& ctx) override
@@ -37,8 +55,7 @@ public:
         const std::filesystem::path path = ctx.outputPath("file");
         util::AtomicOutput out(path);
         if (isExr(path.string())) {
-            formats::writeExrRgba32(out.tempPath().string(), image->width, image->height,
-                                    image->rgba);
+            writeExr(out.tempPath().string(), *image);
         } else {
             algo::DisplaySettings display;
             display.exposure = ctx.params().getFloat("exposure");
@@ -64,11 +81,17 @@ void registerWriteImageNode(Registry& registry)
         "Writes an image of linear radiance (e.g. the Renderer's). A file ending in .png is an "
         "8-bit sRGB PNG: each RGB value v becomes round(255 sRGB(toneMap(2^exposure v))) plus "
         "an optional +-1 triangular dither seeded by the frame; alpha is dropped (the image is "
-        "already composited). A file ending in .exr is a linear OpenEXR image: RGBA as 32-bit "
-        "floats, unchanged (exposure, toneMap and dither do not apply), ZIP-compressed, for "
-        "compositing. Top row first. #### in the name becomes the frame number; the file "
+        "already composited). A file ending in .exr is a linear OpenEXR image, 32-bit floats "
+        "unchanged (exposure, toneMap and dither do not apply), ZIP-compressed, for "
+        "compositing: R, G, B, A hold the image as it is (the Renderer's beauty: cloud over "
+        "sky and ground). An image with a background (the Renderer's) adds the layers "
+        "cloud.R/G/B/A (the cloud alone, premultiplied: cloud = beauty - (1 - alpha) x "
+        "background) and background.R/G/B (sky and ground with the cloud's shadow), so a "
+        "compositor can put the cloud over a plate (docs/rendering.md, Compositing the EXR "
+        "layers). Top row first. #### in the name becomes the frame number; the file "
         "appears atomically.",
-        port("image", "Image", "linear radiance RGBA"), "image.####.png");
+        port("image", "Image", "linear radiance RGBA, with a background where it has one"),
+        "image.####.png");
     d.params.push_back(floatParam("exposure", 0.0, "stops",
                                   "radiance is multiplied by 2^exposure before the tone map",
                                   -20, 20));

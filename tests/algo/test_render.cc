@@ -152,7 +152,13 @@ TEST(RenderImage, MissedRaysSeeTheSkyExactly)
         EXPECT_EQ(p[1], static_cast<float>(sky.y()));
         EXPECT_EQ(p[2], static_cast<float>(sky.z()));
         EXPECT_EQ(p[3], 0.0f);
+        // The background is the same sky.
+        const float* b = &img.background[(static_cast<std::size_t>(y) * 64 + x) * 3];
+        EXPECT_EQ(b[0], p[0]);
+        EXPECT_EQ(b[1], p[1]);
+        EXPECT_EQ(b[2], p[2]);
     }
+    ASSERT_EQ(img.background.size(), std::size_t(64 * 48 * 3));
     // The centre pixel sees the opaque ball.
     EXPECT_GT(img.rgba[(24 * 64 + 32) * 4 + 3], 0.99f);
 }
@@ -189,6 +195,10 @@ TEST(RenderImage, IdenticalForOneAndTwoThreads)
     }
     ASSERT_EQ(one.rgba.size(), two.rgba.size());
     EXPECT_EQ(std::memcmp(one.rgba.data(), two.rgba.data(), one.rgba.size() * sizeof(float)), 0);
+    ASSERT_EQ(one.background.size(), two.background.size());
+    EXPECT_EQ(std::memcmp(one.background.data(), two.background.data(),
+                          one.background.size() * sizeof(float)),
+              0);
 }
 
 TEST(RenderImage, RefusesUnusableSettings)

@@ -250,12 +250,15 @@ TEST(CachedValueDecoding, Map2DRoundTripsAndRefusesBadSizesCellsAndDensities)
 
 // ---- Image ---------------------------------------------------------------------------------
 
-Bytes imageBytes(std::uint64_t w, std::uint64_t h, const std::vector<float>& rgba)
+Bytes imageBytes(std::uint64_t w, std::uint64_t h, const std::vector<float>& rgba,
+                 const std::vector<float>& background = {})
 {
     ByteWriter out;
+    out.bytes("CGIMAGE2", 8);
     out.u64(w);
     out.u64(h);
     out.podVector(rgba);
+    out.podVector(background);
     return out.buffer();
 }
 
@@ -263,7 +266,9 @@ TEST(CachedValueDecoding, ImageRoundTripsAndRefusesBadSizesAndNonFinitePixels)
 {
     std::vector<float> rgba(2 * 3 * 4);
     for (std::size_t i = 0; i < rgba.size(); ++i) rgba[i] = 0.1f * static_cast<float>(i);
-    EXPECT_EQ(roundTrip(ImageData(2, 3, rgba))->rgba, rgba);
+    const auto back = roundTrip(ImageData(2, 3, rgba));
+    EXPECT_EQ(back->rgba, rgba);
+    EXPECT_FALSE(back->hasBackground());
 
     expectRefused("Image", imageBytes(0, 3, {}), "absurd");
     expectRefused("Image", imageBytes(std::uint64_t{1} << 21, 1, rgba), "absurd");
@@ -273,6 +278,35 @@ TEST(CachedValueDecoding, ImageRoundTripsAndRefusesBadSizesAndNonFinitePixels)
         bad[9] = v;
         expectRefused("Image", imageBytes(2, 3, bad), "channel 1 of pixel 2 is not finite");
     }
+}
+
+TEST(CachedValueDecoding, ImageWithABackgroundRoundTripsAndRefusesAWrongBackground)
+{
+    std::vector<float> rgba(2 * 3 * 4), background(2 * 3 * 3);
+    for (std::size_t i = 0; i < rgba.size(); ++i) rgba[i] = 0.1f * static_cast<float>(i);
+    for (std::size_t i = 0; i < background.size(); ++i)
+        background[i] = 0.5f + 0.01f * static_cast<float>(i);
+    const auto back = roundTrip(ImageData(2, 3, rgba, background));
+    EXPECT_EQ(back->rgba, rgba);
+    EXPECT_EQ(back->background, background);
+
+    // One pixel short, or RGBA where RGB belongs: refused, never read past.
+    expectRefused("Image", imageBytes(2, 3, rgba, std::vector<float>(15, 0.5f)),
+                  "15 background floats for 2 x 3 RGB pixels");
+    expectRefused("Image", imageBytes(2, 3, rgba, std::vector<float>(24, 0.5f)),
+                  "24 background floats for 2 x 3 RGB pixels");
+    for (float v : {kNaN, kInf}) {
+        auto bad = background;
+        bad[7] = v;
+        expectRefused("Image", imageBytes(2, 3, rgba, bad),
+                      "background channel 1 of pixel 2 is not finite");
+    }
+    // A version 1 entry (untagged: the width first, no background) is not misread.
+    ByteWriter v1;
+    v1.u64(2);
+    v1.u64(3);
+    v1.podVector(rgba);
+    expectRefused("Image", v1.buffer(), "not a version 2 image");
 }
 
 // ---- PrimitiveSet --------------------------------------------------------------------------

@@ -130,7 +130,8 @@ TEST_F(RendererNodeTest, AbsurdResolutionIsRefusedAtLoad)
         "render": {"type": "Renderer", "inputs": {"volume": "fog.volume"},
                    "params": {"height": 0}}}})"),
                  InputError);
-    // In range, but over the allocation limit: 8000 x 8000 x 16 bytes > 512 MiB.
+    // In range, but over the allocation limit: 8000 x 8000 x 28 bytes (RGBA and background)
+    // > 512 MiB.
     LoadOptions limits;
     limits.allocationLimitBytes = 512ull << 20;
     try {

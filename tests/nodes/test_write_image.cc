@@ -1,12 +1,18 @@
-// WriteImage: 8-bit sRGB PNG read back with libpng; linear OpenEXR read back with OpenEXR.
+// WriteImage: 8-bit sRGB PNG read back with libpng; linear OpenEXR read back with OpenEXR,
+// with the cloud and background layers of a rendered image.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "algo/render/Display.h"
+#include "algo/render/RenderVolume.h"
 #include "algo/render/ToneMap.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
@@ -16,6 +22,7 @@
 #include "formats/ExrFile.h"
 #include "formats/PngFile.h"
 #include "nodes/data/DataTypes.h"
+#include "nodes/data/Image.h"
 #include "nodes/render/RenderNodes.h"
 #include "support/FixtureNodes.h"
 #include "support/TestUtil.h"
@@ -32,6 +39,8 @@ protected:
         registerNodeDataTypes(registry);
         registerFixtureNodes(registry);
         registerWriteImageNode(registry);
+        registerSyntheticCumulusNode(registry);
+        registerRendererNode(registry);
     }
 
     /// Cooks frame 42 of TestImageSource (a 16 x 8 ramp v = x / 16) into WriteImage.
@@ -121,10 +130,107 @@ TEST_F(WriteImageTest, ExrKeepsTheLinearValuesExactly)
             ASSERT_EQ(px[2], v);
             ASSERT_EQ(px[3], 1.0f);
         }
+    // An image without a background: today's file, R, G, B, A only.
+    EXPECT_EQ(formats::exrChannelNames((out / "frames/cloud.0042.exr").string()),
+              (std::vector<std::string>{"A", "B", "G", "R"}));
     std::size_t count = 0;
     for (const auto& e : std::filesystem::recursive_directory_iterator(out.path()))
         if (e.is_regular_file()) ++count;
     EXPECT_EQ(count, 1u);
+}
+
+namespace {
+
+/// A small synthetic cumulus seen from the side, sun from the front right, the ground in the
+/// lower half of the picture catching its shadow; written as an EXR.
+const char* kRenderedScene = R"({"cloudgraph": 1, "frames": {"start": 42, "end": 42},
+    "nodes": {
+    "cloud": {"type": "SyntheticCumulus", "params": {"voxelSize": 40, "levels": 3}},
+    "render": {"type": "Renderer", "inputs": {"volume": "cloud.volume"},
+               "params": {"width": 48, "height": 32, "cameraPosition": [0, -5000, 900],
+                          "cameraLookAt": [0, 0, 1300], "jitter": true}},
+    "write": {"type": "WriteImage", "inputs": {"image": "render.image"},
+              "params": {"file": "cloud.####.exr"}}}})";
+
+}  // namespace
+
+TEST_F(WriteImageTest, ExrOfARenderHoldsBeautyCloudAndBackgroundLayers)
+{
+    const Graph g = parseGraph(kRenderedScene, "test.json", registry);
+    EvaluatorOptions options;
+    options.outDir = out.path();
+    Evaluator ev(registry, options);
+    ev.cookFrames(g, 42, 42);
+    const auto image =
+        std::dynamic_pointer_cast<const ImageData>(ev.pull(g, "render", 42)->at("image"));
+    ASSERT_TRUE(image);
+    ASSERT_TRUE(image->hasBackground());
+    const int w = image->width, h = image->height;
+    const std::string file = (out / "cloud.0042.exr").string();
+
+    // OpenEXR's layer convention, layer.channel: Nuke and Blender show layers cloud and
+    // background beside the default R, G, B, A.
+    EXPECT_EQ(formats::exrChannelNames(file),
+              (std::vector<std::string>{"A", "B", "G", "R", "background.B", "background.G",
+                                        "background.R", "cloud.A", "cloud.B", "cloud.G",
+                                        "cloud.R"}));
+    const formats::ExrChannelImage exr = formats::readExrChannels(
+        file, {"R", "G", "B", "A", "cloud.R", "cloud.G", "cloud.B", "cloud.A", "background.R",
+               "background.G", "background.B"});
+    ASSERT_EQ(exr.width, w);
+    ASSERT_EQ(exr.height, h);
+
+    // The default layer is the beauty, bit for bit, as the RGBA reader sees it.
+    const formats::ExrRgbaImage rgba = formats::readExrRgba(file);
+    ASSERT_EQ(rgba.rgba.size(), image->rgba.size());
+    EXPECT_EQ(std::memcmp(rgba.rgba.data(), image->rgba.data(), rgba.rgba.size() * sizeof(float)),
+              0);
+
+    const auto pixels = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+    std::size_t clear = 0, opaque = 0;
+    for (std::size_t i = 0; i < pixels; ++i) {
+        const float* px = &exr.values[11 * i];
+        const float* beauty = px;
+        const float* cloud = px + 4;
+        const float* background = px + 8;
+        for (int c = 0; c < 4; ++c) ASSERT_EQ(beauty[c], image->rgba[4 * i + c]) << i;
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(background[c], image->background[3 * i + c]) << i;
+        const float alpha = beauty[3];
+        ASSERT_EQ(cloud[3], alpha) << i;
+        // beauty = cloud + (1 - alpha) background, to the float rounding of the layers.
+        for (int c = 0; c < 3; ++c) {
+            const double behind = (1.0 - double(alpha)) * double(background[c]);
+            const double sum = double(cloud[c]) + behind;
+            const double scale =
+                std::max({std::abs(double(beauty[c])), double(cloud[c]), std::abs(behind)});
+            ASSERT_LE(std::abs(sum - double(beauty[c])), 4.0 * FLT_EPSILON * scale)
+                << "pixel " << i << " channel " << c << ": " << beauty[c] << " vs " << cloud[c]
+                << " + (1 - " << alpha << ") " << background[c];
+            ASSERT_GE(cloud[c], 0.0f) << i;
+        }
+        if (alpha == 0.0f) {
+            ++clear;
+            // Nothing in front: no cloud, and the beauty is the background itself.
+            for (int c = 0; c < 4; ++c) ASSERT_EQ(cloud[c], 0.0f) << i;
+            for (int c = 0; c < 3; ++c) ASSERT_EQ(beauty[c], background[c]) << i;
+        }
+        if (alpha > 0.99f) ++opaque;
+    }
+    EXPECT_GT(clear, pixels / 4);  // sky and ground around the cloud
+    EXPECT_GT(opaque, 10u);        // and an opaque cloud
+
+    // The top left pixel's ray misses cloud and ground: its background is the sky, exactly.
+    algo::RenderCamera camera;
+    camera.position = algo::RenderVec3(0, -5000, 900);
+    camera.lookAt = algo::RenderVec3(0, 0, 1300);
+    camera.width = w;
+    camera.height = h;
+    const algo::RenderVec3 sky =
+        algo::skyRadiance(algo::RenderSky{}, algo::CameraRays(camera).direction(0, 0));
+    ASSERT_EQ(exr.values[3], 0.0f);
+    EXPECT_EQ(exr.values[8], static_cast<float>(sky.x()));
+    EXPECT_EQ(exr.values[9], static_cast<float>(sky.y()));
+    EXPECT_EQ(exr.values[10], static_cast<float>(sky.z()));
 }
 
 TEST_F(WriteImageTest, AnUnknownExtensionIsRefusedAtLoadNamingTheParameter)
@@ -152,6 +258,34 @@ TEST(ExrFile, ReadingAFileThatIsNotExrNamesIt)
     } catch (const std::runtime_error& e) {
         EXPECT_NE(std::string(e.what()).find("bad.exr"), std::string::npos);
     }
+}
+
+TEST(ExrFile, NamedChannelsRoundTripAndAMissingOneIsNamed)
+{
+    test::TempDir dir;
+    const std::string file = (dir / "layers.exr").string();
+    const std::vector<float> rgba = {0.5f, 1.5f, -2.0f, 1.0f, 1e-30f, 3e30f, 0.25f, 0.0f};
+    const std::vector<float> extra = {7.0f, 8.0f, 9.0f, 10.0f};
+    formats::writeExrFloat32(file, 2, 1,
+                             {{{"R", "G", "B", "A"}, rgba}, {{"spare.X", "spare.Y"}, extra}});
+    const formats::ExrChannelImage back = formats::readExrChannels(file, {"spare.Y", "A", "R"});
+    ASSERT_EQ(back.width, 2);
+    ASSERT_EQ(back.height, 1);
+    EXPECT_EQ(back.values, (std::vector<float>{8.0f, 1.0f, 0.5f, 10.0f, 0.0f, 1e-30f}));
+    EXPECT_EQ(formats::readExrRgba(file).rgba, rgba);
+    try {
+        formats::readExrChannels(file, {"R", "cloud.R"});
+        FAIL() << "a missing channel was read";
+    } catch (const std::runtime_error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("layers.exr"), std::string::npos) << what;
+        EXPECT_NE(what.find("cloud.R"), std::string::npos) << what;
+    }
+    EXPECT_THROW(formats::writeExrFloat32(file, 2, 1, {{{"R", "G", "B", "A"}, rgba},
+                                                       {{"R", "spare.Y"}, extra}}),
+                 std::invalid_argument);
+    EXPECT_THROW(formats::writeExrFloat32(file, 2, 1, {{{"spare.X"}, extra}}),
+                 std::invalid_argument);
 }
 
 }  // namespace cg
