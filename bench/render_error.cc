@@ -10,6 +10,7 @@
 //   --samples N    reference paths a pixel (default 256)
 //   --size WxH     image size (default 240x180)
 //   --png DIR      write DIR/NAME_SUN.png: fast | reference, tone-mapped as WriteImage does
+//   --fast K=V     a fast-mode setting: lightTexel, step, cellVoxels (to explore)
 //   --cache DIR    keep reference images there and reuse them (they depend only on the
 //                  case, the sun, the size and the sample count)
 //
@@ -203,6 +204,7 @@ int main(int argc, char** argv)
     int samples = 256, width = 240, height = 180;
     std::string pngDir, cacheDir;
     std::vector<Case> cases;
+    std::vector<std::pair<std::string, double>> fastSettings;
     try {
         for (int i = 1; i < argc; ++i) {
             const std::string arg = argv[i];
@@ -216,6 +218,12 @@ int main(int argc, char** argv)
                     throw std::runtime_error("--size WxH");
             } else if (arg == "--png") pngDir = value();
             else if (arg == "--cache") cacheDir = value();
+            else if (arg == "--fast") {
+                const std::string kv = value();
+                const auto eq = kv.find('=');
+                if (eq == std::string::npos) throw std::runtime_error("--fast K=V");
+                fastSettings.emplace_back(kv.substr(0, eq), std::stod(kv.substr(eq + 1)));
+            }
             else if (arg == "synthetic") cases.push_back(syntheticCase());
             else cases.push_back(fileCase(arg));
         }
@@ -235,9 +243,16 @@ int main(int argc, char** argv)
             s.camera.height = height;
             s.sun.direction = sunToward(s.camera, where);
             s.pathTrace.samples = samples;
+            cg::algo::RenderSettings fastS = s;
+            for (const auto& [key, v] : fastSettings) {
+                if (key == "lightTexel") fastS.march.lightTexel = v;
+                else if (key == "step") fastS.march.step = v;
+                else if (key == "cellVoxels") fastS.multiScatter.cellVoxels = static_cast<int>(v);
+                else throw std::runtime_error("unknown fast setting " + key);
+            }
 
             auto start = std::chrono::steady_clock::now();
-            const cg::algo::RenderedImage fast = cg::algo::renderFogVolume(*c.grid, s);
+            const cg::algo::RenderedImage fast = cg::algo::renderFogVolume(*c.grid, fastS);
             const double fastSeconds = seconds(start);
 
             cg::algo::RenderedImage ref;

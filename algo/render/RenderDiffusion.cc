@@ -91,7 +91,7 @@ int solve(const System& A, const std::vector<double>& b, std::vector<double>& x,
 }  // namespace
 
 RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLightMap& sunMap,
-                                 const RenderMedium& medium,
+                                 const RenderMedium& medium, int cellVoxels,
                                  const std::function<bool()>& cancelled)
     : mXform(grid.transform())
 {
@@ -105,7 +105,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
         for (int a = 0; a < 3; ++a) n *= static_cast<std::size_t>((dim[a] + c - 1) / c + 2);
         return n;
     };
-    mVoxels = 2;
+    mVoxels = std::max(1, cellVoxels);
     while (cellsFor(mVoxels) > kMaxCells) ++mVoxels;
     const int c = mVoxels;
     for (int a = 0; a < 3; ++a) mN[a] = (dim[a] + c - 1) / c + 2;
@@ -116,23 +116,32 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     const std::size_t dense = static_cast<std::size_t>(mN[0]) * static_cast<std::size_t>(mN[1]) *
                               static_cast<std::size_t>(mN[2]);
 
-    // Mean extinction of each cell's voxels.
-    std::vector<double> sigmaT(dense, 0.0);
+    // Mean extinction of each cell's voxels, and the mean rate at which they scatter sun
+    // light for the first time, σ_s exp(−τ_sun), taken voxel by voxel: exp(−τ) varies
+    // across a cell by far more than linearly where the sun enters the cloud.
+    std::vector<double> sigmaT(dense, 0.0), scatterOnce(dense, 0.0);
     const auto cellOf = [&](const openvdb::Coord& v) {
         return index((v.x() - mFirstVoxel.x()) / c, (v.y() - mFirstVoxel.y()) / c,
                      (v.z() - mFirstVoxel.z()) / c);
     };
     const double perVoxel = medium.extinction / (double(c) * c * c);
+    const auto add = [&](const openvdb::Coord& v, float value) {
+        const std::size_t cell = cellOf(v);
+        sigmaT[cell] += perVoxel * value;
+        const RenderVec3 world = mXform.indexToWorld(v.asVec3d());
+        scatterOnce[cell] +=
+            perVoxel * value * medium.albedo * std::exp(-sunMap.opticalDepth(world));
+    };
     for (auto it = grid.tree().cbeginValueOn(); it; ++it) {
         const float value = *it;
         if (!(value > 0.0f)) continue;
         if (it.isVoxelValue()) {
-            sigmaT[cellOf(it.getCoord())] += perVoxel * value;
+            add(it.getCoord(), value);
             continue;
         }
         openvdb::CoordBBox box;
         it.getBoundingBox(box);
-        for (auto v = box.begin(); v; ++v) sigmaT[cellOf(*v)] += perVoxel * value;
+        for (auto v = box.begin(); v; ++v) add(*v, value);
     }
 
     // The cloud's cells and their couplings.
@@ -185,12 +194,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
             }
         }
         A.diag[row] = diag;
-        // The sun light scattered once, at the cell's centre.
-        const RenderVec3 centre = mXform.indexToWorld(
-            RenderVec3(mFirstVoxel.x() + ci * c + 0.5 * (c - 1),
-                       mFirstVoxel.y() + cj * c + 0.5 * (c - 1),
-                       mFirstVoxel.z() + ck * c + 0.5 * (c - 1)));
-        source[row] = s * medium.albedo * std::exp(-sunMap.opticalDepth(centre));
+        source[row] = scatterOnce[cell];
     });
     std::vector<double> sun(n, 0.0), env(n, 1.0);
     mIterations = solve(A, source, sun, cancelled);
@@ -200,16 +204,18 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     // so lookups at the cloud's soft edge are not pulled toward the outside's values.
     mSun.assign(dense, 0.0f);
     mEnv.assign(dense, 1.0f);
+    mD.assign(dense, 0.0f);
     for (std::size_t row = 0; row < n; ++row) {
         mSun[cells[row]] = static_cast<float>(sun[row]);
         mEnv[cells[row]] = static_cast<float>(env[row]);
+        mD[cells[row]] = static_cast<float>(diffusion(cells[row]));
     }
     tbb::parallel_for(0, mN[0], [&](int i) {
         for (int j = 0; j < mN[1]; ++j)
             for (int k = 0; k < mN[2]; ++k) {
                 const std::size_t cell = index(i, j, k);
                 if (id[cell] >= 0) continue;
-                double s = 0.0, e = 0.0;
+                double s = 0.0, e = 0.0, d = 0.0;
                 int count = 0;
                 for (int f = 0; f < 6; ++f) {
                     int nb[3] = {i, j, k};
@@ -221,11 +227,13 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
                     if (row < 0) continue;
                     s += sun[static_cast<std::size_t>(row)];
                     e += env[static_cast<std::size_t>(row)];
+                    d += mD[cells[static_cast<std::size_t>(row)]];
                     ++count;
                 }
                 if (count > 0) {
                     mSun[cell] = static_cast<float>(s / count);
                     mEnv[cell] = static_cast<float>(e / count);
+                    mD[cell] = static_cast<float>(d / count);
                 }
             }
     });
@@ -246,17 +254,34 @@ RenderDiffusion::Fluence RenderDiffusion::at(const RenderVec3& p) const
         i0[a] = static_cast<int>(f[a]);
         f[a] -= i0[a];
     }
-    double sun = 0.0, env = 0.0;
+    double sun = 0.0, env = 0.0, D = 0.0;
+    openvdb::Vec3d gradSun(0.0), gradEnv(0.0);  // in cell coordinates
     for (int corner = 0; corner < 8; ++corner) {
-        const int di = corner & 1, dj = (corner >> 1) & 1, dk = (corner >> 2) & 1;
-        const double w = (di ? f[0] : 1.0 - f[0]) * (dj ? f[1] : 1.0 - f[1]) *
-                         (dk ? f[2] : 1.0 - f[2]);
-        const std::size_t cell = index(i0[0] + di, i0[1] + dj, i0[2] + dk);
+        const int d[3] = {corner & 1, (corner >> 1) & 1, (corner >> 2) & 1};
+        double w = 1.0, dw[3] = {1.0, 1.0, 1.0};
+        for (int a = 0; a < 3; ++a) {
+            const double wa = d[a] ? f[a] : 1.0 - f[a];
+            w *= wa;
+            for (int b = 0; b < 3; ++b) dw[b] *= (a == b) ? (d[a] ? 1.0 : -1.0) : wa;
+        }
+        const std::size_t cell = index(i0[0] + d[0], i0[1] + d[1], i0[2] + d[2]);
         sun += w * mSun[cell];
         env += w * mEnv[cell];
+        D += w * mD[cell];
+        for (int a = 0; a < 3; ++a) {
+            gradSun[a] += dw[a] * mSun[cell];
+            gradEnv[a] += dw[a] * mEnv[cell];
+        }
     }
     out.sun = sun;
     out.env = env;
+    // World gradients: cell coordinates are index coordinates / mVoxels; the transform's
+    // inverse Jacobian transpose takes an index-space gradient to world space.
+    const auto toWorld = [&](const openvdb::Vec3d& g) {
+        return mXform.baseMap()->applyIJT(g / double(mVoxels));
+    };
+    out.sunFlux = toWorld(gradSun) * -D;
+    out.envFlux = toWorld(gradEnv) * -D;
     return out;
 }
 

@@ -35,15 +35,19 @@ public:
     /// Solves both problems for `grid` (linear transform) lit along sunMap's direction.
     /// Stops early once `cancelled` returns true.
     RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLightMap& sunMap,
-                    const RenderMedium& medium, const std::function<bool()>& cancelled = {});
+                    const RenderMedium& medium, int cellVoxels,
+                    const std::function<bool()>& cancelled = {});
 
     struct Fluence {
         double sun = 0.0;  ///< per unit sun irradiance
         double env = 1.0;  ///< per unit fluence of the surroundings
+        RenderVec3 sunFlux{0.0, 0.0, 0.0};  ///< net flux −D ∇φ_sun, per unit sun irradiance
+        RenderVec3 envFlux{0.0, 0.0, 0.0};  ///< −D ∇φ_env, per unit fluence around
     };
 
-    /// Both fluences at world point p, trilinear between cell centres; outside the lattice,
-    /// what lies around the cloud: no scattered sun light, the surroundings' fluence.
+    /// Both fluences and their net fluxes at world point p, trilinear between cell centres
+    /// (the fluxes from the trilinear gradient); outside the lattice, what lies around the
+    /// cloud: no scattered sun light, the surroundings' fluence, no net flux.
     Fluence at(const RenderVec3& p) const;
 
     bool empty() const { return mSun.empty(); }
@@ -64,6 +68,7 @@ private:
     double mH = 0.0;                  ///< cell edge, m (the smallest voxel edge × mVoxels)
     int mN[3] = {0, 0, 0};
     std::vector<float> mSun, mEnv;  ///< per cell, dense
+    std::vector<float> mD;          ///< diffusion coefficient per cell, m
     int mIterations = 0;
 };
 

@@ -67,6 +67,7 @@ enum class MultiScatterModel {
 
 struct RenderMultiScatter {
     MultiScatterModel model = MultiScatterModel::Diffusion;
+    int cellVoxels = 2;  ///< diffusion: lattice cell edge, voxels (grown to fit 2M cells)
     int octaves = 4;
     double attenuation = 0.5;    ///< a
     double contribution = 0.5;   ///< b
@@ -76,7 +77,7 @@ struct RenderMultiScatter {
 /// Ray-marching controls. Steps are in voxels of the fog volume.
 struct RenderMarch {
     double step = 0.5;            ///< camera-ray step, voxels
-    double lightTexel = 2.0;      ///< light-map texel, voxels (grown if the map would be huge)
+    double lightTexel = 1.0;      ///< light-map texel, voxels (grown if the map would be huge)
     double lightStep = 1.0;       ///< step when filling the light maps, voxels
     bool jitter = true;           ///< offset each pixel's samples by a per-pixel random fraction
     std::uint64_t seed = 0;       ///< seed of that offset and of the path tracer's paths

@@ -61,6 +61,7 @@ struct Frame {
     RenderDiffusion diffusion;  ///< with MultiScatterModel::Diffusion
     bool useDiffusion = false;
     RenderVec3 envFluence;      ///< Φ_env: 2π (mean radiance above + radiance from below)
+    double gMean = 0.0;         ///< mean cosine of the phase function
     double dt = 1.0;
     RenderVec3 sunDir;        ///< unit, toward the sun
     RenderVec3 sunIrradiance; ///< colour × intensity
@@ -115,7 +116,8 @@ struct Frame {
                                     s.march.lightTexel, s.march.lightStep,
                                     std::size_t(8) << 20, cancelled);
         envFluence = (skyUp + below) * (2.0 * kPi);
-        if (useDiffusion) diffusion = RenderDiffusion(g, sunMap, s.medium, cancelled);
+        gMean = (1.0 - s.medium.lobeBlend) * s.medium.g + s.medium.lobeBlend * s.medium.g2;
+        if (useDiffusion) diffusion = RenderDiffusion(g, sunMap, s.medium, s.multiScatter.cellVoxels, cancelled);
         if (needSky)
             skyMap = RenderLightMap(g, occupancy, RenderVec3(0, 0, 1), s.medium.extinction,
                                     s.march.lightTexel * 4.0, s.march.lightStep * 2.0,
@@ -170,11 +172,15 @@ struct Frame {
                      for (int i = 0; i < octaves; ++i)
                          sun += sunPhase[i] * std::exp(-octaveAtten[i] * tauSun);
                      if (useDiffusion) {
-                         // Scattered light of every order, taken as isotropic.
+                         // Scattered light in the P1 approximation, L(ω) = (φ + 3 F·ω) / 4π,
+                         // scattered toward the camera: (φ + 3 ḡ F·ω_o) / 4π, ω_o = −dir.
                          const RenderDiffusion::Fluence phi = diffusion.at(p);
-                         const RenderVec3 source =
-                             sunIrradiance * (sun + phi.sun * kInvFourPi) +
-                             envFluence * (phi.env * kInvFourPi);
+                         const auto p1 = [&](double fluence, const RenderVec3& flux) {
+                             return std::max(0.0, fluence - 3.0 * gMean * flux.dot(dir)) *
+                                    kInvFourPi;
+                         };
+                         const RenderVec3 source = sunIrradiance * (sun + p1(phi.sun, phi.sunFlux)) +
+                                                   envFluence * p1(phi.env, phi.envFlux);
                          L += source * (T * albedo * (1.0 - segT));
                          T *= segT;
                          return T >= minT;

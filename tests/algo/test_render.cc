@@ -201,6 +201,31 @@ TEST(RenderImage, IdenticalForOneAndTwoThreads)
               0);
 }
 
+TEST(RenderImage, DiffusionKeepsAConservativeCloudUnderAUniformSkyInvisible)
+{
+    // The white furnace for the fast mode: with albedo 1 and a uniform sky the diffusion
+    // solve's answer is a fluence equal to the surroundings' everywhere, with no net flux,
+    // so every pixel sees the sky's radiance through the cloud as around it.
+    auto ball = makeBall(10.0, 20, 1.0f);
+    algo::RenderSettings s = ballScene();
+    s.sun.intensity = 0.0;
+    s.sky.zenith = s.sky.horizon = RenderVec3(0.4, 0.5, 0.6);
+    s.medium.albedo = 1.0;
+    s.medium.extinction = 0.025;
+    const algo::RenderedImage img = algo::renderFogVolume(*ball, s);
+    for (int y = 0; y < 48; y += 3)
+        for (int x = 0; x < 64; x += 3)
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(img.rgba[(static_cast<std::size_t>(y) * 64 + x) * 4 + c],
+                            s.sky.zenith[c], 2e-3 * s.sky.zenith[c])
+                    << x << ", " << y;
+    EXPECT_GT(img.rgba[(24 * 64 + 32) * 4 + 3], 0.99f);  // through the opaque centre
+    // With the octaves' sky occlusion the centre darkens: the model diffusion replaced.
+    s.multiScatter.model = algo::MultiScatterModel::Octaves;
+    const algo::RenderedImage octaves = algo::renderFogVolume(*ball, s);
+    EXPECT_LT(octaves.rgba[(24 * 64 + 32) * 4 + 1], 0.9 * s.sky.zenith[1]);
+}
+
 TEST(RenderImage, RefusesUnusableSettings)
 {
     auto ball = makeBall(10.0, 4, 1.0f);
