@@ -10,7 +10,8 @@
 //   --samples N    reference paths a pixel (default 256)
 //   --size WxH     image size (default 240x180)
 //   --png DIR      write DIR/NAME_SUN.png: fast | reference, tone-mapped as WriteImage does
-//   --fast K=V     a fast-mode setting: lightTexel, step, cellVoxels (to explore)
+//   --fast K=V     a fast-mode setting: lightTexel, step, cellVoxels, or octaves=N for the
+//                  octave model instead of the diffusion solve (to explore, to compare)
 //   --cache DIR    keep reference images there and reuse them (they depend only on the
 //                  case, the sun, the size and the sample count)
 //
@@ -248,6 +249,10 @@ int main(int argc, char** argv)
                 if (key == "lightTexel") fastS.march.lightTexel = v;
                 else if (key == "step") fastS.march.step = v;
                 else if (key == "cellVoxels") fastS.multiScatter.cellVoxels = static_cast<int>(v);
+                else if (key == "octaves") {  // the model before the diffusion solve
+                    fastS.multiScatter.model = cg::algo::MultiScatterModel::Octaves;
+                    fastS.multiScatter.octaves = static_cast<int>(v);
+                }
                 else throw std::runtime_error("unknown fast setting " + key);
             }
 
