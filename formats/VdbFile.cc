@@ -554,10 +554,9 @@ openvdb::FloatGrid::Ptr readVdbFogVolume(const std::filesystem::path& path,
         fail("has background " + std::to_string(grid->background()) +
              "; a fog volume's is 0 (a level set saved without its class has its band width)");
     if (const std::string problem = cleanValues(*grid); !problem.empty()) fail(problem);
-    keepPlainMetadata(*grid);
     grid->setName("density");
     grid->setGridClass(openvdb::GRID_FOG_VOLUME);
-    grid->setSaveFloatAsHalf(false);
+    keepPlainMetadata(*grid);  // also "is_saved_as_half_float": full floats from here on
     return grid;
 }
 

@@ -23,10 +23,14 @@
 /// OpenVDB reserves ("file_*", "creator", "is_saved_as_half_float", ...) and kinds other than
 /// bool, int32, int64, float, double and string.
 ///
-/// Bytes that are not what OpenVDB wrote (a truncated or damaged file) end in a FormatError
-/// when OpenVDB's reader reports them (it throws on most truncations, see
-/// tests/formats/test_vdb_file.cc); the reader's own checks are OpenVDB's, which trusts the
-/// sizes inside a grid's compressed blocks.
+/// Before OpenVDB reads a byte, the file's header, its grid descriptors (names, types,
+/// offsets) and the grid's metadata and transform name are walked here with every length,
+/// count and offset checked against the file, so a truncated file is refused by its offsets
+/// and no string or table OpenVDB allocates is larger than the file. OpenVDB then reads the
+/// grid from a stream holding that grid alone that throws on a read past its end, so a lying
+/// count inside the tree ends in an error rather than in reading garbage. The tree's own
+/// compressed-block sizes are still OpenVDB's to trust (the vdb_reader fuzz target exercises
+/// them).
 
 #include <cstdint>
 #include <filesystem>
