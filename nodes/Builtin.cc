@@ -48,6 +48,7 @@ void registerBuiltinNodes(Registry& registry)
     // volume/
     registerVoxelizerNode(registry);
     registerWriteVdbNode(registry);
+    registerReadVdbNode(registry);
     registerWritePointsNode(registry);
     registerCombineVolumesNode(registry);
 

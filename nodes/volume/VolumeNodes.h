@@ -1,5 +1,5 @@
 #pragma once
-/// Cloud particles to OpenVDB fog volumes, and volume and point writers.
+/// Cloud particles to OpenVDB fog volumes, volume and point writers, and the VDB reader.
 
 namespace cg {
 
@@ -7,6 +7,7 @@ class Registry;
 
 void registerVoxelizerNode(Registry& registry);    // Voxelizer
 void registerWriteVdbNode(Registry& registry);     // WriteVDB
+void registerReadVdbNode(Registry& registry);      // ReadVDB
 void registerWritePointsNode(Registry& registry);  // WritePoints: VDB Points
 void registerCombineVolumesNode(Registry& registry);  // CombineVolumes
 

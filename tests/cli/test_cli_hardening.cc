@@ -5,10 +5,14 @@
 
 #include <sys/stat.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include <openvdb/io/File.h>
+#include <openvdb/tools/LevelSetSphere.h>
 
 #include "support/TestUtil.h"
 
@@ -165,6 +169,53 @@ TEST(CliHardening, InputFilesThatCannotBeReadAreRefusedByValidateAndRun)
             EXPECT_EQ(r.errors.find("internal error"), std::string::npos) << r.errors;
         }
     }
+}
+
+TEST(CliHardening, ReadVdbRefusesFilesThatAreNotFogVolumesWithExitCode2)
+{
+    TempDir dir;
+    openvdb::initialize();
+    auto fog = openvdb::FloatGrid::create(0.0f);
+    fog->setName("density");
+    fog->setGridClass(openvdb::GRID_FOG_VOLUME);
+    fog->fill(openvdb::CoordBBox({0, 0, 0}, {20, 20, 20}), 0.5f);
+    openvdb::io::File((dir / "good.vdb").string()).write({fog});
+    const std::string good = test::readFile(dir / "good.vdb");
+    test::writeFile(dir / "truncated.vdb", good.substr(0, good.size() - 100));
+    auto sphere = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(10.0f, {}, 1.0f);
+    sphere->setName("density");
+    openvdb::io::File((dir / "level_set.vdb").string()).write({sphere});
+    auto smoke = fog->deepCopy();
+    smoke->setName("smoke");
+    openvdb::io::File((dir / "other_grid.vdb").string()).write({smoke});
+    auto nan = fog->deepCopy();
+    nan->tree().setValue({3, 4, 5}, std::nanf(""));  // found only when the voxels are read
+    openvdb::io::File((dir / "nan.vdb").string()).write({nan});
+
+    for (const std::string name : {"truncated", "level_set", "other_grid", "nan"}) {
+        const std::string file = (dir / (name + ".vdb")).string();
+        test::writeFile(dir / "g.json", R"({"cloudgraph": 1, "nodes": {
+            "read": {"type": "ReadVDB", "params": {"file": ")" + file + R"("}}}})");
+        for (const std::string command : {"validate", "run"}) {
+            if (name == "nan" && command == "validate") continue;
+            std::vector<std::string> args = {command, (dir / "g.json").string()};
+            if (command == "run") args.insert(args.end(), {"--out", (dir / "out").string()});
+            const auto r = runCli(args);
+            EXPECT_EQ(r.exitCode, 2) << command << " " << name << ": " << r.errors;
+            EXPECT_NE(r.errors.find(name == "nan" ? "g.json:/nodes/read"
+                                                  : "g.json:/nodes/read/params/file"),
+                      std::string::npos)
+                << r.errors;
+            EXPECT_NE(r.errors.find(file), std::string::npos) << r.errors;
+            EXPECT_NE(r.errors.find("grid 'density'"), std::string::npos) << r.errors;
+            EXPECT_EQ(r.errors.find("internal error"), std::string::npos) << r.errors;
+        }
+    }
+    // The good file runs.
+    test::writeFile(dir / "g.json", R"({"cloudgraph": 1, "nodes": {
+        "read": {"type": "ReadVDB", "params": {"file": "good.vdb"}}}})");
+    const auto r = runCli({"run", (dir / "g.json").string(), "--out", (dir / "out").string()});
+    EXPECT_EQ(r.exitCode, 0) << r.errors;
 }
 
 }  // namespace cg

@@ -68,4 +68,12 @@ done
 rm -rf "$corpus/sounding_reader" && mkdir -p "$corpus/sounding_reader"
 cp "$root"/tests/data/soundings/* "$corpus/sounding_reader/"
 
+# vdb_reader: a one-leaf fog volume written by WriteVDB as full floats (blosc) and half floats
+# (zip), an empty grid, a level set sphere (vdb_tool, from libopenvdb-tools) and an empty file.
+rm -rf "$corpus/vdb_reader" && mkdir -p "$corpus/vdb_reader"
+"$cli" run "$here/seed_vdb.json" --out "$work/vdb" -q
+for f in full half empty_grid; do cp "$work/vdb/$f.vdb" "$corpus/vdb_reader/$f.vdb"; done
+vdb_tool -quiet -sphere dim=8 radius=1 name=density -write "$corpus/vdb_reader/level_set.vdb"
+: > "$corpus/vdb_reader/empty_file.vdb"
+
 ls -l "$corpus"/*
