@@ -72,6 +72,20 @@ struct Fd {
     }
 };
 
+/// The bytes OpenVDB reads for a value of a plain fixed-size metadata type (TypedMetadata's
+/// readValue ignores the size the file states), or -1 where it reads the stated size
+/// (strings, delayed-load tables, types it does not know).
+long fixedMetadataSize(const std::string& type)
+{
+    static const char* const kFixed[] = {"bool",  "int32", "int64", "float", "double",
+                                         "vec2i", "vec2s", "vec2d", "vec3i", "vec3s",
+                                         "vec3d", "vec4i", "vec4s", "vec4d", "mat4s", "mat4d"};
+    for (const char* fixed : kFixed)
+        if (type == fixed && openvdb::Metadata::isRegisteredType(type))
+            return static_cast<long>(openvdb::Metadata::createMetadata(type)->size());
+    return -1;
+}
+
 /// Bounds-checked little-endian reads at a position of the file: every length the file
 /// states is checked against the bytes left before anything is allocated for it.
 class Cursor {
@@ -122,9 +136,16 @@ public:
         if (count > left() / 12) refuse(mPath, mWhat, "the file is damaged: metadata count " +
                                                           std::to_string(count));
         for (std::uint32_t k = 0; k < count; ++k) {
-            str("metadata name");
-            str("metadata type");
-            skip(u32("metadata size"), "metadata value");
+            const std::string name = str("metadata name");
+            const std::string type = str("metadata type");
+            const std::uint32_t size = u32("metadata size");
+            // OpenVDB reads a registered fixed-size value whatever size the file states; a
+            // different size would put its reading out of step with this check.
+            const long fixed = fixedMetadataSize(type);
+            if (fixed >= 0 && size != static_cast<std::uint64_t>(fixed))
+                refuse(mPath, mWhat, "the file is damaged: metadata '" + name + "' of type " +
+                                         type + " states " + std::to_string(size) + " bytes");
+            skip(size, "metadata value");
         }
     }
 
@@ -368,14 +389,17 @@ void checkHeader(const std::filesystem::path& path, const std::string& what,
     if (!xf.isLinear())
         fail("has a non-linear transform (" + xf.mapType() +
              ", e.g. a frustum); the renderer needs a linear one");
+    // Voxel sizes first: a scale map whose determinant underflows makes getAffineMap()
+    // invert a singular matrix, and OpenVDB's exception from there ends the process.
+    const openvdb::Vec3d voxel = xf.voxelSize();
+    for (int a = 0; a < 3; ++a)
+        if (!(voxel[a] >= 1e-6 && voxel[a] <= 1e9))
+            fail("has voxels of " + std::to_string(voxel[a]) +
+                 " (world units), outside 1e-6 to 1e9");
     const openvdb::Mat4d m = xf.baseMap()->getAffineMap()->getMat4();
     for (int r = 0; r < 4; ++r)
         for (int c = 0; c < 4; ++c)
             if (!std::isfinite(m(r, c))) fail("has a transform that is not finite");
-    const openvdb::Vec3d voxel = xf.voxelSize();
-    for (int a = 0; a < 3; ++a)
-        if (!(voxel[a] > 0.0) || !std::isfinite(voxel[a]))
-            fail("has voxels of size 0 or not finite");
 
     // Sizes as the file records them, before a byte of the tree is read.
     const std::uint64_t voxels = recorded(grid, G::META_FILE_VOXEL_COUNT);
@@ -554,6 +578,10 @@ openvdb::FloatGrid::Ptr readVdbFogVolume(const std::filesystem::path& path,
         fail("has background " + std::to_string(grid->background()) +
              "; a fog volume's is 0 (a level set saved without its class has its band width)");
     if (const std::string problem = cleanValues(*grid); !problem.empty()) fail(problem);
+    // A forged file may store "name" or "class" as another type; setting them would throw
+    // OpenVDB's TypeError, so they go first.
+    grid->removeMeta(openvdb::GridBase::META_GRID_NAME);
+    grid->removeMeta(openvdb::GridBase::META_GRID_CLASS);
     grid->setName("density");
     grid->setGridClass(openvdb::GRID_FOG_VOLUME);
     keepPlainMetadata(*grid);  // also "is_saved_as_half_float": full floats from here on
