@@ -32,8 +32,7 @@ namespace {
 using G = openvdb::GridBase;
 
 /// Runs `read` (OpenVDB calls on the file), turning what OpenVDB throws on bytes it cannot
-/// read into a FormatError naming the file and grid. Running out of memory is not the file's
-/// fault: std::bad_alloc passes through.
+/// read, std::bad_alloc included, into a FormatError naming the file and grid.
 template <typename Fn>
 auto guarded(const std::filesystem::path& path, const std::string& what, Fn&& read)
 {
@@ -42,7 +41,11 @@ auto guarded(const std::filesystem::path& path, const std::string& what, Fn&& re
     } catch (const FormatError&) {
         throw;
     } catch (const std::bad_alloc&) {
-        throw;
+        // The sizes this file records were checked against the limit before OpenVDB read it,
+        // so an allocation that fails now was asked for by a damaged size inside the grid's
+        // data (OpenVDB allocates a compressed block's stated size before reading it).
+        throw FormatError(path.string(), what + ": the file is damaged: a size inside the "
+                                                "grid's data asks for more memory than there is");
     } catch (const std::exception& e) {
         throw FormatError(path.string(), what + ": the file is damaged, truncated or not a VDB "
                                                 "file (OpenVDB: " + e.what() + ")");
@@ -540,7 +543,11 @@ Inspected inspect(const std::filesystem::path& path, const std::string& gridName
     if (r.grid->instance)
         refuse(path, what, "is an instance sharing another grid's voxels; save it on its own");
     r.header = readHeaderOf(*r.layout, *r.grid, what);
-    checkHeader(path, what, *r.header, maxBytes);
+    // Guarded too: a forged matrix makes OpenVDB throw when asked for its affine map.
+    guarded(path, what, [&] {
+        checkHeader(path, what, *r.header, maxBytes);
+        return 0;
+    });
     return r;
 }
 
@@ -560,32 +567,34 @@ openvdb::FloatGrid::Ptr readVdbFogVolume(const std::filesystem::path& path,
     const Inspected r = inspect(path, gridName, maxBytes);
     const auto fail = [&](const std::string& message) { refuse(path, what, message); };
     const openvdb::GridBase::Ptr base = readWhole(*r.layout, *r.grid, what);
-    openvdb::FloatGrid::Ptr grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
-    if (!grid) {
-        const auto doubles = openvdb::gridPtrCast<openvdb::DoubleGrid>(base);
-        if (!doubles) fail("holds " + base->valueType() + " values, not float");
-        // The tree's converting copy; a double beyond float's range becomes infinite and is
-        // refused below.
-        grid = openvdb::FloatGrid::create(
-            std::make_shared<openvdb::FloatTree>(doubles->tree()));
-        grid->setTransform(doubles->transform().copy());
-        grid->insertMeta(*doubles);
-    }
-    if (grid->memUsage() > maxBytes)
-        fail("takes " + bytesText(grid->memUsage()) + " of memory, more than the " +
-             bytesText(maxBytes) + " this node may take");
-    if (grid->background() != 0.0f)
-        fail("has background " + std::to_string(grid->background()) +
-             "; a fog volume's is 0 (a level set saved without its class has its band width)");
-    if (const std::string problem = cleanValues(*grid); !problem.empty()) fail(problem);
-    // A forged file may store "name" or "class" as another type; setting them would throw
-    // OpenVDB's TypeError, so they go first.
-    grid->removeMeta(openvdb::GridBase::META_GRID_NAME);
-    grid->removeMeta(openvdb::GridBase::META_GRID_CLASS);
-    grid->setName("density");
-    grid->setGridClass(openvdb::GRID_FOG_VOLUME);
-    keepPlainMetadata(*grid);  // also "is_saved_as_half_float": full floats from here on
-    return grid;
+    // Guarded: OpenVDB throws on metadata of a forged type when it is touched.
+    return guarded(path, what, [&] {
+        openvdb::FloatGrid::Ptr grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+        if (!grid) {
+            const auto doubles = openvdb::gridPtrCast<openvdb::DoubleGrid>(base);
+            if (!doubles) fail("holds " + base->valueType() + " values, not float");
+            // The tree's converting copy; a double beyond float's range becomes infinite and is
+            // refused below.
+            grid = openvdb::FloatGrid::create(
+                std::make_shared<openvdb::FloatTree>(doubles->tree()));
+            grid->setTransform(doubles->transform().copy());
+            grid->insertMeta(*doubles);
+        }
+        if (grid->memUsage() > maxBytes)
+            fail("takes " + bytesText(grid->memUsage()) + " of memory, more than the " +
+                 bytesText(maxBytes) + " this node may take");
+        if (grid->background() != 0.0f)
+            fail("has background " + std::to_string(grid->background()) +
+                 "; a fog volume's is 0 (a level set saved without its class has its band width)");
+        if (const std::string problem = cleanValues(*grid); !problem.empty()) fail(problem);
+        // Removed first: a forged file can give "name" or "class" a type that refuses a string.
+        grid->removeMeta(G::META_GRID_NAME);
+        grid->removeMeta(G::META_GRID_CLASS);
+        grid->setName("density");
+        grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+        keepPlainMetadata(*grid);  // also "is_saved_as_half_float": full floats from here on
+        return grid;
+    });
 }
 
 }  // namespace cg::formats

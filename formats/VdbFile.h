@@ -29,8 +29,9 @@
 /// and no string or table OpenVDB allocates is larger than the file. OpenVDB then reads the
 /// grid from a stream holding that grid alone that throws on a read past its end, so a lying
 /// count inside the tree ends in an error rather than in reading garbage. The tree's own
-/// compressed-block sizes are still OpenVDB's to trust (the vdb_reader fuzz target exercises
-/// them).
+/// compressed-block sizes are still OpenVDB's to trust: it allocates a block's stated size
+/// before reading it, so a damaged size can ask for gigabytes; the std::bad_alloc that follows
+/// is refused as a damaged file (the vdb_reader fuzz target exercises this).
 
 #include <cstdint>
 #include <filesystem>
