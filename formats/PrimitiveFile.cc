@@ -4,12 +4,11 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <memory>
-#include <new>
 #include <stdexcept>
 
 #include <xxhash.h>
 
+#include "formats/FileHash.h"
 #include "formats/FormatError.h"
 #include "util/AtomicFile.h"
 #include "util/InputFile.h"
@@ -229,22 +228,8 @@ std::vector<float> PrimitiveFileReader::readAll()
 
 std::uint64_t primitiveFileContentHash(const std::filesystem::path& path)
 {
-    if (const std::string problem = util::inputFileProblem(path, kMaxPrimitiveFileBytes);
-        !problem.empty())
-        throw FormatError(path.string(), "cannot read the primitive file: it " + problem);
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw FormatError(path.string(), "cannot open the primitive file");
-    // Streamed: the same value as checksum64 of the whole file, without holding it in memory.
-    std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state(XXH3_createState(),
-                                                                   &XXH3_freeState);
-    if (!state || XXH3_64bits_reset(state.get()) != XXH_OK) throw std::bad_alloc();
-    std::vector<char> buffer(1 << 20);
-    while (in) {
-        in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-        XXH3_64bits_update(state.get(), buffer.data(), static_cast<std::size_t>(in.gcount()));
-    }
-    if (in.bad()) throw FormatError(path.string(), "cannot read the primitive file");
-    return XXH3_64bits_digest(state.get());
+    // Streamed: the same value as checksum64 of the whole file.
+    return fileContentHash(path, kMaxPrimitiveFileBytes, "primitive file");
 }
 
 }  // namespace cg::formats

@@ -1,20 +1,18 @@
 // ReadVDB: a fog volume from an OpenVDB file (formats/VdbFile.h says what is accepted).
 
-#include <fstream>
 #include <memory>
 #include <string>
-#include <vector>
 
 #include "core/Error.h"
 #include "core/Hash.h"
 #include "core/Node.h"
 #include "core/Registry.h"
+#include "formats/FileHash.h"
 #include "formats/FormatError.h"
 #include "formats/VdbFile.h"
 #include "nodes/DeclHelpers.h"
 #include "nodes/data/FogVolume.h"
 #include "nodes/volume/VolumeNodes.h"
-#include "util/InputFile.h"
 #include "util/SystemMemory.h"
 
 namespace cg {
@@ -36,21 +34,6 @@ public:
         }
     }
 };
-
-/// Every byte of `file` into `h`, streamed; false when it cannot be read as an input file.
-bool hashContent(const std::string& file, Hasher& h)
-{
-    if (!util::inputFileProblem(file, util::nodeAllocationLimitBytes()).empty()) return false;
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return false;
-    std::vector<char> buffer(1 << 20);
-    h.str("content");
-    while (in) {
-        in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-        h.bytes(buffer.data(), static_cast<std::size_t>(in.gcount()));
-    }
-    return !in.bad();
-}
 
 }  // namespace
 
@@ -84,7 +67,12 @@ void registerReadVdbNode(Registry& registry)
         // a copied or moved file is still a cache hit. An unreadable file fails at cook time
         // with its reason; until then its path stands in for the content.
         const std::string& file = p.getString("file");
-        if (!hashContent(file, h)) h.str("unreadable").str(file);
+        try {
+            h.str("content").u64(
+                formats::fileContentHash(file, util::nodeAllocationLimitBytes(), "VDB file"));
+        } catch (const formats::FormatError&) {
+            h.str("unreadable").str(file);
+        }
     };
     d.validate = [](const ParamSet& p, const ParamChecker& check) {
         // The file's header and the grid's metadata, so that `validate` refuses a missing
