@@ -7,13 +7,20 @@
 // Usage: render_error [options] CASE...
 //   CASE: synthetic, or NAME=FILE.vdb@EXTINCTION@CX,CY,CZ@LX,LY,LZ@FOV (camera position,
 //         look-at point, vertical field of view in degrees; grid "density")
-//   --samples N    reference paths a pixel (default 256)
+//   --samples N    reference paths a pixel, both halves together (default 256)
 //   --size WxH     image size (default 240x180)
 //   --png DIR      write DIR/NAME_SUN.png: fast | reference, tone-mapped as WriteImage does
 //   --fast K=V     a fast-mode setting: lightTexel, step, cellVoxels, or octaves=N for the
 //                  octave model instead of the diffusion solve (to explore, to compare)
+//   --scene K=V    a scene setting for both renderers: ambient (sky light scale), sun
+//                  (intensity), ground (0 or 1), to take the light apart
 //   --cache DIR    keep reference images there and reuse them (they depend only on the
-//                  case, the sun, the size and the sample count)
+//                  case, the sun, the size, the sample count and the seed)
+//   --seed N       the reference's random seeds are 2N and 2N + 1 (default N = 0)
+//
+// The reference is the mean of two halves of samples/2 paths each with independent seeds;
+// the "reference noise" column is their disagreement, the scale of the reference's own
+// error: a fast-mode error near it is not measured, only bounded.
 //
 // Cloud pixels are those whose reference opacity is at least 0.5; the error of a pixel is
 // |L_fast − L_ref| / L_ref of its luminance (beauty, background included).
@@ -158,6 +165,22 @@ Errors compare(const cg::algo::RenderedImage& fast, const cg::algo::RenderedImag
     return e;
 }
 
+/// How far the reference (the mean of halves a and b) may lie from converged: the mean over
+/// cloud pixels of |L_a − L_b| / (L_a + L_b), the scale of the mean's relative error.
+double referenceNoise(const cg::algo::RenderedImage& a, const cg::algo::RenderedImage& b,
+                      const cg::algo::RenderedImage& ref)
+{
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < ref.rgba.size() / 4; ++i) {
+        const double la = luminance(&a.rgba[4 * i]), lb = luminance(&b.rgba[4 * i]);
+        if (ref.rgba[4 * i + 3] < 0.5f || !(la + lb > 0.0)) continue;
+        sum += std::abs(la - lb) / (la + lb);
+        ++n;
+    }
+    return n ? sum / n : 0.0;
+}
+
 bool readCached(const std::filesystem::path& path, cg::algo::RenderedImage& img)
 {
     std::ifstream in(path, std::ios::binary);
@@ -203,9 +226,10 @@ int main(int argc, char** argv)
 {
     openvdb::initialize();
     int samples = 256, width = 240, height = 180;
+    std::uint64_t seed = 0;
     std::string pngDir, cacheDir;
     std::vector<Case> cases;
-    std::vector<std::pair<std::string, double>> fastSettings;
+    std::vector<std::pair<std::string, double>> fastSettings, sceneSettings;
     try {
         for (int i = 1; i < argc; ++i) {
             const std::string arg = argv[i];
@@ -219,11 +243,13 @@ int main(int argc, char** argv)
                     throw std::runtime_error("--size WxH");
             } else if (arg == "--png") pngDir = value();
             else if (arg == "--cache") cacheDir = value();
-            else if (arg == "--fast") {
+            else if (arg == "--seed") seed = std::stoull(value());
+            else if (arg == "--fast" || arg == "--scene") {
                 const std::string kv = value();
                 const auto eq = kv.find('=');
-                if (eq == std::string::npos) throw std::runtime_error("--fast K=V");
-                fastSettings.emplace_back(kv.substr(0, eq), std::stod(kv.substr(eq + 1)));
+                if (eq == std::string::npos) throw std::runtime_error(arg + " K=V");
+                (arg == "--fast" ? fastSettings : sceneSettings)
+                    .emplace_back(kv.substr(0, eq), std::stod(kv.substr(eq + 1)));
             }
             else if (arg == "synthetic") cases.push_back(syntheticCase());
             else cases.push_back(fileCase(arg));
@@ -235,8 +261,8 @@ int main(int argc, char** argv)
     }
 
     std::printf("| volume | sun | cloud px | fast / ref | mean error | 90th pct | darker half | "
-                "brighter half | fast | reference |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+                "brighter half | reference noise | fast | reference |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (Case& c : cases) {
         for (const std::string where : {"front", "beside", "behind"}) {
             cg::algo::RenderSettings s = c.settings;
@@ -244,6 +270,15 @@ int main(int argc, char** argv)
             s.camera.height = height;
             s.sun.direction = sunToward(s.camera, where);
             s.pathTrace.samples = samples;
+            s.march.seed = seed;
+            std::string sceneTag;  // in the cached reference's name
+            for (const auto& [key, v] : sceneSettings) {
+                if (key == "ambient") s.sky.ambient = v;
+                else if (key == "sun") s.sun.intensity = v;
+                else if (key == "ground") s.ground.enabled = v != 0.0;
+                else throw std::runtime_error("unknown scene setting " + key);
+                sceneTag += "_" + key + std::to_string(v);
+            }
             cg::algo::RenderSettings fastS = s;
             for (const auto& [key, v] : fastSettings) {
                 if (key == "lightTexel") fastS.march.lightTexel = v;
@@ -260,30 +295,45 @@ int main(int argc, char** argv)
             const cg::algo::RenderedImage fast = cg::algo::renderFogVolume(*c.grid, fastS);
             const double fastSeconds = seconds(start);
 
-            cg::algo::RenderedImage ref;
-            ref.width = width;
-            ref.height = height;
-            ref.rgba.resize(fast.rgba.size());
-            const std::filesystem::path cached =
-                cacheDir.empty() ? std::filesystem::path()
-                                 : std::filesystem::path(cacheDir) /
-                                       (c.name + "_" + where + "_" + std::to_string(width) + "x" +
-                                        std::to_string(height) + "_" + std::to_string(samples) +
-                                        ".f32");
+            // The reference is the mean of two independent halves (seeds 2·seed and 2·seed + 1),
+            // and the halves' disagreement measures how far it is from converged.
             double refSeconds = 0.0;
-            if (cached.empty() || !readCached(cached, ref)) {
-                start = std::chrono::steady_clock::now();
-                ref = cg::algo::renderPathTraced(*c.grid, s);
-                refSeconds = seconds(start);
-                if (!cached.empty()) {
-                    std::filesystem::create_directories(cacheDir);
-                    writeCached(cached, ref);
+            const auto renderHalf = [&](int which) {
+                cg::algo::RenderSettings h = s;
+                h.pathTrace.samples = std::max(1, samples / 2);
+                h.march.seed = 2 * seed + static_cast<std::uint64_t>(which);
+                const std::filesystem::path cached =
+                    cacheDir.empty()
+                        ? std::filesystem::path()
+                        : std::filesystem::path(cacheDir) /
+                              (c.name + "_" + where + "_" + std::to_string(width) + "x" +
+                               std::to_string(height) + sceneTag + "_" + std::to_string(h.pathTrace.samples) +
+                               "_seed" + std::to_string(h.march.seed) + ".f32");
+                cg::algo::RenderedImage img;
+                img.width = width;
+                img.height = height;
+                img.rgba.resize(fast.rgba.size());
+                if (cached.empty() || !readCached(cached, img)) {
+                    const auto t0 = std::chrono::steady_clock::now();
+                    img = cg::algo::renderPathTraced(*c.grid, h);
+                    refSeconds += seconds(t0);
+                    if (!cached.empty()) {
+                        std::filesystem::create_directories(cacheDir);
+                        writeCached(cached, img);
+                    }
                 }
-            }
+                return img;
+            };
+            const cg::algo::RenderedImage refA = renderHalf(0), refB = renderHalf(1);
+            cg::algo::RenderedImage ref = refA;
+            for (std::size_t i = 0; i < ref.rgba.size(); ++i)
+                ref.rgba[i] = 0.5f * (refA.rgba[i] + refB.rgba[i]);
             const Errors e = compare(fast, ref);
-            std::printf("| %s | %s | %zu | %.2f | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.3f s | %s |\n",
+            std::printf("| %s | %s | %zu | %.2f | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% | "
+                        "%.3f s | %s |\n",
                         c.name.c_str(), where.c_str(), e.pixels, e.ratio, 100 * e.mean,
-                        100 * e.p90, 100 * e.darkMean, 100 * e.brightMean, fastSeconds,
+                        100 * e.p90, 100 * e.darkMean, 100 * e.brightMean,
+                        100 * referenceNoise(refA, refB, ref), fastSeconds,
                         refSeconds > 0.0 ? (std::to_string(refSeconds) + " s").c_str()
                                          : "cached");
             std::fflush(stdout);

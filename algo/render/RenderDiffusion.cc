@@ -15,6 +15,7 @@ constexpr std::size_t kMaxCells = std::size_t(1) << 21;
 constexpr int kMaxIterations = 400;
 constexpr double kTolerance = 1e-4;  ///< relative residual at which the solve stops
 constexpr std::size_t kSumBlock = 4096;
+constexpr double kPi = 3.14159265358979323846;
 
 /// The sparse symmetric system over the cloud's cells: row i is
 /// diag_i φ_i − Σ_f k_if φ_nb(f) for its neighbours inside the cloud.
@@ -91,7 +92,7 @@ int solve(const System& A, const std::vector<double>& b, std::vector<double>& x,
 }  // namespace
 
 RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLightMap& sunMap,
-                                 const RenderMedium& medium, int cellVoxels,
+                                 const RenderMedium& medium, int cellVoxels, bool shadowedGround,
                                  const std::function<bool()>& cancelled)
     : mXform(grid.transform())
 {
@@ -161,12 +162,56 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
         // D is capped at the cell's size (a crude flux limiter).
         return std::min(1.0 / (3.0 * transport), mH);
     };
+    // Sun light scattered once is not isotropic: its first moment, Q1 = ḡ S ω_sun per cell,
+    // drives a flux 3 D Q1 that carries it on along the sun's direction, deeper into the
+    // cloud, instead of letting it leak back out where it entered. Its divergence is a
+    // source, −∇·(3 D Q1), taken face by face (and through Marshak's condition at the edge).
+    const RenderVec3 travel = -sunMap.towardLight();
+    const auto firstMoment = [&](std::size_t cell, int axis) {
+        return gMean * scatterOnce[cell] * travel[axis];
+    };
+    // A boundary face with outward normal n sees the sky above the horizon and the ground
+    // below it, in the proportions (1 ± n_z) / 2 of its cosine-weighted view; the lit part of
+    // the ground below it is the sun's transmittance down to the ground under the face.
+    openvdb::Vec3d normal[3];
+    for (int a = 0; a < 3; ++a) {
+        openvdb::Vec3d e(0.0);
+        e[a] = 1.0;
+        normal[a] = mXform.baseMap()->applyIJT(e).unitSafe();
+    }
+    // The ground a face sees is not only the point under it: it sees a disc as wide as it is
+    // high, where the cloud's shadow lies offset by the sun's slant. Its lit fraction is
+    // the mean sun transmittance at ground points in cosine-weighted directions below the
+    // cell (4 rings of equal weight, 6 azimuths each).
+    const auto litGroundSeen = [&](std::size_t cell) {
+        const std::size_t ci = cell / (static_cast<std::size_t>(mN[1]) * mN[2]);
+        const std::size_t cj = (cell / mN[2]) % mN[1], ck = cell % mN[2];
+        const openvdb::Vec3d centre = mFirstVoxel.asVec3d() +
+                                      openvdb::Vec3d(double(ci), double(cj), double(ck)) * c +
+                                      openvdb::Vec3d(0.5 * (c - 1));
+        const RenderVec3 world = mXform.indexToWorld(centre);
+        const double height = std::max(0.0, world.z());
+        double sum = 0.0;
+        for (int ring = 0; ring < 4; ++ring) {
+            const double sin2 = (ring + 0.5) / 4.0;  // cosine-weighted: sin²θ uniform
+            const double reach = height * std::sqrt(sin2 / (1.0 - sin2));
+            for (int k = 0; k < 6; ++k) {
+                const double phi = (k + 0.5 * (ring % 2)) * (kPi / 3.0);
+                const RenderVec3 ground(world.x() + reach * std::cos(phi),
+                                        world.y() + reach * std::sin(phi), 0.0);
+                sum += std::exp(-sunMap.opticalDepth(ground));
+            }
+        }
+        return sum / 24.0;
+    };
+
     System A;
     const std::size_t n = cells.size();
     A.diag.assign(n, 0.0);
     A.neighbour.assign(6 * n, -1);
     A.coupling.assign(6 * n, 0.0f);
-    std::vector<double> leak(n, 0.0), source(n, 0.0);
+    std::vector<double> rhs[kLights];
+    for (auto& b : rhs) b.assign(n, 0.0);
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t row) {
         const std::size_t cell = cells[row];
         const int ci = static_cast<int>(cell / (static_cast<std::size_t>(mN[1]) * mN[2]));
@@ -175,6 +220,8 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
         const double Di = diffusion(cell);
         const double s = sigmaT[cell];
         double diag = s * (1.0 - medium.albedo);
+        double drift = 0.0;  // outflow of 3 D Q1 through the cell's faces, per volume
+        double litBelow = -1.0;  // found on the first face that sees the ground
         for (int f = 0; f < 6; ++f) {
             const int axis = f / 2, step = f % 2 ? 1 : -1;
             int nb[3] = {ci, cj, ck};
@@ -187,27 +234,45 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
                 A.neighbour[6 * row + f] = id[other];
                 A.coupling[6 * row + f] = static_cast<float>(k);
                 diag += k;
+                const double q1 = 0.5 * (firstMoment(cell, axis) + firstMoment(other, axis));
+                drift += 3.0 * (2.0 * Di * Dj / (Di + Dj)) * q1 * step / ha;
             } else {
-                const double k = 2.0 * Di / (ha * (ha + 4.0 * Di));  // Marshak
-                leak[row] += k;
+                // Marshak: the face loses k φ and lets in k Φ, Φ the fluence of what it sees.
+                const double k = 2.0 * Di / (ha * (ha + 4.0 * Di));
                 diag += k;
+                drift += 3.0 * Di * firstMoment(cell, axis) * step / (ha + 4.0 * Di);
+                const double up = 0.5 * (1.0 + step * normal[axis].z());
+                rhs[Sky][row] += k * 4.0 * kPi * up;
+                rhs[Ground][row] += k * 4.0 * kPi * (1.0 - up);
+                if (shadowedGround && up < 1.0) {
+                    if (litBelow < 0.0) litBelow = litGroundSeen(cell);
+                    rhs[LitGround][row] += k * 4.0 * kPi * (1.0 - up) * litBelow;
+                }
             }
         }
         A.diag[row] = diag;
-        source[row] = scatterOnce[cell];
+        rhs[Sun][row] = scatterOnce[cell] - drift;
     });
-    std::vector<double> sun(n, 0.0), env(n, 1.0);
-    mIterations = solve(A, source, sun, cancelled);
-    mIterations = std::max(mIterations, solve(A, leak, env, cancelled));
+    // Start from what the cell would hold alone in its surroundings: 2π per unit radiance
+    // of the sky or the ground.
+    const double start[kLights] = {0.0, 2.0 * kPi, 2.0 * kPi, 0.0};
+    std::vector<double> solved[kLights];
+    for (int l = 0; l < kLights; ++l) {
+        solved[l].assign(n, start[l]);
+        if (l == LitGround && !shadowedGround) continue;
+        mIterations = std::max(mIterations, solve(A, rhs[l], solved[l], cancelled));
+    }
 
     // Dense fields; an empty cell next to the cloud takes the mean of its cloud neighbours,
     // so lookups at the cloud's soft edge are not pulled toward the outside's values.
-    mSun.assign(dense, 0.0f);
-    mEnv.assign(dense, 1.0f);
+    for (int l = 0; l < kLights; ++l) mPhi[l].assign(dense, static_cast<float>(kOutside[l]));
     mD.assign(dense, 0.0f);
+    mDrift.assign(3 * dense, 0.0f);
     for (std::size_t row = 0; row < n; ++row) {
-        mSun[cells[row]] = static_cast<float>(sun[row]);
-        mEnv[cells[row]] = static_cast<float>(env[row]);
+        for (int a = 0; a < 3; ++a)
+            mDrift[3 * cells[row] + a] =
+                static_cast<float>(3.0 * diffusion(cells[row]) * firstMoment(cells[row], a));
+        for (int l = 0; l < kLights; ++l) mPhi[l][cells[row]] = static_cast<float>(solved[l][row]);
         mD[cells[row]] = static_cast<float>(diffusion(cells[row]));
     }
     tbb::parallel_for(0, mN[0], [&](int i) {
@@ -215,7 +280,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
             for (int k = 0; k < mN[2]; ++k) {
                 const std::size_t cell = index(i, j, k);
                 if (id[cell] >= 0) continue;
-                double s = 0.0, e = 0.0, d = 0.0;
+                double sum[kLights] = {0.0, 0.0, 0.0, 0.0}, d = 0.0;
                 int count = 0;
                 for (int f = 0; f < 6; ++f) {
                     int nb[3] = {i, j, k};
@@ -225,14 +290,14 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
                         continue;
                     const std::int32_t row = id[index(nb[0], nb[1], nb[2])];
                     if (row < 0) continue;
-                    s += sun[static_cast<std::size_t>(row)];
-                    e += env[static_cast<std::size_t>(row)];
+                    for (int l = 0; l < kLights; ++l)
+                        sum[l] += solved[l][static_cast<std::size_t>(row)];
                     d += mD[cells[static_cast<std::size_t>(row)]];
                     ++count;
                 }
                 if (count > 0) {
-                    mSun[cell] = static_cast<float>(s / count);
-                    mEnv[cell] = static_cast<float>(e / count);
+                    for (int l = 0; l < kLights; ++l)
+                        mPhi[l][cell] = static_cast<float>(sum[l] / count);
                     mD[cell] = static_cast<float>(d / count);
                 }
             }
@@ -242,7 +307,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
 RenderDiffusion::Fluence RenderDiffusion::at(const RenderVec3& p) const
 {
     Fluence out;
-    if (mSun.empty()) return out;
+    if (empty()) return out;
     const RenderVec3 q = mXform.worldToIndex(p);
     const double half = 0.5 * (mVoxels - 1);
     double f[3] = {(q.x() - mFirstVoxel.x() - half) / mVoxels,
@@ -254,8 +319,10 @@ RenderDiffusion::Fluence RenderDiffusion::at(const RenderVec3& p) const
         i0[a] = static_cast<int>(f[a]);
         f[a] -= i0[a];
     }
-    double sun = 0.0, env = 0.0, D = 0.0;
-    openvdb::Vec3d gradSun(0.0), gradEnv(0.0);  // in cell coordinates
+    double phi[kLights] = {0.0, 0.0, 0.0, 0.0}, D = 0.0;
+    openvdb::Vec3d grad[kLights];  // in cell coordinates
+    for (auto& g : grad) g = openvdb::Vec3d(0.0);
+    RenderVec3 drift(0.0);
     for (int corner = 0; corner < 8; ++corner) {
         const int d[3] = {corner & 1, (corner >> 1) & 1, (corner >> 2) & 1};
         double w = 1.0, dw[3] = {1.0, 1.0, 1.0};
@@ -265,23 +332,20 @@ RenderDiffusion::Fluence RenderDiffusion::at(const RenderVec3& p) const
             for (int b = 0; b < 3; ++b) dw[b] *= (a == b) ? (d[a] ? 1.0 : -1.0) : wa;
         }
         const std::size_t cell = index(i0[0] + d[0], i0[1] + d[1], i0[2] + d[2]);
-        sun += w * mSun[cell];
-        env += w * mEnv[cell];
         D += w * mD[cell];
-        for (int a = 0; a < 3; ++a) {
-            gradSun[a] += dw[a] * mSun[cell];
-            gradEnv[a] += dw[a] * mEnv[cell];
+        for (int a = 0; a < 3; ++a) drift[a] += w * mDrift[3 * cell + a];
+        for (int l = 0; l < kLights; ++l) {
+            phi[l] += w * mPhi[l][cell];
+            for (int a = 0; a < 3; ++a) grad[l][a] += dw[a] * mPhi[l][cell];
         }
     }
-    out.sun = sun;
-    out.env = env;
     // World gradients: cell coordinates are index coordinates / mVoxels; the transform's
     // inverse Jacobian transpose takes an index-space gradient to world space.
-    const auto toWorld = [&](const openvdb::Vec3d& g) {
-        return mXform.baseMap()->applyIJT(g / double(mVoxels));
-    };
-    out.sunFlux = toWorld(gradSun) * -D;
-    out.envFlux = toWorld(gradEnv) * -D;
+    for (int l = 0; l < kLights; ++l) {
+        out.phi[l] = phi[l];
+        out.flux[l] = mXform.baseMap()->applyIJT(grad[l] / double(mVoxels)) * -D;
+    }
+    out.flux[Sun] += drift;
     return out;
 }
 

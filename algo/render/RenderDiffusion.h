@@ -1,17 +1,21 @@
 #pragma once
 /// Multiple scattering for the fast renderer: the fluence of scattered light solved once a
 /// frame on a coarse lattice in the diffusion approximation,
-///     −∇·(D ∇φ) + σ_a φ = S,   D = 1 / (3 (σ_a + σ_s (1 − ḡ))),
-/// where ḡ is the phase function's mean cosine. Two unit problems are solved, since the
-/// equation is linear and grey: φ_sun, whose source is the sun light scattered once,
-/// S = σ_s exp(−τ_sun) per unit sun irradiance, and φ_env, driven by a unit isotropic fluence
-/// at the cloud's surface (Marshak's boundary condition) with no source. Then the fluence of
-/// scattered light is E_sun φ_sun + Φ_env φ_env, with Φ_env the fluence of the sky and ground
-/// around the cloud, and a camera sample adds σ_s φ / (4π) to its single scattering.
+///     −∇·(D ∇φ) + σ_a φ = Q0 − ∇·(3 D Q1),   D = 1 / (3 (σ_a + σ_s (1 − ḡ))),
+/// where ḡ is the phase function's mean cosine. The equation is linear and grey, so it is
+/// solved once per light, each for a unit of that light:
+///   - Sun: sun light scattered once is the source, Q0 = σ_s exp(−τ_sun) per unit sun
+///     irradiance, with its first moment Q1 = ḡ Q0 ω_sun, which carries it on forward;
+///   - Sky, Ground, LitGround: no source; what enters through the cloud's surface by
+///     Marshak's boundary condition from a unit radiance of the sky (over the upper
+///     hemisphere), of the ground, and of the sun-lit ground in the cloud's own shadow. A
+///     surface face takes the sky and the ground in proportion to its view of each.
+/// A camera sample adds to its single scattering what the fluences scatter toward it, in the
+/// P1 approximation: (φ + 3 ḡ F·ω_o) / 4π for each light, F the net flux.
 ///
 /// The lattice's cells are a few voxels wide (at most about 2 million cells); each holds the
 /// mean extinction of its voxels. Empty cells lie outside the cloud: a cloud cell next to one
-/// loses light through that face at the rate Marshak's condition gives, 2D / (h (h + 4D)).
+/// exchanges light through that face at the rate Marshak's condition gives, 2D / (h (h + 4D)).
 /// The system is symmetric positive definite and solved by conjugate gradients with a Jacobi
 /// preconditioner; its sums are taken in fixed blocks, so the result does not depend on the
 /// thread count. See docs/rendering.md.
@@ -29,28 +33,36 @@ namespace cg::algo {
 
 class RenderDiffusion {
 public:
-    /// No cloud: φ_sun = 0 and φ_env = 1 everywhere.
+    /// The lights solved for, each per unit: sun irradiance; radiance of the sky, of the
+    /// ground, and of the sun-lit ground (which the cloud's shadow dims).
+    enum Light { Sun, Sky, Ground, LitGround, kLights };
+
+    /// No cloud: what lies around it everywhere.
     RenderDiffusion() = default;
 
-    /// Solves both problems for `grid` (linear transform) lit along sunMap's direction.
-    /// Stops early once `cancelled` returns true.
+    /// Solves every light for `grid` (linear transform) lit along sunMap's direction; the
+    /// ground lies at z = 0 and `shadowedGround` says whether the sun lights it (LitGround
+    /// stays 0 otherwise). Stops early once `cancelled` returns true.
     RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLightMap& sunMap,
-                    const RenderMedium& medium, int cellVoxels,
+                    const RenderMedium& medium, int cellVoxels, bool shadowedGround,
                     const std::function<bool()>& cancelled = {});
 
+    /// Fluence per unit light, outside the cloud: no scattered sun light, and half the
+    /// sphere's 4π for each of the sky and the ground.
+    static constexpr double kOutside[kLights] = {0.0, 6.283185307179586, 6.283185307179586, 0.0};
+
     struct Fluence {
-        double sun = 0.0;  ///< per unit sun irradiance
-        double env = 1.0;  ///< per unit fluence of the surroundings
-        RenderVec3 sunFlux{0.0, 0.0, 0.0};  ///< net flux −D ∇φ_sun, per unit sun irradiance
-        RenderVec3 envFlux{0.0, 0.0, 0.0};  ///< −D ∇φ_env, per unit fluence around
+        double phi[kLights] = {kOutside[0], kOutside[1], kOutside[2], kOutside[3]};
+        RenderVec3 flux[kLights] = {RenderVec3(0.0), RenderVec3(0.0), RenderVec3(0.0),
+                                    RenderVec3(0.0)};  ///< net flux F per light (0 outside)
     };
 
-    /// Both fluences and their net fluxes at world point p, trilinear between cell centres
-    /// (the fluxes from the trilinear gradient); outside the lattice, what lies around the
-    /// cloud: no scattered sun light, the surroundings' fluence, no net flux.
+    /// The fluences and their net fluxes at world point p, trilinear between cell centres
+    /// (the fluxes from the trilinear gradient, plus the sun's forward drift); outside the
+    /// lattice, what lies around the cloud.
     Fluence at(const RenderVec3& p) const;
 
-    bool empty() const { return mSun.empty(); }
+    bool empty() const { return mPhi[Sun].empty(); }
     double cell() const { return mH; }  ///< m
     int iterations() const { return mIterations; }  ///< of the larger of the two solves
 
@@ -67,8 +79,9 @@ private:
     int mVoxels = 1;                  ///< cell edge, voxels
     double mH = 0.0;                  ///< cell edge, m (the smallest voxel edge × mVoxels)
     int mN[3] = {0, 0, 0};
-    std::vector<float> mSun, mEnv;  ///< per cell, dense
+    std::vector<float> mPhi[kLights];  ///< per light, per cell, dense
     std::vector<float> mD;          ///< diffusion coefficient per cell, m
+    std::vector<float> mDrift;      ///< 3 D Q1 per cell (x, y, z): the sun part's flux source
     int mIterations = 0;
 };
 

@@ -41,6 +41,7 @@ public:
     double columnDepth(const RenderVec3& p) const;
 
     bool empty() const { return mTau.empty(); }
+    const RenderVec3& towardLight() const { return mW; }  ///< unit, world
     double texel() const { return mH; }  ///< m
 
 private:

@@ -60,7 +60,9 @@ struct Frame {
     RenderLightMap skyMap;
     RenderDiffusion diffusion;  ///< with MultiScatterModel::Diffusion
     bool useDiffusion = false;
-    RenderVec3 envFluence;      ///< Φ_env: 2π (mean radiance above + radiance from below)
+    /// Radiance of each RenderDiffusion light but the sun: the sky's mean above, the ground
+    /// (or the horizon without one), the sun-lit ground's sun part.
+    RenderVec3 diffuseRadiance[RenderDiffusion::kLights];
     double gMean = 0.0;         ///< mean cosine of the phase function
     double dt = 1.0;
     RenderVec3 sunDir;        ///< unit, toward the sun
@@ -115,9 +117,15 @@ struct Frame {
             sunMap = RenderLightMap(g, occupancy, sunDir, s.medium.extinction,
                                     s.march.lightTexel, s.march.lightStep,
                                     std::size_t(8) << 20, cancelled);
-        envFluence = (skyUp + below) * (2.0 * kPi);
+        const bool litGround = s.ground.enabled && needSun && groundSun > 0.0;
+        diffuseRadiance[RenderDiffusion::Sky] = skyUp;
+        diffuseRadiance[RenderDiffusion::Ground] = s.ground.enabled ? groundSky : below;
+        diffuseRadiance[RenderDiffusion::LitGround] =
+            litGround ? s.ground.albedo * sunIrradiance * (groundSun / kPi) : RenderVec3(0.0);
         gMean = (1.0 - s.medium.lobeBlend) * s.medium.g + s.medium.lobeBlend * s.medium.g2;
-        if (useDiffusion) diffusion = RenderDiffusion(g, sunMap, s.medium, s.multiScatter.cellVoxels, cancelled);
+        if (useDiffusion)
+            diffusion = RenderDiffusion(g, sunMap, s.medium, s.multiScatter.cellVoxels,
+                                        litGround, cancelled);
         if (needSky)
             skyMap = RenderLightMap(g, occupancy, RenderVec3(0, 0, 1), s.medium.extinction,
                                     s.march.lightTexel * 4.0, s.march.lightStep * 2.0,
@@ -175,12 +183,14 @@ struct Frame {
                          // Scattered light in the P1 approximation, L(ω) = (φ + 3 F·ω) / 4π,
                          // scattered toward the camera: (φ + 3 ḡ F·ω_o) / 4π, ω_o = −dir.
                          const RenderDiffusion::Fluence phi = diffusion.at(p);
-                         const auto p1 = [&](double fluence, const RenderVec3& flux) {
-                             return std::max(0.0, fluence - 3.0 * gMean * flux.dot(dir)) *
+                         const auto p1 = [&](int light) {
+                             return std::max(0.0, phi.phi[light] -
+                                                      3.0 * gMean * phi.flux[light].dot(dir)) *
                                     kInvFourPi;
                          };
-                         const RenderVec3 source = sunIrradiance * (sun + p1(phi.sun, phi.sunFlux)) +
-                                                   envFluence * p1(phi.env, phi.envFlux);
+                         RenderVec3 source = sunIrradiance * (sun + p1(RenderDiffusion::Sun));
+                         for (int l = RenderDiffusion::Sky; l < RenderDiffusion::kLights; ++l)
+                             source += diffuseRadiance[l] * p1(l);
                          L += source * (T * albedo * (1.0 - segT));
                          T *= segT;
                          return T >= minT;

@@ -97,7 +97,7 @@ void registerRendererNode(Registry& registry)
     const auto v3 = [](const algo::RenderVec3& v) { return Vec3{v.x(), v.y(), v.z()}; };
     NodeDecl d;
     d.type = "Renderer";
-    d.version = 2;  // 2: the image carries its background
+    d.version = 3;  // 2: the image carries its background; 3: the diffusion sees sky and ground apart
     d.category = "render";
     d.doc =
         "Ray-marches a fog volume (sigma_t = extinction x density, sigma_s = albedo x sigma_t) "
