@@ -64,7 +64,7 @@ public:
 
     bool empty() const { return mPhi[Sun].empty(); }
     double cell() const { return mH; }  ///< m
-    int iterations() const { return mIterations; }  ///< of the larger of the two solves
+    int iterations() const { return mIterations; }  ///< of the longest of the solves
 
 private:
     std::size_t index(int i, int j, int k) const
