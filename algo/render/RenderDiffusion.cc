@@ -183,9 +183,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     // high, where the cloud's shadow lies offset by the sun's slant. Its lit fraction is
     // the mean sun transmittance at ground points in cosine-weighted directions below the
     // cell (4 rings of equal weight, 6 azimuths each).
-    const auto litGroundSeen = [&](std::size_t cell) {
-        const std::size_t ci = cell / (static_cast<std::size_t>(mN[1]) * mN[2]);
-        const std::size_t cj = (cell / mN[2]) % mN[1], ck = cell % mN[2];
+    const auto litGroundSeen = [&](int ci, int cj, int ck) {
         const openvdb::Vec3d centre = mFirstVoxel.asVec3d() +
                                       openvdb::Vec3d(double(ci), double(cj), double(ck)) * c +
                                       openvdb::Vec3d(0.5 * (c - 1));
@@ -245,7 +243,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
                 rhs[Sky][row] += k * 4.0 * kPi * up;
                 rhs[Ground][row] += k * 4.0 * kPi * (1.0 - up);
                 if (shadowedGround && up < 1.0) {
-                    if (litBelow < 0.0) litBelow = litGroundSeen(cell);
+                    if (litBelow < 0.0) litBelow = litGroundSeen(ci, cj, ck);
                     rhs[LitGround][row] += k * 4.0 * kPi * (1.0 - up) * litBelow;
                 }
             }

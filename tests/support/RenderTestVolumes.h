@@ -2,9 +2,16 @@
 // Small fog volumes with known optical depths, for the renderers' tests.
 
 #include <cstddef>
+#include <cstring>
+#include <functional>
 #include <vector>
 
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
 #include <openvdb/openvdb.h>
+
+#include "algo/render/RenderVolume.h"
 
 namespace cg::test {
 
@@ -53,6 +60,33 @@ inline double luminance(const std::vector<float>& rgba, int width, int x, int y)
 {
     const float* p = &rgba[(static_cast<std::size_t>(y) * width + x) * 4];
     return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+}
+
+/// Renders with `render` under 1 and then 2 threads and expects the same bytes in the beauty
+/// and the background; returns the one-thread image.
+inline algo::RenderedImage expectSameImageForAnyThreadCount(
+    const std::function<algo::RenderedImage()>& render)
+{
+    algo::RenderedImage one, two;
+    {
+        tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+        one = render();
+    }
+    {
+        tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
+        two = render();
+    }
+    EXPECT_EQ(one.rgba.size(), two.rgba.size());
+    EXPECT_EQ(one.background.size(), two.background.size());
+    if (one.rgba.size() == two.rgba.size()) {
+        EXPECT_EQ(std::memcmp(one.rgba.data(), two.rgba.data(), one.rgba.size() * sizeof(float)), 0);
+    }
+    if (one.background.size() == two.background.size()) {
+        EXPECT_EQ(std::memcmp(one.background.data(), two.background.data(),
+                              one.background.size() * sizeof(float)),
+                  0);
+    }
+    return one;
 }
 
 }  // namespace cg::test
