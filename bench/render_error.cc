@@ -5,7 +5,7 @@
 // frame of Figure 6 and a frame of Figure 9.
 //
 // Usage: render_error [options] CASE...
-//   CASE: synthetic, or NAME=FILE.vdb@EXTINCTION@CX,CY,CZ@LX,LY,LZ@FOV (camera position,
+//   CASE: synthetic, box (a homogeneous cube), or NAME=FILE.vdb@EXTINCTION@CX,CY,CZ@LX,LY,LZ@FOV (camera position,
 //         look-at point, vertical field of view in degrees; grid "density")
 //   --samples N    reference paths a pixel, both halves together (default 256)
 //   --size WxH     image size (default 240x180)
@@ -86,6 +86,22 @@ Case syntheticCase()
     out.grid = cg::algo::rasterizeCumulus(cg::algo::cumulusBlobs(c), c);
     out.settings.camera.position = RenderVec3(400, -3800, 700);
     out.settings.camera.lookAt = RenderVec3(0, 0, 1200);
+    out.settings.camera.fovDegrees = 40.0;
+    out.settings.medium.extinction = 0.05;
+    return out;
+}
+
+/// A homogeneous cube, 1 km wide, 500 m above the ground: the simplest thick cloud.
+Case boxCase()
+{
+    Case out;
+    out.name = "box";
+    out.grid = openvdb::FloatGrid::create(0.0f);
+    out.grid->setTransform(openvdb::math::Transform::createLinearTransform(20.0));
+    out.grid->denseFill(openvdb::CoordBBox(openvdb::Coord(-25, -25, 25), openvdb::Coord(24, 24, 74)),
+                        1.0f, true);
+    out.settings.camera.position = RenderVec3(400, -3800, 700);
+    out.settings.camera.lookAt = RenderVec3(0, 0, 1000);
     out.settings.camera.fovDegrees = 40.0;
     out.settings.medium.extinction = 0.05;
     return out;
@@ -252,6 +268,7 @@ int main(int argc, char** argv)
                     .emplace_back(kv.substr(0, eq), std::stod(kv.substr(eq + 1)));
             }
             else if (arg == "synthetic") cases.push_back(syntheticCase());
+            else if (arg == "box") cases.push_back(boxCase());
             else cases.push_back(fileCase(arg));
         }
         if (cases.empty()) throw std::runtime_error("no case given");
@@ -339,7 +356,10 @@ int main(int argc, char** argv)
             std::fflush(stdout);
             if (!pngDir.empty()) {
                 std::filesystem::create_directories(pngDir);
-                writeSideBySide(pngDir + "/" + c.name + "_" + where + ".png", fast, ref);
+                const std::string stem = pngDir + "/" + c.name + "_" + where;
+                writeSideBySide(stem + ".png", fast, ref);
+                writeCached(stem + "_fast.f32", fast);  // floats, for a closer look
+                writeCached(stem + "_reference.f32", ref);
             }
         }
     }

@@ -30,6 +30,34 @@ inline double twoLobeHenyeyGreenstein(double cosTheta, double g1, double g2, dou
     return w > 0.0 ? (1.0 - w) * p1 + w * henyeyGreenstein(cosTheta, g2) : p1;
 }
 
+/// Two scatterings in a row, the second of light the first turned by any angle: the two-lobe
+/// phase function convolved with itself over the sphere. An HG lobe's Legendre moments are
+/// g^l, so HG(a) ∗ HG(b) = HG(a b) and the blend gives Σ w_i w_j HG(g_i g_j).
+inline double twoLobeHenyeyGreensteinTwice(double cosTheta, double g1, double g2, double w)
+{
+    return (1.0 - w) * (1.0 - w) * henyeyGreenstein(cosTheta, g1 * g1) +
+           2.0 * w * (1.0 - w) * henyeyGreenstein(cosTheta, g1 * g2) +
+           w * w * henyeyGreenstein(cosTheta, g2 * g2);
+}
+
+/// The δ-Eddington split of the two-lobe phase function (Joseph, Wiscombe and Weinman 1976):
+/// a forward peak of weight `peak` treated as no scattering at all, and the rest an HG lobe of
+/// asymmetry `g`. The peak is the phase function's second moment, (1 − w) g1² + w g2², so
+/// the split keeps its first two moments; the rest's g = (ḡ − peak) / (1 − peak).
+struct DeltaEddington {
+    double peak = 0.0;
+    double g = 0.0;
+};
+
+inline DeltaEddington deltaEddington(double g1, double g2, double w)
+{
+    const double mean = (1.0 - w) * g1 + w * g2;
+    DeltaEddington out;
+    out.peak = (1.0 - w) * g1 * g1 + w * g2 * g2;
+    out.g = out.peak < 1.0 ? (mean - out.peak) / (1.0 - out.peak) : 0.0;
+    return out;
+}
+
 /// cos θ distributed as Henyey-Greenstein with asymmetry g, from a uniform u in [0, 1)
 /// (inverting its cumulative distribution).
 inline double sampleHenyeyGreenstein(double g, double u)

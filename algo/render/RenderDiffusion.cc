@@ -1,18 +1,25 @@
 #include "algo/render/RenderDiffusion.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "algo/render/Phase.h"
+
 namespace cg::algo {
 
 namespace {
 
 constexpr std::size_t kMaxCells = std::size_t(1) << 21;
+
+
 constexpr int kMaxIterations = 400;
+constexpr int kLimiterPasses = 3;  ///< solves of the sun with the flux limiter updated
+constexpr double kMostLimit = 4.0;  ///< the limiter's largest R, per cell width
 constexpr double kTolerance = 1e-4;  ///< relative residual at which the solve stops
 constexpr std::size_t kSumBlock = 4096;
 constexpr double kPi = 3.14159265358979323846;
@@ -126,12 +133,17 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
                      (v.z() - mFirstVoxel.z()) / c);
     };
     const double perVoxel = medium.extinction / (double(c) * c * c);
+    // δ-Eddington: light scattered into the phase function's forward peak goes on as if
+    // unscattered, so the sun's beam fades with (1 − ω f) τ and scatters for the first time
+    // out of it at the rate σ_s (1 − f).
+    const DeltaEddington split = deltaEddington(medium.g, medium.g2, medium.lobeBlend);
+    const double peakless = 1.0 - medium.albedo * split.peak;
     const auto add = [&](const openvdb::Coord& v, float value) {
         const std::size_t cell = cellOf(v);
         sigmaT[cell] += perVoxel * value;
         const RenderVec3 world = mXform.indexToWorld(v.asVec3d());
-        scatterOnce[cell] +=
-            perVoxel * value * medium.albedo * std::exp(-sunMap.opticalDepth(world));
+        scatterOnce[cell] += perVoxel * value * medium.albedo * (1.0 - split.peak) *
+                             std::exp(-peakless * sunMap.opticalDepth(world));
     };
     for (auto it = grid.tree().cbeginValueOn(); it; ++it) {
         const float value = *it;
@@ -155,12 +167,19 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
             cells.push_back(i);
         }
     if (cells.empty()) return;
+    // Where light streams more than it diffuses (thin cloud, steep fluence) D is limited,
+    // D = 1 / (3 σ_tr + R), after Wilson's flux limiter, so that the flux D |∇φ| never
+    // exceeds the fluence. The first pass takes R as one over the cell width.
+    std::vector<double> limiter(cells.size(), 1.0 / mH);
     const auto diffusion = [&](std::size_t cell) {
         const double s = sigmaT[cell];
         const double transport = s * (1.0 - medium.albedo) + s * medium.albedo * (1.0 - gMean);
-        // Where a cell is thinner than a transport mean free path, light streams through it:
-        // D is capped at the cell's size (a crude flux limiter).
-        return std::min(1.0 / (3.0 * transport), mH);
+        return 1.0 / (3.0 * transport + limiter[static_cast<std::size_t>(id[cell])]);
+    };
+    using Cell = std::array<int, 3>;
+    const auto cellAt = [&](std::size_t cell) {
+        return Cell{static_cast<int>(cell / (static_cast<std::size_t>(mN[1]) * mN[2])),
+                    static_cast<int>((cell / mN[2]) % mN[1]), static_cast<int>(cell % mN[2])};
     };
     // Sun light scattered once is not isotropic: its first moment, Q1 = ḡ S ω_sun per cell,
     // drives a flux 3 D Q1 that carries it on along the sun's direction, deeper into the
@@ -168,7 +187,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     // source, −∇·(3 D Q1), taken face by face (and through Marshak's condition at the edge).
     const RenderVec3 travel = -sunMap.towardLight();
     const auto firstMoment = [&](std::size_t cell, int axis) {
-        return gMean * scatterOnce[cell] * travel[axis];
+        return split.g * scatterOnce[cell] * travel[axis];
     };
     // A boundary face with outward normal n sees the sky above the horizon and the ground
     // below it, in the proportions (1 ± n_z) / 2 of its cosine-weighted view; the lit part of
@@ -203,38 +222,37 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
         return sum / 24.0;
     };
 
-    System A;
+    // Every pass assembles the system with the current limiter and solves the sun; the last
+    // solves every light.
     const std::size_t n = cells.size();
-    A.diag.assign(n, 0.0);
-    A.neighbour.assign(6 * n, -1);
-    A.coupling.assign(6 * n, 0.0f);
-    std::vector<double> rhs[kLights];
-    for (auto& b : rhs) b.assign(n, 0.0);
-    tbb::parallel_for(std::size_t(0), n, [&](std::size_t row) {
-        const std::size_t cell = cells[row];
-        const int ci = static_cast<int>(cell / (static_cast<std::size_t>(mN[1]) * mN[2]));
-        const int cj = static_cast<int>((cell / mN[2]) % mN[1]);
-        const int ck = static_cast<int>(cell % mN[2]);
-        const double Di = diffusion(cell);
-        const double s = sigmaT[cell];
-        double diag = s * (1.0 - medium.albedo);
-        double drift = 0.0;  // outflow of 3 D Q1 through the cell's faces, per volume
-        double litBelow = -1.0;  // found on the first face that sees the ground
-        for (int f = 0; f < 6; ++f) {
-            const int axis = f / 2, step = f % 2 ? 1 : -1;
-            int nb[3] = {ci, cj, ck};
-            nb[axis] += step;
-            const std::size_t other = index(nb[0], nb[1], nb[2]);  // the halo keeps it inside
-            const double ha = h[axis];
-            if (id[other] >= 0) {
-                const double Dj = diffusion(other);
-                const double k = 2.0 * Di * Dj / ((Di + Dj) * ha * ha);
-                A.neighbour[6 * row + f] = id[other];
-                A.coupling[6 * row + f] = static_cast<float>(k);
-                diag += k;
-                const double q1 = 0.5 * (firstMoment(cell, axis) + firstMoment(other, axis));
-                drift += 3.0 * (2.0 * Di * Dj / (Di + Dj)) * q1 * step / ha;
-            } else {
+    std::vector<double> litBelow(n, -1.0);  // found on a row's first face that sees the ground
+    const auto assemble = [&](System& A, std::vector<double> (&rhs)[kLights]) {
+        A.diag.assign(n, 0.0);
+        A.neighbour.assign(6 * n, -1);
+        A.coupling.assign(6 * n, 0.0f);
+        for (auto& b : rhs) b.assign(n, 0.0);
+        tbb::parallel_for(std::size_t(0), n, [&](std::size_t row) {
+            const std::size_t cell = cells[row];
+            const Cell at = cellAt(cell);
+            const double Di = diffusion(cell);
+            double diag = sigmaT[cell] * (1.0 - medium.albedo);
+            double drift = 0.0;  // outflow of 3 D Q1 through the cell's faces, per volume
+            for (int f = 0; f < 6; ++f) {
+                const int axis = f / 2, step = f % 2 ? 1 : -1;
+                Cell nb = at;
+                nb[axis] += step;
+                const std::size_t other = index(nb[0], nb[1], nb[2]);  // the halo keeps it in
+                const double ha = h[axis];
+                if (id[other] >= 0) {
+                    const double Dj = diffusion(other);
+                    const double k = 2.0 * Di * Dj / ((Di + Dj) * ha * ha);
+                    A.neighbour[6 * row + f] = id[other];
+                    A.coupling[6 * row + f] = static_cast<float>(k);
+                    diag += k;
+                    const double q1 = 0.5 * (firstMoment(cell, axis) + firstMoment(other, axis));
+                    drift += 3.0 * (2.0 * Di * Dj / (Di + Dj)) * q1 * step / ha;
+                    continue;
+                }
                 // Marshak: the face loses k φ and lets in k Φ, Φ the fluence of what it sees.
                 const double k = 2.0 * Di / (ha * (ha + 4.0 * Di));
                 diag += k;
@@ -243,22 +261,53 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
                 rhs[Sky][row] += k * 4.0 * kPi * up;
                 rhs[Ground][row] += k * 4.0 * kPi * (1.0 - up);
                 if (shadowedGround && up < 1.0) {
-                    if (litBelow < 0.0) litBelow = litGroundSeen(ci, cj, ck);
-                    rhs[LitGround][row] += k * 4.0 * kPi * (1.0 - up) * litBelow;
+                    if (litBelow[row] < 0.0) litBelow[row] = litGroundSeen(at[0], at[1], at[2]);
+                    rhs[LitGround][row] += k * 4.0 * kPi * (1.0 - up) * litBelow[row];
                 }
             }
-        }
-        A.diag[row] = diag;
-        rhs[Sun][row] = scatterOnce[cell] - drift;
-    });
-    // Start from what the cell would hold alone in its surroundings: 2π per unit radiance
-    // of the sky or the ground.
+            A.diag[row] = diag;
+            rhs[Sun][row] = scatterOnce[cell] - drift;
+        });
+    };
+    // Wilson's limiter from the sun's fluence, R = |∇φ| / φ by central differences (one-sided
+    // at the cloud's edge), at most 4 per cell width so that no cell is cut off.
+    const auto limitFlux = [&](const std::vector<double>& phi) {
+        tbb::parallel_for(std::size_t(0), n, [&](std::size_t row) {
+            const Cell at = cellAt(cells[row]);
+            double grad2 = 0.0;
+            for (int axis = 0; axis < 3; ++axis) {
+                double value[2] = {phi[row], phi[row]};
+                int span = 0;
+                for (int side = 0; side < 2; ++side) {
+                    Cell nb = at;
+                    nb[axis] += side ? 1 : -1;
+                    const std::int32_t other = id[index(nb[0], nb[1], nb[2])];
+                    if (other < 0) continue;
+                    value[side] = phi[static_cast<std::size_t>(other)];
+                    ++span;
+                }
+                const double g = span ? (value[1] - value[0]) / (span * h[axis]) : 0.0;
+                grad2 += g * g;
+            }
+            const double most = kMostLimit / mH;
+            limiter[row] = phi[row] > 0.0 ? std::min(std::sqrt(grad2) / phi[row], most) : most;
+        });
+    };
+    // Start from what a cell would hold alone in its surroundings: 2π per unit radiance of
+    // the sky or the ground.
     const double start[kLights] = {0.0, 2.0 * kPi, 2.0 * kPi, 0.0};
     std::vector<double> solved[kLights];
-    for (int l = 0; l < kLights; ++l) {
-        solved[l].assign(n, start[l]);
-        if (l == LitGround && !shadowedGround) continue;
-        mIterations = std::max(mIterations, solve(A, rhs[l], solved[l], cancelled));
+    for (int l = 0; l < kLights; ++l) solved[l].assign(n, start[l]);
+    for (int pass = 0; pass < kLimiterPasses; ++pass) {
+        const bool last = pass + 1 == kLimiterPasses;
+        System A;
+        std::vector<double> rhs[kLights];
+        assemble(A, rhs);
+        for (int l = 0; l < kLights; ++l) {
+            if ((l == LitGround && !shadowedGround) || (!last && l != Sun)) continue;
+            mIterations = std::max(mIterations, solve(A, rhs[l], solved[l], cancelled));
+        }
+        if (!last) limitFlux(solved[Sun]);
     }
 
     // Dense fields; an empty cell next to the cloud takes the mean of its cloud neighbours,

@@ -1,17 +1,21 @@
 #pragma once
 /// Multiple scattering for the fast renderer: the fluence of scattered light solved once a
 /// frame on a coarse lattice in the diffusion approximation,
-///     −∇·(D ∇φ) + σ_a φ = Q0 − ∇·(3 D Q1),   D = 1 / (3 (σ_a + σ_s (1 − ḡ))),
-/// where ḡ is the phase function's mean cosine. The equation is linear and grey, so it is
-/// solved once per light, each for a unit of that light:
-///   - Sun: sun light scattered once is the source, Q0 = σ_s exp(−τ_sun) per unit sun
-///     irradiance, with its first moment Q1 = ḡ Q0 ω_sun, which carries it on forward;
+///     −∇·(D ∇φ) + σ_a φ = Q0 − ∇·(3 D Q1),   D = 1 / (3 (σ_a + σ_s (1 − ḡ)) + R),
+/// where ḡ is the phase function's mean cosine and R = |∇φ| / φ is Wilson's flux limiter,
+/// which keeps the flux D |∇φ| below the fluence where light streams rather than diffuses.
+/// The equation is linear and grey once R is fixed (R comes from the sun's fluence, updated
+/// over a few solves), so it is solved once per light, each for a unit of that light:
+///   - Sun: in the δ-Eddington split of the phase function a forward peak of weight f is no
+///     scattering at all, so the sun's beam fades with (1 − ω f) τ; the source is the light
+///     scattered out of it, Q0 = σ_s (1 − f) exp(−(1 − ω f) τ_sun) per unit sun irradiance,
+///     with its first moment Q1 = g' Q0 ω_sun (g' the remainder's asymmetry);
 ///   - Sky, Ground, LitGround: no source; what enters through the cloud's surface by
 ///     Marshak's boundary condition from a unit radiance of the sky (over the upper
 ///     hemisphere), of the ground, and of the sun-lit ground in the cloud's own shadow. A
 ///     surface face takes the sky and the ground in proportion to its view of each.
-/// A camera sample adds to its single scattering what the fluences scatter toward it, in the
-/// P1 approximation: (φ + 3 ḡ F·ω_o) / 4π for each light, F the net flux.
+/// The renderer scatters the fluences and fluxes of all the lights together toward the camera
+/// (see RenderVolume.cc).
 ///
 /// The lattice's cells are a few voxels wide (at most about 2 million cells); each holds the
 /// mean extinction of its voxels. Empty cells lie outside the cloud: a cloud cell next to one

@@ -22,6 +22,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxOctaves = 16;
+constexpr double kMaxFluxRatio = 0.95;  ///< |F| / φ kept below 1, a fully collimated beam
 
 using Accessor = openvdb::FloatGrid::ConstAccessor;
 using Span = RenderOccupancy::Span;
@@ -60,10 +61,11 @@ struct Frame {
     RenderLightMap skyMap;
     RenderDiffusion diffusion;  ///< with MultiScatterModel::Diffusion
     bool useDiffusion = false;
-    /// Radiance of each RenderDiffusion light but the sun: the sky's mean above, the ground
-    /// (or the horizon without one), the sun-lit ground's sun part.
+    /// What each RenderDiffusion light's unit stands for: the sun's irradiance; the radiance
+    /// of the sky's mean above, of the ground (or the horizon without one), of the sun-lit
+    /// ground's sun part.
     RenderVec3 diffuseRadiance[RenderDiffusion::kLights];
-    double gMean = 0.0;         ///< mean cosine of the phase function
+    double peakless = 1.0;      ///< 1 − ω f: the sun beam's extinction, forward peak f out
     double dt = 1.0;
     RenderVec3 sunDir;        ///< unit, toward the sun
     RenderVec3 sunIrradiance; ///< colour × intensity
@@ -118,11 +120,13 @@ struct Frame {
                                     s.march.lightTexel, s.march.lightStep,
                                     std::size_t(8) << 20, cancelled);
         const bool litGround = s.ground.enabled && needSun && groundSun > 0.0;
+        diffuseRadiance[RenderDiffusion::Sun] = sunIrradiance;
         diffuseRadiance[RenderDiffusion::Sky] = skyUp;
         diffuseRadiance[RenderDiffusion::Ground] = s.ground.enabled ? groundSky : below;
         diffuseRadiance[RenderDiffusion::LitGround] =
             litGround ? s.ground.albedo * sunIrradiance * (groundSun / kPi) : RenderVec3(0.0);
-        gMean = (1.0 - s.medium.lobeBlend) * s.medium.g + s.medium.lobeBlend * s.medium.g2;
+        peakless = 1.0 - s.medium.albedo *
+                             deltaEddington(s.medium.g, s.medium.g2, s.medium.lobeBlend).peak;
         if (useDiffusion)
             diffusion = RenderDiffusion(g, sunMap, s.medium, s.multiScatter.cellVoxels,
                                         litGround, cancelled);
@@ -130,6 +134,22 @@ struct Frame {
             skyMap = RenderLightMap(g, occupancy, RenderVec3(0, 0, 1), s.medium.extinction,
                                     s.march.lightTexel * 4.0, s.march.lightStep * 2.0,
                                     std::size_t(4) << 20, cancelled);
+    }
+
+    /// Diffuse light of fluence φ and net flux F scattered toward the camera (ω_o = −dir), per
+    /// unit scattering. The radiance is taken as a Henyey-Greenstein lobe about F with F's
+    /// mean cosine k = |F| / φ: it has the fluence and flux the diffusion gives, is never
+    /// negative (the P1 radiance (φ + 3 F·ω) / 4π is, wherever |F| > φ / 3), and its
+    /// convolution with an HG phase lobe of asymmetry g is the HG lobe of asymmetry g k.
+    double scatteredTowardCamera(double phi, const RenderVec3& flux, const RenderVec3& dir) const
+    {
+        if (!(phi > 0.0)) return 0.0;
+        const double f = flux.length();
+        if (!(f > 0.0)) return phi * kInvFourPi;
+        const double k = std::min(f / phi, kMaxFluxRatio);
+        const double cosToCamera = -flux.dot(dir) / f;
+        return phi * twoLobeHenyeyGreenstein(cosToCamera, s.medium.g * k, s.medium.g2 * k,
+                                             s.medium.lobeBlend);
     }
 
     /// Radiance behind the volume: the lit, shadowed, hazed ground, or the sky.
@@ -152,6 +172,8 @@ struct Frame {
         // The phase functions depend only on the angle between sun light and the view ray.
         const double cosTheta = sunDir.dot(dir);
         double sunPhase[kMaxOctaves];
+        const double peakPhase = twoLobeHenyeyGreensteinTwice(cosTheta, s.medium.g,
+                                                              s.medium.g2, s.medium.lobeBlend);
         for (int i = 0; i < octaves; ++i) {
             sunPhase[i] = octaveWeight[i] *
                           twoLobeHenyeyGreenstein(cosTheta, s.medium.g * octaveEcc[i],
@@ -180,17 +202,23 @@ struct Frame {
                      for (int i = 0; i < octaves; ++i)
                          sun += sunPhase[i] * std::exp(-octaveAtten[i] * tauSun);
                      if (useDiffusion) {
-                         // Scattered light in the P1 approximation, L(ω) = (φ + 3 F·ω) / 4π,
-                         // scattered toward the camera: (φ + 3 ḡ F·ω_o) / 4π, ω_o = −dir.
-                         const RenderDiffusion::Fluence phi = diffusion.at(p);
-                         const auto p1 = [&](int light) {
-                             return std::max(0.0, phi.phi[light] -
-                                                      3.0 * gMean * phi.flux[light].dot(dir)) *
-                                    kInvFourPi;
-                         };
-                         RenderVec3 source = sunIrradiance * (sun + p1(RenderDiffusion::Sun));
-                         for (int l = RenderDiffusion::Sky; l < RenderDiffusion::kLights; ++l)
-                             source += diffuseRadiance[l] * p1(l);
+                         // Sun light scattered into the phase function's forward peak goes
+                         // on along the sun's beam (δ-Eddington), a little spread: it
+                         // scatters toward the camera as if scattered twice in a row.
+                         const double peaked =
+                             std::exp(-peakless * tauSun) - std::exp(-tauSun);
+                         RenderVec3 source = sunIrradiance * (sun + peakPhase * peaked);
+                         // The diffuse light of all the lights together, channel by channel.
+                         const RenderDiffusion::Fluence field = diffusion.at(p);
+                         for (int c = 0; c < 3; ++c) {
+                             double phi = 0.0;
+                             RenderVec3 flux(0.0);
+                             for (int l = 0; l < RenderDiffusion::kLights; ++l) {
+                                 phi += diffuseRadiance[l][c] * field.phi[l];
+                                 flux += field.flux[l] * diffuseRadiance[l][c];
+                             }
+                             source[c] += scatteredTowardCamera(phi, flux, dir);
+                         }
                          L += source * (T * albedo * (1.0 - segT));
                          T *= segT;
                          return T >= minT;
