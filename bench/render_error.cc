@@ -41,6 +41,7 @@
 #include <openvdb/openvdb.h>
 
 #include "algo/render/Display.h"
+#include "algo/render/RenderError.h"
 #include "algo/render/RenderPathTrace.h"
 #include "algo/render/RenderVolume.h"
 #include "algo/render/SyntheticCumulus.h"
@@ -137,64 +138,6 @@ RenderVec3 sunToward(const cg::algo::RenderCamera& camera, const std::string& wh
     const RenderVec3 h = where == "front" ? f : where == "behind" ? -f : right;
     const double e = 35.0 * M_PI / 180.0;
     return h * std::cos(e) + RenderVec3(0, 0, std::sin(e));
-}
-
-double luminance(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
-
-struct Errors {
-    std::size_t pixels = 0;
-    double ratio = 0.0;      ///< mean L_fast / mean L_ref over cloud pixels
-    double mean = 0.0;       ///< mean relative error
-    double p90 = 0.0;        ///< its 90th percentile
-    double darkMean = 0.0;   ///< mean relative error over the darker half (by reference)
-    double brightMean = 0.0; ///< over the brighter half
-};
-
-Errors compare(const cg::algo::RenderedImage& fast, const cg::algo::RenderedImage& ref)
-{
-    std::vector<std::pair<double, double>> refAndErr;  // (L_ref, relative error)
-    double sumFast = 0.0, sumRef = 0.0;
-    for (std::size_t i = 0; i < ref.rgba.size() / 4; ++i) {
-        if (ref.rgba[4 * i + 3] < 0.5f) continue;
-        const double lr = luminance(&ref.rgba[4 * i]), lf = luminance(&fast.rgba[4 * i]);
-        if (!(lr > 0.0)) continue;
-        refAndErr.emplace_back(lr, std::abs(lf - lr) / lr);
-        sumFast += lf;
-        sumRef += lr;
-    }
-    Errors e;
-    e.pixels = refAndErr.size();
-    if (e.pixels == 0) return e;
-    e.ratio = sumFast / sumRef;
-    std::vector<double> errs;
-    for (const auto& [l, err] : refAndErr) errs.push_back(err);
-    for (const double v : errs) e.mean += v / errs.size();
-    std::vector<double> sorted = errs;
-    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() * 9 / 10, sorted.end());
-    e.p90 = sorted[sorted.size() * 9 / 10];
-    std::sort(refAndErr.begin(), refAndErr.end());
-    const std::size_t half = refAndErr.size() / 2;
-    for (std::size_t i = 0; i < refAndErr.size(); ++i)
-        (i < half ? e.darkMean : e.brightMean) += refAndErr[i].second;
-    e.darkMean /= std::max<std::size_t>(half, 1);
-    e.brightMean /= std::max<std::size_t>(refAndErr.size() - half, 1);
-    return e;
-}
-
-/// How far the reference (the mean of halves a and b) may lie from converged: the mean over
-/// cloud pixels of |L_a − L_b| / (L_a + L_b), the scale of the mean's relative error.
-double referenceNoise(const cg::algo::RenderedImage& a, const cg::algo::RenderedImage& b,
-                      const cg::algo::RenderedImage& ref)
-{
-    double sum = 0.0;
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < ref.rgba.size() / 4; ++i) {
-        const double la = luminance(&a.rgba[4 * i]), lb = luminance(&b.rgba[4 * i]);
-        if (ref.rgba[4 * i + 3] < 0.5f || !(la + lb > 0.0)) continue;
-        sum += std::abs(la - lb) / (la + lb);
-        ++n;
-    }
-    return n ? sum / n : 0.0;
 }
 
 bool readCached(const std::filesystem::path& path, cg::algo::RenderedImage& img)
@@ -345,12 +288,12 @@ int main(int argc, char** argv)
             cg::algo::RenderedImage ref = refA;
             for (std::size_t i = 0; i < ref.rgba.size(); ++i)
                 ref.rgba[i] = 0.5f * (refA.rgba[i] + refB.rgba[i]);
-            const Errors e = compare(fast, ref);
+            const cg::algo::LuminanceError e = cg::algo::luminanceError(fast, ref);
             std::printf("| %s | %s | %zu | %.2f | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% | "
                         "%.3f s | %s |\n",
                         c.name.c_str(), where.c_str(), e.pixels, e.ratio, 100 * e.mean,
                         100 * e.p90, 100 * e.darkMean, 100 * e.brightMean,
-                        100 * referenceNoise(refA, refB, ref), fastSeconds,
+                        100 * cg::algo::referenceNoise(refA, refB), fastSeconds,
                         refSeconds > 0.0 ? (std::to_string(refSeconds) + " s").c_str()
                                          : "cached");
             std::fflush(stdout);

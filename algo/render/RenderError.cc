@@ -1,0 +1,71 @@
+#include "algo/render/RenderError.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace cg::algo {
+
+namespace {
+
+constexpr float kCloudAlpha = 0.5f;
+
+void requireSameSize(const RenderedImage& a, const RenderedImage& b)
+{
+    if (a.width != b.width || a.height != b.height || a.rgba.size() != b.rgba.size())
+        throw std::invalid_argument("images of different sizes");
+}
+
+}  // namespace
+
+double luminance(const float* rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
+
+LuminanceError luminanceError(const RenderedImage& image, const RenderedImage& reference)
+{
+    requireSameSize(image, reference);
+    std::vector<std::pair<double, double>> refAndError;  // (L_ref, relative error)
+    double sum = 0.0, sumRef = 0.0;
+    for (std::size_t i = 0; i < reference.rgba.size() / 4; ++i) {
+        if (reference.rgba[4 * i + 3] < kCloudAlpha) continue;
+        const double lr = luminance(&reference.rgba[4 * i]), l = luminance(&image.rgba[4 * i]);
+        if (!(lr > 0.0)) continue;
+        refAndError.emplace_back(lr, std::abs(l - lr) / lr);
+        sum += l;
+        sumRef += lr;
+    }
+    LuminanceError e;
+    e.pixels = refAndError.size();
+    if (e.pixels == 0) return e;
+    e.ratio = sum / sumRef;
+    std::vector<double> errors;
+    for (const auto& [l, err] : refAndError) errors.push_back(err);
+    for (const double v : errors) e.mean += v / static_cast<double>(errors.size());
+    std::nth_element(errors.begin(), errors.begin() + errors.size() * 9 / 10, errors.end());
+    e.p90 = errors[errors.size() * 9 / 10];
+    std::sort(refAndError.begin(), refAndError.end());
+    const std::size_t half = refAndError.size() / 2;
+    for (std::size_t i = 0; i < refAndError.size(); ++i)
+        (i < half ? e.darkMean : e.brightMean) += refAndError[i].second;
+    e.darkMean /= static_cast<double>(std::max<std::size_t>(half, 1));
+    e.brightMean /= static_cast<double>(std::max<std::size_t>(refAndError.size() - half, 1));
+    return e;
+}
+
+double referenceNoise(const RenderedImage& a, const RenderedImage& b)
+{
+    requireSameSize(a, b);
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < a.rgba.size() / 4; ++i) {
+        const double la = luminance(&a.rgba[4 * i]), lb = luminance(&b.rgba[4 * i]);
+        const double alpha = 0.5 * (a.rgba[4 * i + 3] + b.rgba[4 * i + 3]);
+        if (alpha < kCloudAlpha || !(la + lb > 0.0)) continue;
+        sum += std::abs(la - lb) / (la + lb);
+        ++n;
+    }
+    return n ? sum / static_cast<double>(n) : 0.0;
+}
+
+}  // namespace cg::algo

@@ -1,0 +1,32 @@
+#pragma once
+/// How far one rendering of a scene lies from another, the reference: the relative error of
+/// the beauty's luminance over the cloud's pixels. bench/render_error prints it for the fast
+/// mode against the path tracer; a test holds the fast mode to it.
+
+#include <cstddef>
+
+#include "algo/render/RenderVolume.h"
+
+namespace cg::algo {
+
+/// Rec. 709 luminance of a linear RGB pixel.
+double luminance(const float* rgb);
+
+struct LuminanceError {
+    std::size_t pixels = 0;   ///< cloud pixels: reference alpha at least 0.5, luminance > 0
+    double ratio = 0.0;       ///< mean L / mean L_ref over them
+    double mean = 0.0;        ///< mean of |L − L_ref| / L_ref
+    double p90 = 0.0;         ///< its 90th percentile
+    double darkMean = 0.0;    ///< its mean over the darker half (by the reference's luminance)
+    double brightMean = 0.0;  ///< over the brighter half
+};
+
+/// `image` against `reference` (same size; throws std::invalid_argument otherwise).
+LuminanceError luminanceError(const RenderedImage& image, const RenderedImage& reference);
+
+/// How far a reference made of two independent halves a and b (the mean of the two) may lie
+/// from converged: the mean over its cloud pixels of |L_a − L_b| / (L_a + L_b), the scale of
+/// the mean's own relative error.
+double referenceNoise(const RenderedImage& a, const RenderedImage& b);
+
+}  // namespace cg::algo
