@@ -128,18 +128,6 @@ Case fileCase(const std::string& spec)
     return out;
 }
 
-/// Toward a sun 35° above the horizon, in front of the camera (the camera looks toward
-/// it), beside it (from the camera's right) or behind it.
-RenderVec3 sunToward(const cg::algo::RenderCamera& camera, const std::string& where)
-{
-    RenderVec3 f = camera.lookAt - camera.position;
-    f = RenderVec3(f.x(), f.y(), 0.0).unitSafe();
-    const RenderVec3 right(f.y(), -f.x(), 0.0);
-    const RenderVec3 h = where == "front" ? f : where == "behind" ? -f : right;
-    const double e = 35.0 * M_PI / 180.0;
-    return h * std::cos(e) + RenderVec3(0, 0, std::sin(e));
-}
-
 bool readCached(const std::filesystem::path& path, cg::algo::RenderedImage& img)
 {
     std::ifstream in(path, std::ios::binary);
@@ -228,7 +216,7 @@ int main(int argc, char** argv)
             cg::algo::RenderSettings s = c.settings;
             s.camera.width = width;
             s.camera.height = height;
-            s.sun.direction = sunToward(s.camera, where);
+            s.sun.direction = cg::algo::sunAroundCamera(s.camera, where);
             s.pathTrace.samples = samples;
             s.march.seed = seed;
             std::string sceneTag;  // in the cached reference's name

@@ -20,6 +20,18 @@ void requireSameSize(const RenderedImage& a, const RenderedImage& b)
 
 }  // namespace
 
+RenderVec3 sunAroundCamera(const RenderCamera& camera, const std::string& where)
+{
+    if (where != "front" && where != "beside" && where != "behind")
+        throw std::invalid_argument("no sun '" + where + "': front, beside or behind");
+    RenderVec3 f = camera.lookAt - camera.position;
+    f = RenderVec3(f.x(), f.y(), 0.0).unitSafe();
+    const RenderVec3 right(f.y(), -f.x(), 0.0);
+    const RenderVec3 h = where == "front" ? f : where == "behind" ? -f : right;
+    const double elevation = 35.0 * 3.14159265358979323846 / 180.0;
+    return h * std::cos(elevation) + RenderVec3(0, 0, std::sin(elevation));
+}
+
 double luminance(const float* rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
 
 LuminanceError luminanceError(const RenderedImage& image, const RenderedImage& reference)

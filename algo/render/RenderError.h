@@ -4,6 +4,7 @@
 /// mode against the path tracer; a test holds the fast mode to it.
 
 #include <cstddef>
+#include <string>
 
 #include "algo/render/RenderVolume.h"
 
@@ -20,6 +21,11 @@ struct LuminanceError {
     double darkMean = 0.0;    ///< its mean over the darker half (by the reference's luminance)
     double brightMean = 0.0;  ///< over the brighter half
 };
+
+/// The three suns the error is measured under, 35° above the horizon: "front" (the camera
+/// looks toward it), "beside" (from the camera's right) or "behind" the camera. Throws
+/// std::invalid_argument for any other name.
+RenderVec3 sunAroundCamera(const RenderCamera& camera, const std::string& where);
 
 /// `image` against `reference` (same size; throws std::invalid_argument otherwise).
 LuminanceError luminanceError(const RenderedImage& image, const RenderedImage& reference);

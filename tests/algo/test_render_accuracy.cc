@@ -48,23 +48,12 @@ Scene smallCumulus()
     return out;
 }
 
-/// Toward a sun 35° above the horizon: in front of the camera, to its right, or behind it.
-RenderVec3 sunToward(const algo::RenderCamera& camera, const std::string& where)
-{
-    RenderVec3 f = camera.lookAt - camera.position;
-    f = RenderVec3(f.x(), f.y(), 0.0).unitSafe();
-    const RenderVec3 right(f.y(), -f.x(), 0.0);
-    const RenderVec3 h = where == "front" ? f : where == "behind" ? -f : right;
-    const double elevation = 35.0 * M_PI / 180.0;
-    return h * std::cos(elevation) + RenderVec3(0, 0, std::sin(elevation));
-}
-
 class FastModeAccuracy : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(FastModeAccuracy, StaysWithinTenPercentOfThePathTracer)
 {
     Scene scene = smallCumulus();
-    scene.s.sun.direction = sunToward(scene.s.camera, GetParam());
+    scene.s.sun.direction = algo::sunAroundCamera(scene.s.camera, GetParam());
     const algo::RenderedImage fast = algo::renderFogVolume(*scene.grid, scene.s);
     algo::RenderedImage half[2];
     for (int i = 0; i < 2; ++i) {
