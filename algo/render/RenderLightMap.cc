@@ -41,21 +41,7 @@ RenderLightMap::RenderLightMap(const openvdb::FloatGrid& grid, const RenderOccup
             rmax[a] = std::max(rmax[a], r[a]);
         }
     }
-    const double voxel = xform.voxelSize().x();
-    mH = texelVoxels * voxel;
-    for (;;) {
-        std::size_t count = 1;
-        for (int a = 0; a < 3; ++a) {
-            mN[a] = static_cast<int>(std::ceil((rmax[a] - rmin[a]) / mH)) + 1;
-            count *= static_cast<std::size_t>(mN[a]);
-        }
-        if (count <= maxTexels) break;
-        mH *= 1.25;
-    }
     mOrigin = mU * rmin[0] + mV * rmin[1] + mW * rmin[2];
-    mTau.assign(static_cast<std::size_t>(mN[0]) * static_cast<std::size_t>(mN[1]) *
-                    static_cast<std::size_t>(mN[2]),
-                0.0f);
 
     // Index-space images of the basis (the transform is affine): column points are
     // baseIdx + s * wIdx with s in metres along the light.
@@ -63,30 +49,70 @@ RenderLightMap::RenderLightMap(const openvdb::FloatGrid& grid, const RenderOccup
     const RenderVec3 uIdx = xform.worldToIndex(mOrigin + mU) - originIdx;
     const RenderVec3 vIdx = xform.worldToIndex(mOrigin + mV) - originIdx;
     const RenderVec3 wIdx = xform.worldToIndex(mOrigin + mW) - originIdx;
+    const auto columnBase = [&](std::size_t col) {
+        const auto iu = static_cast<int>(col / static_cast<std::size_t>(mN[1]));
+        const auto iv = static_cast<int>(col % static_cast<std::size_t>(mN[1]));
+        return originIdx + uIdx * (iu * mH) + vIdx * (iv * mH);
+    };
+
+    // The texel: the finest, from texelVoxels up, whose columns and stored texels fit.
+    const double voxel = xform.voxelSize().x();
+    mH = texelVoxels * voxel;
+    for (;; mH *= 1.25) {
+        for (int a = 0; a < 3; ++a)
+            mN[a] = static_cast<int>(std::ceil((rmax[a] - rmin[a]) / mH)) + 1;
+        const std::size_t columns =
+            static_cast<std::size_t>(mN[0]) * static_cast<std::size_t>(mN[1]);
+        if (columns > maxTexels / 4) continue;
+        mColumns.assign(columns, Column{});
+        const double length = mH * (mN[2] - 1);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, columns, 64),
+                          [&](const tbb::blocked_range<std::size_t>& range) {
+                              std::vector<RenderOccupancy::Span> spans;
+                              for (std::size_t col = range.begin(); col != range.end(); ++col) {
+                                  spans.clear();
+                                  occupancy.spans(columnBase(col), wIdx, 0.0, length, spans);
+                                  if (spans.empty()) continue;
+                                  // τ(iw) is 0 from the node past the last span on, and
+                                  // constant up to the node before the first.
+                                  Column& c = mColumns[col];
+                                  c.lo = std::max(0, static_cast<int>(spans.front().t0 / mH));
+                                  c.hi = std::min(mN[2] - 1, static_cast<int>(
+                                                                 std::ceil(spans.back().t1 / mH)));
+                              }
+                          });
+        std::size_t stored = 0;
+        for (Column& c : mColumns) {
+            c.offset = stored;
+            if (c.hi >= c.lo) stored += static_cast<std::size_t>(c.hi - c.lo + 1);
+            if (stored > maxTexels) break;
+        }
+        if (stored <= maxTexels) {
+            mTau.assign(stored, 0.0f);
+            break;
+        }
+    }
+
     const int nSub = std::max(1, static_cast<int>(std::ceil(mH / (stepVoxels * voxel))));
     const double ds = mH / nSub;
-    const int nw = mN[2];
-    const double length = mH * (nw - 1);
-
+    const double length = mH * (mN[2] - 1);
     tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, static_cast<std::size_t>(mN[0]) *
-                                               static_cast<std::size_t>(mN[1]), 16),
+        tbb::blocked_range<std::size_t>(0, mColumns.size(), 16),
         [&](const tbb::blocked_range<std::size_t>& range) {
             if (cancelled && cancelled()) return;
             auto acc = grid.getConstAccessor();
             std::vector<RenderOccupancy::Span> spans;
             for (std::size_t col = range.begin(); col != range.end(); ++col) {
-                const auto iu = static_cast<int>(col / static_cast<std::size_t>(mN[1]));
-                const auto iv = static_cast<int>(col % static_cast<std::size_t>(mN[1]));
-                const RenderVec3 base = originIdx + uIdx * (iu * mH) + vIdx * (iv * mH);
+                const Column& c = mColumns[col];
+                if (c.hi < c.lo) continue;
+                const RenderVec3 base = columnBase(col);
                 spans.clear();
                 occupancy.spans(base, wIdx, 0.0, length, spans);
-                if (spans.empty()) continue;  // τ stays 0 along the whole column
-                float* tau = mTau.data() + col * static_cast<std::size_t>(nw);
-                // From the light end (iw = nw - 1, τ = 0) down, one texel at a time.
+                float* tau = mTau.data() + c.offset;  // tau[iw - lo]
+                // From the light end (τ(hi) = 0) down, one texel at a time.
                 double sum = 0.0;
                 std::size_t si = spans.size();  // spans are in increasing s; walk backwards
-                for (int iw = nw - 1; iw > 0; --iw) {
+                for (int iw = c.hi; iw > c.lo; --iw) {
                     for (int k = 0; k < nSub; ++k) {
                         const double s = iw * mH - (k + 0.5) * ds;
                         while (si > 0 && spans[si - 1].t0 > s) --si;
@@ -96,7 +122,7 @@ RenderLightMap::RenderLightMap(const openvdb::FloatGrid& grid, const RenderOccup
                             openvdb::tools::BoxSampler::sample(acc, base + wIdx * s);
                         if (d > 0.0) sum += extinction * d * ds;
                     }
-                    tau[iw - 1] = static_cast<float>(sum);
+                    tau[iw - 1 - c.lo] = static_cast<float>(sum);
                 }
             }
         });
@@ -120,12 +146,8 @@ double RenderLightMap::lookup(const RenderVec3& p, bool farEnd) const
         w1[a] = f[a] - i0[a];
     }
     const auto at = [&](int du, int dv, int dw) {
-        const int iu = std::min(i0[0] + du, mN[0] - 1);
-        const int iv = std::min(i0[1] + dv, mN[1] - 1);
-        const int iw = std::min(i0[2] + dw, mN[2] - 1);
-        return double(mTau[(static_cast<std::size_t>(iu) * static_cast<std::size_t>(mN[1]) +
-                            static_cast<std::size_t>(iv)) * static_cast<std::size_t>(mN[2]) +
-                           static_cast<std::size_t>(iw)]);
+        return this->at(std::min(i0[0] + du, mN[0] - 1), std::min(i0[1] + dv, mN[1] - 1),
+                        std::min(i0[2] + dw, mN[2] - 1));
     };
     double result = 0.0;
     for (int c = 0; c < 8; ++c) {
@@ -135,6 +157,15 @@ double RenderLightMap::lookup(const RenderVec3& p, bool farEnd) const
         if (w > 0.0) result += w * at(du, dv, dw);
     }
     return result;
+}
+
+double RenderLightMap::at(int iu, int iv, int iw) const
+{
+    const Column& c =
+        mColumns[static_cast<std::size_t>(iu) * static_cast<std::size_t>(mN[1]) +
+                 static_cast<std::size_t>(iv)];
+    if (iw >= c.hi) return 0.0;  // at or above the light end of the cloud (or no cloud)
+    return mTau[c.offset + static_cast<std::size_t>(std::max(iw, c.lo) - c.lo)];
 }
 
 }  // namespace cg::algo

@@ -3,6 +3,11 @@
 /// x toward a distant light in direction l, precomputed once per frame on a lattice aligned
 /// with l (a "deep shadow map": columns parallel to l, one per texel of the plane across it),
 /// so a shading sample needs one trilinear lookup instead of a shadow ray.
+///
+/// The map is sparse along the light: τ is 0 above a column's first occupied texel and
+/// constant below its last, so a column stores only the texels between, and a sparse cloud
+/// field can have texels as fine as its voxels (a coarse map smears τ across the gaps
+/// between thin clouds and darkens their single scattering).
 
 #include <cstddef>
 #include <functional>
@@ -22,7 +27,7 @@ public:
 
     /// Fills the map for `grid` (linear transform) and direction `towardLight` (world, any
     /// length). σ_t = extinction (1/m) × density. The texel is texelVoxels voxels, grown until
-    /// the map has at most maxTexels texels; each column is integrated with the midpoint rule
+    /// the map stores at most maxTexels texels and has at most maxTexels / 4 columns; each column is integrated with the midpoint rule
     /// in steps of at most stepVoxels voxels, only where `occupancy` says the grid can be
     /// non-zero. Columns are filled in parallel; the result does not depend on thread count.
     /// Stops early (leaving the map incomplete) once `cancelled` returns true.
@@ -41,17 +46,27 @@ public:
     double columnDepth(const RenderVec3& p) const;
 
     bool empty() const { return mTau.empty(); }
+    std::size_t storedTexels() const { return mTau.size(); }
     const RenderVec3& towardLight() const { return mW; }  ///< unit, world
     double texel() const { return mH; }  ///< m
 
 private:
     double lookup(const RenderVec3& p, bool farEnd) const;
+    double at(int iu, int iv, int iw) const;
+
+    /// The texels a column stores: iw in [lo, hi]; τ = 0 above hi and τ(lo) below lo.
+    struct Column {
+        std::size_t offset = 0;  ///< of τ(lo) in mTau
+        int lo = 0;
+        int hi = -1;  ///< hi < lo: the column crosses no cloud, τ = 0
+    };
 
     RenderVec3 mOrigin{0.0, 0.0, 0.0};  ///< world position of node (0, 0, 0)
     RenderVec3 mU{1.0, 0.0, 0.0}, mV{0.0, 1.0, 0.0}, mW{0.0, 0.0, 1.0};  ///< mW toward light
     double mH = 1.0;     ///< texel, m
     int mN[3] = {0, 0, 0};
-    std::vector<float> mTau;  ///< index (iu * nv + iv) * nw + iw
+    std::vector<Column> mColumns;  ///< index iu * nv + iv
+    std::vector<float> mTau;       ///< the columns' stored texels, one after another
 };
 
 }  // namespace cg::algo
