@@ -1,4 +1,4 @@
-// Volume renderer: one 640 x 480 frame of a 5-million-particle cumulus voxelized by the
+// Volume renderer: one 640 x 480 frame, fast mode and path traced, of a 5-million-particle cumulus voxelized by the
 // Voxelizer's algorithm (10 m voxels), seen by the camera of graphs/cumulus_still.json (light
 // maps included: they are rebuilt every frame). bench/run_render_bench.sh runs this and
 // vdb_render on the same .vdb, same resolution and primary step, in the same script.
@@ -15,6 +15,7 @@
 
 #include <openvdb/io/File.h>
 
+#include "algo/render/RenderPathTrace.h"
 #include "algo/render/RenderVolume.h"
 #include "algo/render/SyntheticCumulus.h"
 #include "algo/volume/Voxelize.h"
@@ -103,6 +104,19 @@ void BM_RenderCumulus640x480(benchmark::State& state)
 }
 // Argument: primary step in hundredths of a voxel (100 = vdb_render's default -step 1).
 BENCHMARK(BM_RenderCumulus640x480)->Arg(100)->Arg(50)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// The reference path tracer on the same frame at one path a pixel: its time grows linearly
+/// with the paths, so run_render_bench.sh scales it to the 2048 paths a pixel at which the
+/// error table of docs/rendering.md calls the reference converged.
+void BM_PathTraceCumulus640x480(benchmark::State& state)
+{
+    const openvdb::FloatGrid& grid = cloud();
+    cg::algo::RenderSettings s = scene(0.5);
+    s.pathTrace.samples = static_cast<int>(state.range(0));
+    for (auto _ : state) benchmark::DoNotOptimize(cg::algo::renderPathTraced(grid, s).rgba.data());
+    state.counters["paths"] = static_cast<double>(s.pathTrace.samples);
+}
+BENCHMARK(BM_PathTraceCumulus640x480)->Arg(1)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /// For reference: voxelizing the 5 million particles (the frame's other per-frame cost).
 void BM_Voxelize5MParticles(benchmark::State& state)

@@ -2,7 +2,9 @@
 # Renders one 640 x 480 frame of a 5-million-particle cumulus voxelized by our Voxelizer
 # (bench/render_bench.cc writes the .vdb) with our Renderer and with OpenVDB's vdb_render
 # (package libopenvdb-tools) on the same .vdb, same resolution, same primary step (1 voxel),
-# same camera and sun, in one run; prints the medians and the ratio.
+# same camera and sun, in one run; and the reference path tracer on the same cloud at one path
+# a pixel, scaled to the 2048 paths at which docs/rendering.md's error table calls it
+# converged. Prints the medians and the ratios.
 # Usage: bench/run_render_bench.sh [BUILD_DIR] [REPETITIONS]   (a Release build)
 set -euo pipefail
 build=${1:-build}
@@ -37,9 +39,16 @@ runs = {b["run_name"]: b for b in json.load(open(sys.argv[1]))["benchmarks"]
         if b.get("aggregate_name") == "median"}
 vdb = statistics.median(float(t) for t in open(sys.argv[2]).read().split())
 print(f"vdb_render (step 1, shadow step 3): {vdb * 1000:.0f} ms (median, whole process incl. file read)")
+fast = next((b["real_time"] for name, b in runs.items()
+             if "Render" in name and name.endswith("/50")), None)
 for name, b in sorted(runs.items()):
     ms = b["real_time"]
-    if "Render" in name:
+    if "PathTrace" in name:
+        converged = ms * 2048 / b["paths"]
+        print(f"{name}: {ms:.0f} ms at {b['paths']:.0f} path(s) a pixel; "
+              f"at 2048 paths {converged / 1000:.0f} s = {converged / 1000 / vdb:.0f} x vdb_render"
+              + (f" = {converged / fast:.0f} x the fast mode at step 0.5" if fast else ""))
+    elif "Render" in name:
         print(f"{name}: {ms:.0f} ms = {ms / 1000 / vdb:.2f} x vdb_render")
     else:
         print(f"{name}: {ms:.0f} ms")

@@ -105,6 +105,11 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
 {
     const openvdb::CoordBBox active = grid.evalActiveVoxelBoundingBox();
     if (active.empty() || !(medium.extinction > 0.0)) return;
+    for (int a = 0; a < 3; ++a) {
+        openvdb::Vec3d e(0.0);
+        e[a] = 1.0;
+        mGradientToWorld.setCol(a, mXform.baseMap()->applyIJT(e));
+    }
 
     // Cells of c^3 voxels with one empty cell around the cloud, c grown until they fit.
     const openvdb::Coord dim = active.dim();
@@ -390,7 +395,7 @@ RenderDiffusion::Fluence RenderDiffusion::at(const RenderVec3& p) const
     // inverse Jacobian transpose takes an index-space gradient to world space.
     for (int l = 0; l < kLights; ++l) {
         out.phi[l] = phi[l];
-        out.flux[l] = mXform.baseMap()->applyIJT(grad[l] / double(mVoxels)) * -D;
+        out.flux[l] = (mGradientToWorld * (grad[l] / double(mVoxels))) * -D;
     }
     out.flux[Sun] += drift;
     return out;

@@ -79,6 +79,9 @@ private:
     }
 
     openvdb::math::Transform mXform;  ///< the grid's: world to index space
+    /// Its inverse Jacobian transpose (index-space gradient to world), held as a matrix: the
+    /// map's applyIJT goes through a shared pointer copy, an atomic count per call.
+    openvdb::Mat3d mGradientToWorld = openvdb::Mat3d::identity();
     openvdb::Coord mFirstVoxel;       ///< first voxel of cell (0, 0, 0)
     int mVoxels = 1;                  ///< cell edge, voxels
     double mH = 0.0;                  ///< cell edge, m (the smallest voxel edge × mVoxels)
