@@ -1,5 +1,5 @@
-// Volume renderer: one 640 x 480 frame, fast mode and path traced, of a 5-million-particle cumulus voxelized by the
-// Voxelizer's algorithm (10 m voxels), seen by the camera of graphs/cumulus_still.json (light
+// Volume renderer: one 640 x 480 frame, fast mode and path traced, of a 5-million-particle
+// cumulus voxelized by the Voxelizer's algorithm (10 m voxels), seen by the camera of graphs/cumulus_still.json (light
 // maps included: they are rebuilt every frame). bench/run_render_bench.sh runs this and
 // vdb_render on the same .vdb, same resolution and primary step, in the same script.
 //
@@ -116,7 +116,11 @@ void BM_PathTraceCumulus640x480(benchmark::State& state)
     for (auto _ : state) benchmark::DoNotOptimize(cg::algo::renderPathTraced(grid, s).rgba.data());
     state.counters["paths"] = static_cast<double>(s.pathTrace.samples);
 }
-BENCHMARK(BM_PathTraceCumulus640x480)->Arg(1)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_PathTraceCumulus640x480)
+    ->Arg(1)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 /// For reference: voxelizing the 5 million particles (the frame's other per-frame cost).
 void BM_Voxelize5MParticles(benchmark::State& state)

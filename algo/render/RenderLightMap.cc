@@ -20,6 +20,7 @@ RenderLightMap::RenderLightMap(const openvdb::FloatGrid& grid, const RenderOccup
     if (!(towardLight.length() > 0.0)) throw std::invalid_argument("light direction is zero");
     if (!(texelVoxels > 0.0) || !(stepVoxels > 0.0))
         throw std::invalid_argument("light-map texel and step must be positive");
+    if (maxTexels < 16) throw std::invalid_argument("light-map budget below 16 texels");
 
     mW = towardLight.unitSafe();
     const RenderVec3 helper = std::abs(mW.z()) < 0.9 ? RenderVec3(0, 0, 1) : RenderVec3(1, 0, 0);

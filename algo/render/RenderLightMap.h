@@ -4,8 +4,8 @@
 /// with l (a "deep shadow map": columns parallel to l, one per texel of the plane across it),
 /// so a shading sample needs one trilinear lookup instead of a shadow ray.
 ///
-/// The map is sparse along the light: τ is 0 above a column's first occupied texel and
-/// constant below its last, so a column stores only the texels between, and a sparse cloud
+/// The map is sparse along the light: τ is 0 on the light's side of a column's occupied
+/// texels and constant past them, so a column stores only the texels between, and a sparse cloud
 /// field can have texels as fine as its voxels (a coarse map smears τ across the gaps
 /// between thin clouds and darkens their single scattering).
 
@@ -27,10 +27,10 @@ public:
 
     /// Fills the map for `grid` (linear transform) and direction `towardLight` (world, any
     /// length). σ_t = extinction (1/m) × density. The texel is texelVoxels voxels, grown until
-    /// the map stores at most maxTexels texels and has at most maxTexels / 4 columns; each column is integrated with the midpoint rule
-    /// in steps of at most stepVoxels voxels, only where `occupancy` says the grid can be
-    /// non-zero. Columns are filled in parallel; the result does not depend on thread count.
-    /// Stops early (leaving the map incomplete) once `cancelled` returns true.
+    /// the map stores at most maxTexels texels (at least 16) and has at most maxTexels / 4
+    /// columns; each column is integrated with the midpoint rule in steps of at most
+    /// stepVoxels voxels, only where `occupancy` says the grid can be non-zero. Columns are
+    /// filled in parallel; the result does not depend on thread count. Stops early (leaving the map incomplete) once `cancelled` returns true.
     RenderLightMap(const openvdb::FloatGrid& grid, const RenderOccupancy& occupancy,
                    const RenderVec3& towardLight, double extinction, double texelVoxels,
                    double stepVoxels, std::size_t maxTexels = std::size_t(8) << 20,
