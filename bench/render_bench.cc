@@ -1,7 +1,8 @@
 // Volume renderer: one 640 x 480 frame, fast mode and path traced, of a 5-million-particle
-// cumulus voxelized by the Voxelizer's algorithm (10 m voxels), seen by the camera of graphs/cumulus_still.json (light
-// maps included: they are rebuilt every frame). bench/run_render_bench.sh runs this and
-// vdb_render on the same .vdb, same resolution and primary step, in the same script.
+// cumulus voxelized by the Voxelizer's algorithm (10 m voxels), seen by the camera of
+// graphs/cumulus_still.json (light maps included: they are rebuilt every frame).
+// bench/run_render_bench.sh runs this and vdb_render on the same .vdb, same resolution and
+// primary step, in the same script.
 //
 // Environment: CG_RENDER_BENCH_VDB=path writes the cloud there (for vdb_render) and exits.
 

@@ -30,7 +30,8 @@ public:
     /// the map stores at most maxTexels texels (at least 16) and has at most maxTexels / 4
     /// columns; each column is integrated with the midpoint rule in steps of at most
     /// stepVoxels voxels, only where `occupancy` says the grid can be non-zero. Columns are
-    /// filled in parallel; the result does not depend on thread count. Stops early (leaving the map incomplete) once `cancelled` returns true.
+    /// filled in parallel; the result does not depend on thread count. Stops early (leaving
+    /// the map incomplete) once `cancelled` returns true.
     RenderLightMap(const openvdb::FloatGrid& grid, const RenderOccupancy& occupancy,
                    const RenderVec3& towardLight, double extinction, double texelVoxels,
                    double stepVoxels, std::size_t maxTexels = std::size_t(8) << 20,
