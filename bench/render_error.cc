@@ -45,7 +45,6 @@
 #include "algo/render/RenderError.h"
 #include "algo/render/RenderPathTrace.h"
 #include "algo/render/RenderVolume.h"
-#include "algo/render/SyntheticCumulus.h"
 #include "formats/PngFile.h"
 
 namespace {
@@ -77,20 +76,8 @@ std::vector<std::string> split(const std::string& text, char sep)
 /// graphs/cumulus_still.json's cloud and camera.
 Case syntheticCase()
 {
-    cg::algo::SyntheticCumulusSettings c;
-    c.seed = 3;
-    c.voxelSize = 10.0;
-    c.baseHeight = 900.0;
-    c.baseRadius = 700.0;
-    c.towerHeight = 1.3;
-    Case out;
-    out.name = "synthetic";
-    out.grid = cg::algo::rasterizeCumulus(cg::algo::cumulusBlobs(c), c);
-    out.settings.camera.position = RenderVec3(400, -3800, 700);
-    out.settings.camera.lookAt = RenderVec3(0, 0, 1200);
-    out.settings.camera.fovDegrees = 40.0;
-    out.settings.medium.extinction = 0.05;
-    return out;
+    cg::algo::ErrorScene scene = cg::algo::stillCumulusScene(10.0);
+    return {"synthetic", scene.grid, scene.settings};
 }
 
 /// A homogeneous cube, 1 km wide, 500 m above the ground: the simplest thick cloud.

@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "algo/render/SyntheticCumulus.h"
+
 namespace cg::algo {
 
 namespace {
@@ -19,6 +21,23 @@ void requireSameSize(const RenderedImage& a, const RenderedImage& b)
 }
 
 }  // namespace
+
+ErrorScene stillCumulusScene(double voxelSize)
+{
+    SyntheticCumulusSettings c;
+    c.seed = 3;
+    c.voxelSize = voxelSize;
+    c.baseHeight = 900.0;
+    c.baseRadius = 700.0;
+    c.towerHeight = 1.3;
+    ErrorScene out;
+    out.grid = rasterizeCumulus(cumulusBlobs(c), c);
+    out.settings.camera.position = RenderVec3(400, -3800, 700);
+    out.settings.camera.lookAt = RenderVec3(0, 0, 1200);
+    out.settings.camera.fovDegrees = 40.0;
+    out.settings.medium.extinction = 0.05;
+    return out;
+}
 
 RenderVec3 sunAroundCamera(const RenderCamera& camera, const std::string& where)
 {

@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <string>
 
+#include <openvdb/openvdb.h>
+
 #include "algo/render/RenderVolume.h"
 
 namespace cg::algo {
@@ -21,6 +23,16 @@ struct LuminanceError {
     double darkMean = 0.0;    ///< its mean over the darker half (by the reference's luminance)
     double brightMean = 0.0;  ///< over the brighter half
 };
+
+/// A volume the error is measured on, with the camera and medium it is seen with.
+struct ErrorScene {
+    openvdb::FloatGrid::Ptr grid;
+    RenderSettings settings;
+};
+
+/// The synthetic case: graphs/cumulus_still.json's cumulus (seed 3, flat base at 900 m) at
+/// `voxelSize` metres, seen by the still's camera, extinction 0.05/m; default image size.
+ErrorScene stillCumulusScene(double voxelSize);
 
 /// The three suns the error is measured under, 35° above the horizon: "front" (the camera
 /// looks toward it), "beside" (from the camera's right) or "behind" the camera. Throws

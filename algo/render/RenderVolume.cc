@@ -172,8 +172,10 @@ struct Frame {
         // The phase functions depend only on the angle between sun light and the view ray.
         const double cosTheta = sunDir.dot(dir);
         double sunPhase[kMaxOctaves];
-        const double peakPhase = twoLobeHenyeyGreensteinTwice(cosTheta, s.medium.g,
-                                                              s.medium.g2, s.medium.lobeBlend);
+        const double peakPhase =  // only the diffusion model splits off the peak
+            useDiffusion ? twoLobeHenyeyGreensteinTwice(cosTheta, s.medium.g, s.medium.g2,
+                                                        s.medium.lobeBlend)
+                         : 0.0;
         for (int i = 0; i < octaves; ++i) {
             sunPhase[i] = octaveWeight[i] *
                           twoLobeHenyeyGreenstein(cosTheta, s.medium.g * octaveEcc[i],

@@ -12,39 +12,21 @@
 #include "algo/render/RenderError.h"
 #include "algo/render/RenderPathTrace.h"
 #include "algo/render/RenderVolume.h"
-#include "algo/render/SyntheticCumulus.h"
 
 namespace cg {
 
 namespace {
 
-using algo::RenderVec3;
-
 constexpr int kWidth = 64, kHeight = 48;
 constexpr int kReferenceSamples = 1024;  // per half, two halves with independent seeds
 
-struct Scene {
-    openvdb::FloatGrid::Ptr grid;
-    algo::RenderSettings s;
-};
-
-Scene smallCumulus()
+/// The still's cumulus at half the resolution, at kWidth x kHeight.
+algo::ErrorScene smallCumulus()
 {
-    algo::SyntheticCumulusSettings c;
-    c.seed = 3;
-    c.voxelSize = 20.0;
-    c.baseHeight = 900.0;
-    c.baseRadius = 700.0;
-    c.towerHeight = 1.3;
-    Scene out;
-    out.grid = algo::rasterizeCumulus(algo::cumulusBlobs(c), c);
-    out.s.camera.position = RenderVec3(400, -3800, 700);
-    out.s.camera.lookAt = RenderVec3(0, 0, 1200);
-    out.s.camera.fovDegrees = 40.0;
-    out.s.camera.width = kWidth;
-    out.s.camera.height = kHeight;
-    out.s.medium.extinction = 0.05;
-    out.s.pathTrace.samples = kReferenceSamples;
+    algo::ErrorScene out = algo::stillCumulusScene(20.0);
+    out.settings.camera.width = kWidth;
+    out.settings.camera.height = kHeight;
+    out.settings.pathTrace.samples = kReferenceSamples;
     return out;
 }
 
@@ -52,12 +34,12 @@ class FastModeAccuracy : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(FastModeAccuracy, StaysWithinTenPercentOfThePathTracer)
 {
-    Scene scene = smallCumulus();
-    scene.s.sun.direction = algo::sunAroundCamera(scene.s.camera, GetParam());
-    const algo::RenderedImage fast = algo::renderFogVolume(*scene.grid, scene.s);
+    algo::ErrorScene scene = smallCumulus();
+    scene.settings.sun.direction = algo::sunAroundCamera(scene.settings.camera, GetParam());
+    const algo::RenderedImage fast = algo::renderFogVolume(*scene.grid, scene.settings);
     algo::RenderedImage half[2];
     for (int i = 0; i < 2; ++i) {
-        algo::RenderSettings h = scene.s;
+        algo::RenderSettings h = scene.settings;
         h.march.seed = static_cast<std::uint64_t>(i);
         half[i] = algo::renderPathTraced(*scene.grid, h);
     }
