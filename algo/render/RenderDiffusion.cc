@@ -8,6 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "algo/render/ConjugateGradient.h"
 #include "algo/render/Phase.h"
 
 namespace cg::algo {
@@ -21,80 +22,9 @@ constexpr int kMaxIterations = 400;
 constexpr int kLimiterPasses = 3;  ///< solves of the sun with the flux limiter updated
 constexpr double kMostLimit = 4.0;  ///< the limiter's largest R, per cell width
 constexpr double kTolerance = 1e-4;  ///< relative residual at which the solve stops
-constexpr std::size_t kSumBlock = 4096;
+/// The same for the sun's solves that only update the limiter: R need not be exact.
+constexpr double kLimiterTolerance = 1e-2;
 constexpr double kPi = 3.14159265358979323846;
-
-/// The sparse symmetric system over the cloud's cells: row i is
-/// diag_i φ_i − Σ_f k_if φ_nb(f) for its neighbours inside the cloud.
-struct System {
-    std::vector<double> diag;
-    std::vector<std::int32_t> neighbour;  ///< 6 per cell, −1 outside the cloud
-    std::vector<float> coupling;          ///< 6 per cell, k_if
-
-    std::size_t size() const { return diag.size(); }
-
-    void multiply(const std::vector<double>& x, std::vector<double>& y) const
-    {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, size(), 2048),
-                          [&](const tbb::blocked_range<std::size_t>& r) {
-                              for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                                  double v = diag[i] * x[i];
-                                  for (int f = 0; f < 6; ++f) {
-                                      const std::int32_t j = neighbour[6 * i + f];
-                                      if (j >= 0) v -= coupling[6 * i + f] * x[j];
-                                  }
-                                  y[i] = v;
-                              }
-                          });
-    }
-};
-
-/// Σ a_i b_i in fixed blocks, summed in order: the same bits for any thread count.
-double dot(const std::vector<double>& a, const std::vector<double>& b)
-{
-    const std::size_t blocks = (a.size() + kSumBlock - 1) / kSumBlock;
-    std::vector<double> partial(blocks, 0.0);
-    tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t blk) {
-        double s = 0.0;
-        const std::size_t end = std::min(a.size(), (blk + 1) * kSumBlock);
-        for (std::size_t i = blk * kSumBlock; i < end; ++i) s += a[i] * b[i];
-        partial[blk] = s;
-    });
-    double sum = 0.0;
-    for (const double s : partial) sum += s;
-    return sum;
-}
-
-/// Jacobi-preconditioned conjugate gradients from x; returns the iterations taken.
-int solve(const System& A, const std::vector<double>& b, std::vector<double>& x,
-          const std::function<bool()>& cancelled)
-{
-    const std::size_t n = A.size();
-    std::vector<double> r(n), z(n), p(n), Ap(n);
-    A.multiply(x, Ap);
-    for (std::size_t i = 0; i < n; ++i) r[i] = b[i] - Ap[i];
-    const double bNorm = std::sqrt(dot(b, b));
-    if (!(bNorm > 0.0)) return 0;
-    for (std::size_t i = 0; i < n; ++i) p[i] = z[i] = r[i] / A.diag[i];
-    double rz = dot(r, z);
-    int it = 0;
-    for (; it < kMaxIterations; ++it) {
-        if (std::sqrt(dot(r, r)) <= kTolerance * bNorm) break;
-        if (cancelled && cancelled()) break;
-        A.multiply(p, Ap);
-        const double alpha = rz / dot(p, Ap);
-        for (std::size_t i = 0; i < n; ++i) {
-            x[i] += alpha * p[i];
-            r[i] -= alpha * Ap[i];
-            z[i] = r[i] / A.diag[i];
-        }
-        const double rzNext = dot(r, z);
-        const double beta = rzNext / rz;
-        rz = rzNext;
-        for (std::size_t i = 0; i < n; ++i) p[i] = z[i] + beta * p[i];
-    }
-    return it;
-}
 
 }  // namespace
 
@@ -231,15 +161,16 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     // solves every light.
     const std::size_t n = cells.size();
     std::vector<double> litBelow(n, -1.0);  // found on a row's first face that sees the ground
-    const auto assemble = [&](System& A, std::vector<double> (&rhs)[kLights]) {
+    const auto assemble = [&](SparseSystem& A, std::vector<double> (&rhs)[kLights]) {
         A.diag.assign(n, 0.0);
-        A.neighbour.assign(6 * n, -1);
+        A.neighbour.resize(6 * n);
         A.coupling.assign(6 * n, 0.0f);
         for (auto& b : rhs) b.assign(n, 0.0);
         tbb::parallel_for(std::size_t(0), n, [&](std::size_t row) {
             const std::size_t cell = cells[row];
             const Cell at = cellAt(cell);
             const double Di = diffusion(cell);
+            for (int f = 0; f < 6; ++f) A.neighbour[6 * row + f] = static_cast<std::int32_t>(row);
             double diag = sigmaT[cell] * (1.0 - medium.albedo);
             double drift = 0.0;  // outflow of 3 D Q1 through the cell's faces, per volume
             for (int f = 0; f < 6; ++f) {
@@ -305,13 +236,17 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     for (int l = 0; l < kLights; ++l) solved[l].assign(n, start[l]);
     for (int pass = 0; pass < kLimiterPasses; ++pass) {
         const bool last = pass + 1 == kLimiterPasses;
-        System A;
+        SparseSystem A;
         std::vector<double> rhs[kLights];
         assemble(A, rhs);
+        std::vector<SolveColumn> columns;
         for (int l = 0; l < kLights; ++l) {
             if ((l == LitGround && !shadowedGround) || (!last && l != Sun)) continue;
-            mIterations = std::max(mIterations, solve(A, rhs[l], solved[l], cancelled));
+            columns.push_back({&rhs[l], &solved[l]});
         }
+        mIterations = std::max(
+            mIterations, solveConjugateGradient(A, columns, last ? kTolerance : kLimiterTolerance,
+                                                kMaxIterations, cancelled));
         if (!last) limitFlux(solved[Sun]);
     }
 

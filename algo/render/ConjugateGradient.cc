@@ -1,0 +1,169 @@
+#include "algo/render/ConjugateGradient.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+namespace cg::algo {
+
+namespace {
+
+constexpr std::size_t kBlock = 4096;  ///< rows per parallel task and per partial sum
+
+/// fn(begin, end, block) for every block of rows, in parallel.
+template <class Fn>
+void forBlocks(std::size_t n, Fn&& fn)
+{
+    const std::size_t count = (n + kBlock - 1) / kBlock;
+    tbb::parallel_for(std::size_t(0), count, [&](std::size_t block) {
+        fn(block * kBlock, std::min(n, (block + 1) * kBlock), block);
+    });
+}
+
+enum Sum { kRz, kRr, kScratch };
+
+/// A column's iterates.
+struct Column {
+    const std::vector<double>& b;
+    std::vector<double>& x;
+    std::vector<double> r, z, p, Ap;
+    std::vector<double> partial[3];  ///< per block: r·z, r·r and a scratch sum
+    double rz = 0.0, rr = 0.0, bNorm = 0.0;
+    bool done = false;
+    int iterations = 0;
+
+    Column(const std::vector<double>& rhs, std::vector<double>& solution, std::size_t blocks)
+        : b(rhs), x(solution), r(rhs.size()), z(rhs.size()), p(rhs.size()), Ap(rhs.size())
+    {
+        for (auto& sums : partial) sums.assign(blocks, 0.0);
+    }
+
+    /// Σ of a partial sum's blocks, in order.
+    double total(int which) const
+    {
+        double sum = 0.0;
+        for (const double s : partial[which]) sum += s;
+        return sum;
+    }
+};
+
+/// out_c = A in_c for each column c, each matrix row read once for all of them.
+void multiply(const SparseSystem& A, const std::vector<const std::vector<double>*>& in,
+              const std::vector<std::vector<double>*>& out)
+{
+    forBlocks(A.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t i = begin; i != end; ++i) {
+            const std::int32_t* nb = &A.neighbour[6 * i];
+            const float* k = &A.coupling[6 * i];
+            for (std::size_t c = 0; c < in.size(); ++c) {
+                const std::vector<double>& x = *in[c];
+                double v = A.diag[i] * x[i];
+                for (int f = 0; f < 6; ++f) v -= k[f] * x[static_cast<std::size_t>(nb[f])];
+                (*out[c])[i] = v;
+            }
+        }
+    });
+}
+
+/// A p for every column.
+void multiplyDirections(const SparseSystem& A, const std::vector<Column*>& columns)
+{
+    std::vector<const std::vector<double>*> in;
+    std::vector<std::vector<double>*> out;
+    for (Column* c : columns) {
+        in.push_back(&c->p);
+        out.push_back(&c->Ap);
+    }
+    multiply(A, in, out);
+}
+
+}  // namespace
+
+int solveConjugateGradient(const SparseSystem& A, const std::vector<SolveColumn>& columns,
+                           double tolerance, int maxIterations,
+                           const std::function<bool()>& cancelled)
+{
+    const std::size_t n = A.size();
+    const std::size_t blocks = (n + kBlock - 1) / kBlock;
+    std::vector<Column> state;
+    state.reserve(columns.size());
+    for (const SolveColumn& c : columns) state.emplace_back(*c.b, *c.x, blocks);
+    std::vector<Column*> active;
+    for (Column& c : state) active.push_back(&c);
+
+    // r = b − A x, z = p = r / diag; |b|, r·z and r·r.
+    {
+        std::vector<const std::vector<double>*> in;
+        std::vector<std::vector<double>*> out;
+        for (Column* c : active) {
+            in.push_back(&c->x);
+            out.push_back(&c->Ap);
+        }
+        multiply(A, in, out);
+    }
+    for (Column* c : active) {
+        forBlocks(n, [&](std::size_t begin, std::size_t end, std::size_t block) {
+            double rz = 0.0, rr = 0.0, bb = 0.0;
+            for (std::size_t i = begin; i != end; ++i) {
+                c->r[i] = c->b[i] - c->Ap[i];
+                c->p[i] = c->z[i] = c->r[i] / A.diag[i];
+                rz += c->r[i] * c->z[i];
+                rr += c->r[i] * c->r[i];
+                bb += c->b[i] * c->b[i];
+            }
+            c->partial[kRz][block] = rz;
+            c->partial[kRr][block] = rr;
+            c->partial[kScratch][block] = bb;
+        });
+        c->rz = c->total(kRz);
+        c->rr = c->total(kRr);
+        c->bNorm = std::sqrt(c->total(kScratch));
+        c->done = !(c->bNorm > 0.0);
+    }
+
+    for (int it = 0; it < maxIterations; ++it) {
+        std::vector<Column*> next;
+        for (Column* c : active) {
+            if (std::sqrt(c->rr) <= tolerance * c->bNorm) c->done = true;
+            if (!c->done) next.push_back(c);
+        }
+        active.swap(next);
+        if (active.empty() || (cancelled && cancelled())) break;
+
+        multiplyDirections(A, active);
+        for (Column* c : active) {
+            forBlocks(n, [&](std::size_t begin, std::size_t end, std::size_t block) {
+                double pAp = 0.0;
+                for (std::size_t i = begin; i != end; ++i) pAp += c->p[i] * c->Ap[i];
+                c->partial[kScratch][block] = pAp;
+            });
+            const double alpha = c->rz / c->total(kScratch);
+            forBlocks(n, [&](std::size_t begin, std::size_t end, std::size_t block) {
+                double rz = 0.0, rr = 0.0;
+                for (std::size_t i = begin; i != end; ++i) {
+                    c->x[i] += alpha * c->p[i];
+                    c->r[i] -= alpha * c->Ap[i];
+                    c->z[i] = c->r[i] / A.diag[i];
+                    rz += c->r[i] * c->z[i];
+                    rr += c->r[i] * c->r[i];
+                }
+                c->partial[kRz][block] = rz;
+                c->partial[kRr][block] = rr;
+            });
+            const double rzNext = c->total(kRz);
+            const double beta = rzNext / c->rz;
+            c->rz = rzNext;
+            c->rr = c->total(kRr);
+            forBlocks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
+                for (std::size_t i = begin; i != end; ++i) c->p[i] = c->z[i] + beta * c->p[i];
+            });
+            ++c->iterations;
+        }
+    }
+    int most = 0;
+    for (const Column& c : state) most = std::max(most, c.iterations);
+    return most;
+}
+
+}  // namespace cg::algo
