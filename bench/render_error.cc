@@ -14,7 +14,8 @@
 //                  octave model instead of the diffusion solve (to explore, to compare)
 //   --scene K=V    a scene setting for both renderers: ambient (sky light scale), sun
 //                  (intensity), ground (0 or 1), bounces (the reference's maxBounces; with
-//                  --fast octaves=1, single scattering alone), to take the light apart
+//                  --fast octaves=1, single scattering alone), to take the light apart;
+//                  mie=D, the Mie phase function of droplets D μm across
 //   --cache DIR    keep reference images there and reuse them (they depend only on the
 //                  case, the sun, the size, the sample count and the seed)
 //   --seed N       the reference's random seeds are 2N and 2N + 1 (default N = 0)
@@ -213,6 +214,10 @@ int main(int argc, char** argv)
                 else if (key == "sun") s.sun.intensity = v;
                 else if (key == "ground") s.ground.enabled = v != 0.0;
                 else if (key == "bounces") s.pathTrace.maxBounces = static_cast<int>(v);
+                else if (key == "mie") {
+                    s.medium.phase = cg::algo::PhaseModel::Mie;
+                    s.medium.dropletDiameter = v;
+                }
                 else throw std::runtime_error("unknown scene setting " + key);
                 sceneTag += "_" + key + std::to_string(v);
             }

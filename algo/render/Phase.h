@@ -7,7 +7,11 @@
 /// it travels after; cos θ = 1 is straight on (forward scattering).
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
+
+#include "algo/render/RenderSettings.h"
 
 namespace cg::algo {
 
@@ -22,42 +26,6 @@ inline double henyeyGreenstein(double cosTheta, double g)
     return kInvFourPi * (1.0 - gg) / (denom * std::sqrt(denom));
 }
 
-/// Two HG lobes blended: (1 − w) HG(g1) + w HG(g2); still integrates to 1 for w in [0, 1].
-/// Clouds: a strong forward lobe (g1 ≈ 0.8) and a weak backward one (g2 ≈ −0.3, w ≈ 0.2).
-inline double twoLobeHenyeyGreenstein(double cosTheta, double g1, double g2, double w)
-{
-    const double p1 = henyeyGreenstein(cosTheta, g1);
-    return w > 0.0 ? (1.0 - w) * p1 + w * henyeyGreenstein(cosTheta, g2) : p1;
-}
-
-/// Two scatterings in a row, the second of light the first turned by any angle: the two-lobe
-/// phase function convolved with itself over the sphere. An HG lobe's Legendre moments are
-/// g^l, so HG(a) ∗ HG(b) = HG(a b) and the blend gives Σ w_i w_j HG(g_i g_j).
-inline double twoLobeHenyeyGreensteinTwice(double cosTheta, double g1, double g2, double w)
-{
-    return (1.0 - w) * (1.0 - w) * henyeyGreenstein(cosTheta, g1 * g1) +
-           2.0 * w * (1.0 - w) * henyeyGreenstein(cosTheta, g1 * g2) +
-           w * w * henyeyGreenstein(cosTheta, g2 * g2);
-}
-
-/// The δ-Eddington split of the two-lobe phase function (Joseph, Wiscombe and Weinman 1976):
-/// a forward peak of weight `peak` treated as no scattering at all, and the rest an HG lobe of
-/// asymmetry `g`. The peak is the phase function's second moment, (1 − w) g1² + w g2², so
-/// the split keeps its first two moments; the rest's g = (ḡ − peak) / (1 − peak).
-struct DeltaEddington {
-    double peak = 0.0;
-    double g = 0.0;
-};
-
-inline DeltaEddington deltaEddington(double g1, double g2, double w)
-{
-    const double mean = (1.0 - w) * g1 + w * g2;
-    DeltaEddington out;
-    out.peak = (1.0 - w) * g1 * g1 + w * g2 * g2;
-    out.g = out.peak < 1.0 ? (mean - out.peak) / (1.0 - out.peak) : 0.0;
-    return out;
-}
-
 /// cos θ distributed as Henyey-Greenstein with asymmetry g, from a uniform u in [0, 1)
 /// (inverting its cumulative distribution).
 inline double sampleHenyeyGreenstein(double g, double u)
@@ -67,11 +35,115 @@ inline double sampleHenyeyGreenstein(double g, double u)
     return std::clamp((1.0 + g * g - s * s) / (2.0 * g), -1.0, 1.0);
 }
 
-/// cos θ distributed as twoLobeHenyeyGreenstein(·, g1, g2, w): lobe 2 when uLobe < w.
-inline double sampleTwoLobeHenyeyGreenstein(double g1, double g2, double w, double uLobe,
-                                            double u)
-{
-    return sampleHenyeyGreenstein(uLobe < w ? g2 : g1, u);
-}
+/// Draine's (2003) lobe: HG(g) (1 + α cos²θ) / (1 + α (1 + 2 g²) / 3), normalised; α = 0 is
+/// Henyey-Greenstein, α > 0 lifts the forward and backward directions against the side.
+struct PhaseLobe {
+    double weight = 1.0;
+    double g = 0.0;
+    double alpha = 0.0;
+
+    double operator()(double cosTheta) const
+    {
+        const double p = henyeyGreenstein(cosTheta, g);
+        if (alpha == 0.0) return p;
+        return p * (1.0 + alpha * cosTheta * cosTheta) / (1.0 + alpha * (1.0 + 2.0 * g * g) / 3.0);
+    }
+
+    /// The Legendre moment χ_l = ∫ p P_l dω: g^l for HG; for Draine, μ² P_l expanded in
+    /// P_{l−2}, P_l, P_{l+2} against HG's moments.
+    double moment(int l) const;
+};
+
+/// The δ-Eddington split of a phase function (Joseph, Wiscombe and Weinman 1976): a forward
+/// peak of weight `peak` treated as no scattering at all, and the rest a lobe of asymmetry
+/// `g`. The peak is the phase function's second moment χ_2, so the split keeps its first two
+/// moments; the rest's g = (χ_1 − peak) / (1 − peak).
+struct DeltaEddington {
+    double peak = 0.0;
+    double g = 0.0;
+};
+
+/// A blend of two lobes, each Henyey-Greenstein or Draine.
+///   - twoLobeHenyeyGreenstein(g1, g2, w): (1 − w) HG(g1) + w HG(g2); clouds: a strong
+///     forward lobe (g1 ≈ 0.8) and a weak backward one (g2 ≈ −0.3, w ≈ 0.2).
+///   - mie(d): Jendersie and d'Eon's (2023) fit to Mie scattering by water droplets of
+///     diameter d (5 to 50 μm): (1 − w_D) HG(g_HG) + w_D Draine(g_D, α), with their fitted
+///     functions of d. Its sharp forward lobe (g_HG ≈ 0.99) is the silver lining, Draine's
+///     α lobe the fog bow and glory side of the curve.
+class PhaseFunction {
+public:
+    PhaseFunction() = default;  ///< isotropic
+    /// weights summing to 1
+    PhaseFunction(const PhaseLobe& first, const PhaseLobe& second) : mLobes{first, second} {}
+    static PhaseFunction twoLobeHenyeyGreenstein(double g1, double g2, double w);
+    static PhaseFunction mie(double dropletDiameterMicrons);
+
+    double operator()(double cosTheta) const
+    {
+        const double p = mLobes[0](cosTheta);
+        return mLobes[1].weight > 0.0
+                   ? mLobes[0].weight * p + mLobes[1].weight * mLobes[1](cosTheta)
+                   : p;
+    }
+
+    double moment(int l) const
+    {
+        return mLobes[0].weight * mLobes[0].moment(l) + mLobes[1].weight * mLobes[1].moment(l);
+    }
+    double meanCosine() const { return moment(1); }
+
+    /// Each lobe's g times k, its α kept: the renderer's phase functions of light that is
+    /// already partly diffuse (k = |F| / φ) or of a multiple-scattering octave.
+    PhaseFunction narrowed(double k) const
+    {
+        PhaseFunction out = *this;
+        for (PhaseLobe& lobe : out.mLobes) lobe.g *= k;
+        return out;
+    }
+
+    DeltaEddington deltaEddington() const
+    {
+        DeltaEddington out;
+        out.peak = moment(2);
+        out.g = out.peak < 1.0 ? (moment(1) - out.peak) / (1.0 - out.peak) : 0.0;
+        return out;
+    }
+
+    /// cos θ drawn from the phase function; `uniform()` returns uniforms in [0, 1). Draws a
+    /// lobe, then HG(g), which a Draine lobe accepts with probability (1 + α cos²θ)/(1 + α).
+    template <class Uniform>
+    double sample(Uniform&& uniform) const
+    {
+        const double uLobe = uniform();
+        const PhaseLobe& lobe = uLobe < mLobes[1].weight ? mLobes[1] : mLobes[0];
+        for (;;) {
+            const double cosTheta = sampleHenyeyGreenstein(lobe.g, uniform());
+            if (lobe.alpha == 0.0 ||
+                uniform() * (1.0 + lobe.alpha) < 1.0 + lobe.alpha * cosTheta * cosTheta)
+                return cosTheta;
+        }
+    }
+
+    const std::array<PhaseLobe, 2>& lobes() const { return mLobes; }
+
+private:
+    std::array<PhaseLobe, 2> mLobes{PhaseLobe{1.0, 0.0, 0.0}, PhaseLobe{0.0, 0.0, 0.0}};
+};
+
+/// The medium's phase function.
+PhaseFunction phaseOf(const RenderMedium& medium);
+
+/// Two scatterings in a row, the second of light the first turned by any angle: the phase
+/// function convolved with itself over the sphere, p∗p = Σ_l (2l + 1) / (4π) χ_l² P_l(cos θ)
+/// (convolution multiplies Legendre moments). Tabulated once in θ (the series runs until
+/// χ_l² is negligible: thousands of terms for Mie's sharp forward lobe) and interpolated.
+class PhaseTwice {
+public:
+    explicit PhaseTwice(const PhaseFunction& phase);
+    double operator()(double cosTheta) const;
+
+private:
+    std::vector<double> mTable;  ///< at θ_i = i π / (size − 1)
+};
 
 }  // namespace cg::algo

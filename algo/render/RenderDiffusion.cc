@@ -71,7 +71,8 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     // δ-Eddington: light scattered into the phase function's forward peak goes on as if
     // unscattered, so the sun's beam fades with (1 − ω f) τ and scatters for the first time
     // out of it at the rate σ_s (1 − f).
-    const DeltaEddington split = deltaEddington(medium.g, medium.g2, medium.lobeBlend);
+    const PhaseFunction phase = phaseOf(medium);
+    const DeltaEddington split = phase.deltaEddington();
     const double peakless = 1.0 - medium.albedo * split.peak;
     const auto add = [&](const openvdb::Coord& v, float value) {
         const std::size_t cell = cellOf(v);
@@ -93,7 +94,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     }
 
     // The cloud's cells and their couplings.
-    const double gMean = (1.0 - medium.lobeBlend) * medium.g + medium.lobeBlend * medium.g2;
+    const double gMean = phase.meanCosine();
     std::vector<std::int32_t> id(dense, -1);
     std::vector<std::size_t> cells;
     for (std::size_t i = 0; i < dense; ++i)

@@ -63,7 +63,8 @@ RenderVec3 aroundAxis(const RenderVec3& axis, double cosTheta, double phi)
 class PathTracer {
 public:
     PathTracer(const openvdb::FloatGrid& grid, const RenderSettings& settings)
-        : mS(settings), mGrid(grid), mOcc(grid.tree(), /*majorants=*/true), mRays(settings.camera)
+        : mS(settings), mGrid(grid), mOcc(grid.tree(), /*majorants=*/true),
+          mRays(settings.camera), mPhase(phaseOf(settings.medium))
     {
         renderVoxelSize(grid);  // refuses a non-linear transform
         if (settings.pathTrace.samples < 1 || settings.pathTrace.maxBounces < 1)
@@ -190,13 +191,10 @@ private:
             if (inMedium) {
                 beta *= m.albedo;
                 if (mSunOn) {
-                    const double phase =
-                        twoLobeHenyeyGreenstein(mSunDir.dot(dir), m.g, m.g2, m.lobeBlend);
-                    L += beta * mSunIrradiance * (phase * sunVisibility(acc, x, rng));
+                    L += beta * mSunIrradiance *
+                         (mPhase(mSunDir.dot(dir)) * sunVisibility(acc, x, rng));
                 }
-                const double uLobe = rng.uniform();
-                const double cosTheta = sampleTwoLobeHenyeyGreenstein(m.g, m.g2, m.lobeBlend,
-                                                                      uLobe, rng.uniform());
+                const double cosTheta = mPhase.sample([&] { return rng.uniform(); });
                 dir = aroundAxis(dir, cosTheta, 2.0 * kPi * rng.uniform());
             } else {
                 x = RenderVec3(x.x(), x.y(), 0.0);
@@ -235,6 +233,7 @@ private:
     const openvdb::FloatGrid& mGrid;
     RenderOccupancy mOcc;
     CameraRays mRays;
+    PhaseFunction mPhase;
     RenderVec3 mSunDir;
     RenderVec3 mSunIrradiance;
     bool mSunOn = false;

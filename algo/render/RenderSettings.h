@@ -44,13 +44,21 @@ struct RenderGround {
     double hazeDistance = 20000.0;  ///< m; the ground fades to the horizon colour, 0 = off
 };
 
+/// The droplets' phase function (Phase.h).
+enum class PhaseModel {
+    TwoLobeHenyeyGreenstein,  ///< g, g2, lobeBlend
+    Mie,                      ///< Jendersie and d'Eon's fit for droplets of dropletDiameter
+};
+
 /// The cloud medium: σ_t = extinction × density, σ_s = albedo × σ_t.
 struct RenderMedium {
     double extinction = 0.05;  ///< 1/m per unit density
     double albedo = 0.99;      ///< single-scattering albedo
+    PhaseModel phase = PhaseModel::TwoLobeHenyeyGreenstein;
     double g = 0.8;            ///< HG asymmetry of the main (forward) lobe
     double g2 = -0.3;          ///< HG asymmetry of the second (backward) lobe
     double lobeBlend = 0.2;    ///< weight of the second lobe, 0 = single lobe
+    double dropletDiameter = 20.0;  ///< μm, with PhaseModel::Mie (fit valid for 5 to 50)
 };
 
 /// How the fast renderer approximates light scattered more than once.

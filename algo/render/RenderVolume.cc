@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -65,6 +66,8 @@ struct Frame {
     /// of the sky's mean above, of the ground (or the horizon without one), of the sun-lit
     /// ground's sun part.
     RenderVec3 diffuseRadiance[RenderDiffusion::kLights];
+    PhaseFunction phase;
+    std::optional<PhaseTwice> phaseTwice;  ///< with the diffusion model
     double peakless = 1.0;      ///< 1 − ω f: the sun beam's extinction, forward peak f out
     double dt = 1.0;
     RenderVec3 sunDir;        ///< unit, toward the sun
@@ -81,7 +84,8 @@ struct Frame {
 
     Frame(const openvdb::FloatGrid& g, const RenderSettings& settings,
           const std::function<bool()>& cancelled)
-        : s(settings), grid(g), occupancy(g.tree()), rays(settings.camera)
+        : s(settings), grid(g), occupancy(g.tree()), phase(phaseOf(settings.medium)),
+          rays(settings.camera)
     {
         const double voxel = renderVoxelSize(g);
         require(s.march.step > 0.0, "step must be positive");
@@ -125,8 +129,8 @@ struct Frame {
         diffuseRadiance[RenderDiffusion::Ground] = s.ground.enabled ? groundSky : below;
         diffuseRadiance[RenderDiffusion::LitGround] =
             litGround ? s.ground.albedo * sunIrradiance * (groundSun / kPi) : RenderVec3(0.0);
-        peakless = 1.0 - s.medium.albedo *
-                             deltaEddington(s.medium.g, s.medium.g2, s.medium.lobeBlend).peak;
+        peakless = 1.0 - s.medium.albedo * phase.deltaEddington().peak;
+        if (useDiffusion) phaseTwice.emplace(phase);
         if (useDiffusion)
             diffusion = RenderDiffusion(g, sunMap, s.medium, s.multiScatter.cellVoxels,
                                         litGround, cancelled);
@@ -148,8 +152,7 @@ struct Frame {
         if (!(f > 0.0)) return phi * kInvFourPi;
         const double k = std::min(f / phi, kMaxFluxRatio);
         const double cosToCamera = -flux.dot(dir) / f;
-        return phi * twoLobeHenyeyGreenstein(cosToCamera, s.medium.g * k, s.medium.g2 * k,
-                                             s.medium.lobeBlend);
+        return phi * phase.narrowed(k)(cosToCamera);
     }
 
     /// Radiance behind the volume: the lit, shadowed, hazed ground, or the sky.
@@ -172,16 +175,10 @@ struct Frame {
         // The phase functions depend only on the angle between sun light and the view ray.
         const double cosTheta = sunDir.dot(dir);
         double sunPhase[kMaxOctaves];
-        const double peakPhase =  // only the diffusion model splits off the peak
-            useDiffusion ? twoLobeHenyeyGreensteinTwice(cosTheta, s.medium.g, s.medium.g2,
-                                                        s.medium.lobeBlend)
-                         : 0.0;
-        for (int i = 0; i < octaves; ++i) {
-            sunPhase[i] = octaveWeight[i] *
-                          twoLobeHenyeyGreenstein(cosTheta, s.medium.g * octaveEcc[i],
-                                                  s.medium.g2 * octaveEcc[i],
-                                                  s.medium.lobeBlend);
-        }
+        // Only the diffusion model splits off the peak.
+        const double peakPhase = phaseTwice ? (*phaseTwice)(cosTheta) : 0.0;
+        for (int i = 0; i < octaves; ++i)
+            sunPhase[i] = octaveWeight[i] * phase.narrowed(octaveEcc[i])(cosTheta);
         const std::uint64_t pixel =
             static_cast<std::uint64_t>(py) * static_cast<std::uint64_t>(s.camera.width) +
             static_cast<std::uint64_t>(px);
