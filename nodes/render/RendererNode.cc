@@ -160,7 +160,8 @@ void registerRendererNode(Registry& registry)
         stringParam("phase", "twoLobeHG",
                     "phase function: twoLobeHG = (1 - lobeBlend) HG(g) + lobeBlend HG(g2); mie = "
                     "Jendersie and d'Eon's 2023 fit to Mie scattering by droplets of "
-                    "dropletDiameter (HG + Draine; sharper silver lining, a backward glory lobe)",
+                    "dropletDiameter (HG + Draine; sharper silver lining, a backward glory lobe; the "
+                    "fast mode is not yet within 10% of pathtrace with it, docs/rendering.md)",
                     {"twoLobeHG", "mie"}),
         floatParam("g", def.medium.g, "", "twoLobeHG: asymmetry of the forward HG lobe", -0.99,
                    0.99),

@@ -107,8 +107,8 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"mie5um", PhaseFunction::mie(5.0)},
                       Case{"mie20um", PhaseFunction::mie(20.0)},
                       Case{"mie50um", PhaseFunction::mie(50.0)},
-                      Case{"draine", PhaseFunction(PhaseLobe{0.7, 0.5, 5.0},
-                                                   PhaseLobe{0.3, -0.2, 0.0})}),
+                      Case{"draine",
+                           PhaseFunction(PhaseLobe{0.7, 0.5, 5.0}, PhaseLobe{0.3, -0.2, 0.0})}),
     [](const ::testing::TestParamInfo<Case>& param) { return param.param.name; });
 
 TEST(Phase, TwoLobeMomentsAreTheBlendOfTheLobesPowers)

@@ -9,7 +9,6 @@
 #include <cstring>
 #include <functional>
 
-
 #include "algo/render/Phase.h"
 #include "algo/render/RenderPathTrace.h"
 #include "support/RenderTestVolumes.h"
@@ -108,32 +107,32 @@ TEST(RenderPathTrace, SlabSingleScatteringMatchesTheClosedForm)
     // whatever the slab's density profile (it only reparametrises u).
     // Both phase functions: the Mie fit's sharp lobe is evaluated as the closed form's.
     for (const auto model : {algo::PhaseModel::TwoLobeHenyeyGreenstein, algo::PhaseModel::Mie}) {
-    SlabScene scene(10);  // τ = 1
-    algo::RenderSettings& s = scene.s;
-    s.medium.phase = model;
-    SCOPED_TRACE(model == algo::PhaseModel::Mie ? "mie" : "twoLobeHG");
-    s.pathTrace.maxBounces = 1;
-    s.pathTrace.samples = 256;
-    s.sky.zenith = s.sky.horizon = RenderVec3(0.0);
-    s.sun.direction = RenderVec3(0.5, 0.0, std::sqrt(0.75));  // 30° from the zenith
-    s.sun.colour = RenderVec3(1.0);
-    s.sun.intensity = 3.0;
-    s.medium.albedo = 0.9;
-    const algo::RenderedImage img = algo::renderPathTraced(*scene.grid, s);
-    const double tau = 1.0;
-    const auto exact = [&](int x, int y) {
-        const RenderVec3 v = scene.direction(x, y);
-        const double mv = v.z(), ms = s.sun.direction.unitSafe().z();
-        const double k = 1.0 / mv - 1.0 / ms;
-        const double integral = std::exp(-tau / ms) * (1.0 - std::exp(-k * tau)) / k;
-        const double phase = algo::phaseOf(s.medium)(s.sun.direction.unitSafe().dot(v));
-        return s.medium.albedo * phase * s.sun.intensity / mv * integral;
-    };
-    const Residual r = residualOver(
-        0, 0, 16, 16, [&](int x, int y) { return scene.pixel(img, x, y, 1); }, exact);
-    EXPECT_LT(std::abs(r.mean), 4.0 * r.standardError + 1e-6)
-        << r.mean << " +- " << r.standardError << " of " << r.meanExact;
-    EXPECT_LT(std::abs(r.mean) / r.meanExact, 0.02);
+        SlabScene scene(10);  // τ = 1
+        algo::RenderSettings& s = scene.s;
+        s.medium.phase = model;
+        SCOPED_TRACE(model == algo::PhaseModel::Mie ? "mie" : "twoLobeHG");
+        s.pathTrace.maxBounces = 1;
+        s.pathTrace.samples = 256;
+        s.sky.zenith = s.sky.horizon = RenderVec3(0.0);
+        s.sun.direction = RenderVec3(0.5, 0.0, std::sqrt(0.75));  // 30° from the zenith
+        s.sun.colour = RenderVec3(1.0);
+        s.sun.intensity = 3.0;
+        s.medium.albedo = 0.9;
+        const algo::RenderedImage img = algo::renderPathTraced(*scene.grid, s);
+        const double tau = 1.0;
+        const auto exact = [&](int x, int y) {
+            const RenderVec3 v = scene.direction(x, y);
+            const double mv = v.z(), ms = s.sun.direction.unitSafe().z();
+            const double k = 1.0 / mv - 1.0 / ms;
+            const double integral = std::exp(-tau / ms) * (1.0 - std::exp(-k * tau)) / k;
+            const double phase = algo::phaseOf(s.medium)(s.sun.direction.unitSafe().dot(v));
+            return s.medium.albedo * phase * s.sun.intensity / mv * integral;
+        };
+        const Residual r = residualOver(
+            0, 0, 16, 16, [&](int x, int y) { return scene.pixel(img, x, y, 1); }, exact);
+        EXPECT_LT(std::abs(r.mean), 4.0 * r.standardError + 1e-6)
+            << r.mean << " +- " << r.standardError << " of " << r.meanExact;
+        EXPECT_LT(std::abs(r.mean) / r.meanExact, 0.02);
     }
 }
 
@@ -186,9 +185,9 @@ TEST(RenderPathTrace, EmptyVolumeShowsTheSkyAndTheLitGround)
     const algo::RenderedImage img = algo::renderPathTraced(*empty, s);
     const algo::CameraRays rays(s.camera);
     const RenderVec3 sun = s.sun.direction.unitSafe();
-    const RenderVec3 lit = s.ground.albedo * (s.sun.colour * s.sun.intensity * (sun.z() / M_PI) +
-                                              (s.sky.horizon * 0.2 + s.sky.zenith * 0.8) *
-                                                  s.sky.ambient);
+    const RenderVec3 lit =
+        s.ground.albedo * (s.sun.colour * s.sun.intensity * (sun.z() / M_PI) +
+                           (s.sky.horizon * 0.2 + s.sky.zenith * 0.8) * s.sky.ambient);
     const auto groundExact = [&](int x, int y, int c) {
         const RenderVec3 d = rays.direction(x, y);
         return algo::hazedGround(s, lit, algo::groundDistance(s.ground, s.camera.position, d))[c];
