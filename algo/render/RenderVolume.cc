@@ -68,6 +68,7 @@ struct Frame {
     RenderVec3 diffuseRadiance[RenderDiffusion::kLights];
     PhaseFunction phase;
     std::optional<PhaseTwice> phaseTwice;  ///< with the diffusion model
+    DeltaEddington split;       ///< of the phase function
     double peakless = 1.0;      ///< 1 − ω f: the sun beam's extinction, forward peak f out
     double dt = 1.0;
     RenderVec3 sunDir;        ///< unit, toward the sun
@@ -129,7 +130,8 @@ struct Frame {
         diffuseRadiance[RenderDiffusion::Ground] = s.ground.enabled ? groundSky : below;
         diffuseRadiance[RenderDiffusion::LitGround] =
             litGround ? s.ground.albedo * sunIrradiance * (groundSun / kPi) : RenderVec3(0.0);
-        peakless = 1.0 - s.medium.albedo * phase.deltaEddington().peak;
+        split = phase.deltaEddington();
+        peakless = 1.0 - s.medium.albedo * split.peak;
         if (useDiffusion) phaseTwice.emplace(phase);
         if (useDiffusion)
             diffusion = RenderDiffusion(g, sunMap, s.medium, s.multiScatter.cellVoxels,
@@ -142,9 +144,13 @@ struct Frame {
 
     /// Diffuse light of fluence φ and net flux F scattered toward the camera (ω_o = −dir), per
     /// unit scattering. The radiance is taken as a Henyey-Greenstein lobe about F with F's
-    /// mean cosine k = |F| / φ: it has the fluence and flux the diffusion gives, is never
-    /// negative (the P1 radiance (φ + 3 F·ω) / 4π is, wherever |F| > φ / 3), and its
-    /// convolution with an HG phase lobe of asymmetry g is the HG lobe of asymmetry g k.
+    /// mean cosine k = |F| / φ: it has the fluence and flux the diffusion gives, and is never
+    /// negative (the P1 radiance (φ + 3 F·ω) / 4π is, wherever |F| > φ / 3). It scatters
+    /// through the phase function's δ-Eddington split, as the diffusion does: the peak f
+    /// passes it on in its own direction, HG(k), and the rest, HG(g'), turns it into
+    /// HG(g' k) (HG lobes convolve by multiplying their asymmetries). A sharp lobe narrowed by
+    /// k instead would stay so peaked (Mie's g = 0.995) that F's direction, which differs per
+    /// colour channel, would decide everything.
     double scatteredTowardCamera(double phi, const RenderVec3& flux, const RenderVec3& dir) const
     {
         if (!(phi > 0.0)) return 0.0;
@@ -152,7 +158,8 @@ struct Frame {
         if (!(f > 0.0)) return phi * kInvFourPi;
         const double k = std::min(f / phi, kMaxFluxRatio);
         const double cosToCamera = -flux.dot(dir) / f;
-        return phi * phase.narrowed(k)(cosToCamera);
+        return phi * (split.peak * henyeyGreenstein(cosToCamera, k) +
+                      (1.0 - split.peak) * henyeyGreenstein(cosToCamera, split.g * k));
     }
 
     /// Radiance behind the volume: the lit, shadowed, hazed ground, or the sky.

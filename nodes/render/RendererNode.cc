@@ -100,11 +100,12 @@ void registerRendererNode(Registry& registry)
     const auto v3 = [](const algo::RenderVec3& v) { return Vec3{v.x(), v.y(), v.z()}; };
     NodeDecl d;
     d.type = "Renderer";
-    d.version = 7;  // 2: the image carries its background; 3: the diffusion sees sky and ground
+    d.version = 8;  // 2: the image carries its background; 3: the diffusion sees sky and ground
                     // apart; 4: δ-Eddington sun, flux-limited diffusion, one radiance lobe;
                     // 5: sparse sun light map, one voxel a texel in large sparse fields;
                     // 6: the limiter's sun solves to 1e-2 (the image within 0.01%);
-                    // 7: phase (mie), the self-convolved phase tabulated
+                    // 7: phase (mie), the self-convolved phase tabulated; 8: diffuse light
+                    // scattered toward the camera through the δ-Eddington split
     d.category = "render";
     d.doc =
         "Ray-marches a fog volume (sigma_t = extinction x density, sigma_s = albedo x sigma_t) "
