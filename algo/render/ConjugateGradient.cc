@@ -48,34 +48,22 @@ struct Column {
     }
 };
 
-/// out_c = A in_c for each column c, each matrix row read once for all of them.
-void multiply(const SparseSystem& A, const std::vector<const std::vector<double>*>& in,
-              const std::vector<std::vector<double>*>& out)
+/// Ap = A v(column) for each column, each matrix row read once for all of them.
+template <class Vector>
+void multiply(const SparseSystem& A, const std::vector<Column*>& columns, Vector&& v)
 {
     forBlocks(A.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
         for (std::size_t i = begin; i != end; ++i) {
             const std::int32_t* nb = &A.neighbour[6 * i];
             const float* k = &A.coupling[6 * i];
-            for (std::size_t c = 0; c < in.size(); ++c) {
-                const std::vector<double>& x = *in[c];
-                double v = A.diag[i] * x[i];
-                for (int f = 0; f < 6; ++f) v -= k[f] * x[static_cast<std::size_t>(nb[f])];
-                (*out[c])[i] = v;
+            for (Column* c : columns) {
+                const std::vector<double>& x = v(*c);
+                double sum = A.diag[i] * x[i];
+                for (int f = 0; f < 6; ++f) sum -= k[f] * x[static_cast<std::size_t>(nb[f])];
+                c->Ap[i] = sum;
             }
         }
     });
-}
-
-/// A p for every column.
-void multiplyDirections(const SparseSystem& A, const std::vector<Column*>& columns)
-{
-    std::vector<const std::vector<double>*> in;
-    std::vector<std::vector<double>*> out;
-    for (Column* c : columns) {
-        in.push_back(&c->p);
-        out.push_back(&c->Ap);
-    }
-    multiply(A, in, out);
 }
 
 }  // namespace
@@ -93,15 +81,7 @@ int solveConjugateGradient(const SparseSystem& A, const std::vector<SolveColumn>
     for (Column& c : state) active.push_back(&c);
 
     // r = b − A x, z = p = r / diag; |b|, r·z and r·r.
-    {
-        std::vector<const std::vector<double>*> in;
-        std::vector<std::vector<double>*> out;
-        for (Column* c : active) {
-            in.push_back(&c->x);
-            out.push_back(&c->Ap);
-        }
-        multiply(A, in, out);
-    }
+    multiply(A, active, [](const Column& c) -> const std::vector<double>& { return c.x; });
     for (Column* c : active) {
         forBlocks(n, [&](std::size_t begin, std::size_t end, std::size_t block) {
             double rz = 0.0, rr = 0.0, bb = 0.0;
@@ -131,7 +111,7 @@ int solveConjugateGradient(const SparseSystem& A, const std::vector<SolveColumn>
         active.swap(next);
         if (active.empty() || (cancelled && cancelled())) break;
 
-        multiplyDirections(A, active);
+        multiply(A, active, [](const Column& c) -> const std::vector<double>& { return c.p; });
         for (Column* c : active) {
             forBlocks(n, [&](std::size_t begin, std::size_t end, std::size_t block) {
                 double pAp = 0.0;
