@@ -35,7 +35,8 @@ PhaseFunction PhaseFunction::twoLobeHenyeyGreenstein(double g1, double g2, doubl
 
 PhaseFunction PhaseFunction::mie(double d)
 {
-    // Jendersie and d'Eon (2023), Eq. 4-7: fits for 5 μm ≤ d ≤ 50 μm.
+    // Jendersie and d'Eon (2023), "An Approximate Mie Scattering Function for Fog and Cloud
+    // Rendering": their fits for 5 μm ≤ d ≤ 50 μm.
     const double gHG = std::exp(-0.0990567 / (d - 1.67154));
     const double gD = std::exp(-2.20679 / (d + 3.91029) - 0.428934);
     const double alpha = std::exp(3.62489 - 8.29288 / (d + 5.52825));
