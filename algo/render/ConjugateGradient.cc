@@ -30,7 +30,6 @@ struct Column {
     std::vector<double> r, z, p, Ap;
     std::vector<double> partial[3];  ///< per block: r·z, r·r and a scratch sum
     double rz = 0.0, rr = 0.0, bNorm = 0.0;
-    bool done = false;
     int iterations = 0;
 
     Column(const std::vector<double>& rhs, std::vector<double>& solution, std::size_t blocks)
@@ -99,15 +98,13 @@ int solveConjugateGradient(const SparseSystem& A, const std::vector<SolveColumn>
         c->rz = c->total(kRz);
         c->rr = c->total(kRr);
         c->bNorm = std::sqrt(c->total(kScratch));
-        c->done = !(c->bNorm > 0.0);
     }
 
     for (int it = 0; it < maxIterations; ++it) {
+        // A column with b = 0 has nothing to solve; the others run until they converge.
         std::vector<Column*> next;
-        for (Column* c : active) {
-            if (std::sqrt(c->rr) <= tolerance * c->bNorm) c->done = true;
-            if (!c->done) next.push_back(c);
-        }
+        for (Column* c : active)
+            if (c->bNorm > 0.0 && std::sqrt(c->rr) > tolerance * c->bNorm) next.push_back(c);
         active.swap(next);
         if (active.empty() || (cancelled && cancelled())) break;
 

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdint>
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "algo/render/ConjugateGradient.h"

@@ -132,10 +132,11 @@ struct Frame {
             litGround ? s.ground.albedo * sunIrradiance * (groundSun / kPi) : RenderVec3(0.0);
         split = phase.deltaEddington();
         peakless = 1.0 - s.medium.albedo * split.peak;
-        if (useDiffusion) phaseTwice.emplace(phase);
-        if (useDiffusion)
+        if (useDiffusion) {
+            phaseTwice.emplace(phase);
             diffusion = RenderDiffusion(g, sunMap, s.medium, s.multiScatter.cellVoxels,
                                         litGround, cancelled);
+        }
         if (needSky)
             skyMap = RenderLightMap(g, occupancy, RenderVec3(0, 0, 1), s.medium.extinction,
                                     s.march.lightTexel * 4.0, s.march.lightStep * 2.0,
