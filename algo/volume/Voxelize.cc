@@ -11,15 +11,13 @@
 #include <utility>
 #include <vector>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include <openvdb/tools/Filter.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "algo/volume/GaussianSplat.h"
+#include "algo/volume/LeafFromDense.h"
 #include "util/HugePages.h"
 
 namespace cg::algo {
@@ -467,49 +465,6 @@ Scratch<E> binByBrick(const float* xyz, std::size_t count, const Kernel& k, cons
     return entries;
 }
 
-/// The leaf at `offset` voxels inside the brick at `brick`, holding the voxels of `acc` with
-/// a value > 0 (clamped to 1 if asked); null when it would be empty.
-std::unique_ptr<LeafT> makeLeaf(const float* acc, const openvdb::Coord& brick,
-                                const openvdb::Coord& offset, bool clamp)
-{
-    // Eight voxels along z at a time (SSE2): the mask bits of a row come from one movemask.
-    // Voxel (x, y, z) is bit 8 y + z of the mask's word x.
-    // Elsewhere a scalar loop gives the same bits.
-    LeafT::NodeMaskType mask;
-    alignas(64) float values[LeafT::SIZE];
-#if defined(__SSE2__)
-    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
-#endif
-    for (int x = 0; x < 8; ++x) {
-        std::uint64_t word = 0;
-        for (int y = 0; y < 8; ++y) {
-            const float* row = acc + accIndex(offset.x() + x, offset.y() + y, offset.z());
-            float* out = values + (x << 6) + (y << 3);
-#if defined(__SSE2__)
-            for (int h = 0; h < 2; ++h) {
-                __m128 v = _mm_loadu_ps(row + 4 * h);
-                const __m128 on = _mm_cmpgt_ps(v, zero);  // false for NaN
-                if (clamp) v = _mm_min_ps(v, one);
-                _mm_storeu_ps(out + 4 * h, _mm_and_ps(on, v));
-                word |= std::uint64_t(_mm_movemask_ps(on)) << (8 * y + 4 * h);
-            }
-#else
-            for (int z = 0; z < 8; ++z) {
-                const bool on = row[z] > 0.0f;  // false for NaN
-                out[z] = on ? (clamp ? std::min(row[z], 1.0f) : row[z]) : 0.0f;
-                word |= std::uint64_t(on) << (8 * y + z);
-            }
-#endif
-        }
-        mask.template getWord<std::uint64_t>(static_cast<openvdb::Index>(x)) = word;
-    }
-    if (mask.isOff()) return nullptr;
-    auto leaf = std::make_unique<LeafT>(brick + offset, 0.0f, false);
-    std::memcpy(leaf->buffer().data(), values, sizeof(values));
-    leaf->setValueMask(mask);
-    return leaf;
-}
-
 template <class E>
 openvdb::FloatGrid::Ptr voxelizeWith(const float* xyz, std::size_t count, const Kernel& k,
                                      bool clamp, const KeyCodec& codec,
@@ -535,7 +490,8 @@ openvdb::FloatGrid::Ptr voxelizeWith(const float* xyz, std::size_t count, const 
         for (int x = 0; x < kBrick; x += 8)
             for (int y = 0; y < kBrick; y += 8)
                 for (int z = 0; z < kBrick; z += 8)
-                    *out++ = makeLeaf(acc, origin, openvdb::Coord(x, y, z), clamp);
+                    *out++ = leafFromDense(acc + accIndex(x, y, z), kBrick * kRow, kRow,
+                                           origin + openvdb::Coord(x, y, z), clamp);
     });
     entries.reset();
 
@@ -579,7 +535,8 @@ VoxelKernel voxelKernelFromName(const std::string& name)
 {
     if (name == "smooth") return VoxelKernel::Smooth;
     if (name == "sphere") return VoxelKernel::Sphere;
-    throw std::invalid_argument("unknown voxel kernel '" + name + "' (smooth, sphere)");
+    if (name == "gaussian") return VoxelKernel::Gaussian;
+    throw std::invalid_argument("unknown voxel kernel '" + name + "' (smooth, sphere, gaussian)");
 }
 
 double kernelIntegral(VoxelKernel kernel, double radius)
@@ -587,7 +544,8 @@ double kernelIntegral(VoxelKernel kernel, double radius)
     const double pi = 3.14159265358979323846;
     const double r3 = radius * radius * radius;
     // Smooth: 4 pi R^3 * int_0^1 (1 - u^2)^3 u^2 du = 4 pi R^3 * 16/315.
-    return kernel == VoxelKernel::Smooth ? 64.0 * pi * r3 / 315.0 : 4.0 * pi * r3 / 3.0;
+    // Gaussian: sigma is chosen to give the same integral (GaussianSplat.h).
+    return kernel == VoxelKernel::Sphere ? 4.0 * pi * r3 / 3.0 : 64.0 * pi * r3 / 315.0;
 }
 
 openvdb::FloatGrid::Ptr voxelizeParticles(const float* xyz, std::size_t count,
@@ -602,6 +560,15 @@ openvdb::FloatGrid::Ptr voxelizeParticles(const float* xyz, std::size_t count,
         throw std::invalid_argument("voxelize: density must be finite and >= 0");
     if (count > std::numeric_limits<std::uint32_t>::max())
         throw std::invalid_argument("voxelize: more than 2^32 - 1 particles");
+    if (settings.kernel == VoxelKernel::Gaussian) {
+        GaussianSplatter splatter(settings);
+        // Fixed chunks only for balance: the deposit's sums do not depend on the order.
+        tbb::parallel_for(std::size_t(0), chunkCount(count), [&](std::size_t c) {
+            splatter.add(xyz + 3 * c * kChunk, std::min(kChunk, count - c * kChunk));
+        });
+        if (checkCancelled) checkCancelled();
+        return splatter.finish(checkCancelled);
+    }
 
     Kernel k;
     k.invVoxel = static_cast<float>(1.0 / settings.voxelSize);

@@ -27,9 +27,13 @@ enum class VoxelKernel {
     Smooth,
     /// w(r) = 1 for r < R, else 0: a hard ball. Integral over space: 4 pi R^3 / 3.
     Sphere,
+    /// w(r) = exp(-r^2 / (2 sigma^2)), sigma = 0.3435 R: the smooth kernel's peak and integral,
+    /// splatted by a trilinear deposit and separable blur passes, at a cost that does not grow
+    /// with R^3 (algo/volume/GaussianSplat.h). Integral: 64 pi R^3 / 315.
+    Gaussian,
 };
 
-/// Parses "smooth" or "sphere"; throws std::invalid_argument otherwise.
+/// Parses "smooth", "sphere" or "gaussian"; throws std::invalid_argument otherwise.
 VoxelKernel voxelKernelFromName(const std::string& name);
 
 /// The kernel's integral over all space, in m^3 for R in metres: what one particle of density

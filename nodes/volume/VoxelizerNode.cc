@@ -102,8 +102,11 @@ void registerVoxelizerNode(Registry& registry)
                    "kernel radius R of one particle, at most 32 voxels (value ours)", 0.01,
                    10000.0),
         stringParam("kernel", "smooth",
-                    "particle profile: smooth = (1 - r^2/R^2)^3, sphere = 1 inside R",
-                    {"smooth", "sphere"}),
+                    "particle profile: smooth = (1 - r^2/R^2)^3, sphere = 1 inside R, gaussian = "
+                    "exp(-r^2 / (2 (0.3435 R)^2)), the smooth kernel's peak and integral, splatted "
+                    "by a trilinear deposit and separable blur passes (ours; its cost does not grow "
+                    "with R^3)",
+                    {"smooth", "sphere", "gaussian"}),
         floatParam("density", 0.25, "",
                    "density one particle adds at its centre (fog density, 1 = opaque; value ours)",
                    0.0, 1000.0),

@@ -1,0 +1,339 @@
+#include "algo/volume/GaussianSplat.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "algo/volume/LeafFromDense.h"
+
+namespace cg::algo {
+
+namespace {
+
+using LeafT = openvdb::FloatTree::LeafNodeType;
+
+/// The deposit is kept in blocks of 16^3 voxels (32 KiB of weights): small enough that thin
+/// sparse clouds do not pay for much empty space, large enough that a hash lookup is rare.
+constexpr int kBlockLog2 = 4;
+constexpr int kBlock = 1 << kBlockLog2;
+constexpr int kBlockVoxels = kBlock * kBlock * kBlock;
+/// The blur writes bricks of 32^3 voxels (4^3 leaves) at a time.
+constexpr int kBrickLog2 = 5;
+constexpr int kBrick = 1 << kBrickLog2;
+/// Cloud-in-cell weights are summed as integers in units of 2^-30: a voxel's sum is at most
+/// the particle count (< 2^32) times 2^30, inside an int64.
+constexpr double kWeightUnit = 1073741824.0;
+/// Index coordinates are limited to +-2^20 voxels, as in voxelizeParticles.
+constexpr float kMaxIndex = 1048576.0f;
+/// Packs block coordinates (|b| < 2^17) into a key ordered x-major, z fastest.
+constexpr int kKeyBits = 21;
+constexpr std::int64_t kKeyBias = std::int64_t(1) << (kKeyBits - 1);
+
+std::uint64_t blockKey(int bx, int by, int bz)
+{
+    return (std::uint64_t(bx + kKeyBias) << (2 * kKeyBits)) |
+           (std::uint64_t(by + kKeyBias) << kKeyBits) | std::uint64_t(bz + kKeyBias);
+}
+openvdb::Coord blockCoord(std::uint64_t key)
+{
+    constexpr std::uint64_t mask = (std::uint64_t(1) << kKeyBits) - 1;
+    return {static_cast<int>(std::int64_t(key >> (2 * kKeyBits)) - kKeyBias),
+            static_cast<int>(std::int64_t((key >> kKeyBits) & mask) - kKeyBias),
+            static_cast<int>(std::int64_t(key & mask) - kKeyBias)};
+}
+inline int blockIndex(int x, int y, int z)  // x, y, z inside the block
+{
+    return (x << (2 * kBlockLog2)) | (y << kBlockLog2) | z;
+}
+
+/// floor for |x| < 2^31, exact (truncate, then step down when that moved x up).
+inline int floorInt(float x)
+{
+    const int i = static_cast<int>(x);
+    return i - (x < static_cast<float>(i) ? 1 : 0);
+}
+
+using Block = std::unique_ptr<std::int64_t[]>;
+
+/// One thread's blocks; the last block used is remembered, since consecutive particles of a
+/// source lie close together.
+struct LocalDeposit {
+    std::unordered_map<std::uint64_t, Block> blocks;
+    std::uint64_t lastKey = ~std::uint64_t(0);
+    std::int64_t* last = nullptr;
+};
+
+/// 1D blur taps, normalised to sum 1: w[t] for offsets t - taps, t in [0, 2 taps].
+std::vector<float> blurTaps(double sigmaVoxels)
+{
+    const double variance = sigmaVoxels * sigmaVoxels - 1.0 / 6.0;  // less the deposit's tent
+    if (variance <= 1e-4) return {1.0f};
+    const double sigmaB = std::sqrt(variance);
+    const int taps = static_cast<int>(std::ceil(3.0 * sigmaB));
+    std::vector<double> w(2 * taps + 1);
+    double sum = 0.0;
+    for (int t = -taps; t <= taps; ++t) {
+        w[t + taps] = std::exp(-0.5 * t * t / variance);
+        sum += w[t + taps];
+    }
+    std::vector<float> out(w.size());
+    for (std::size_t i = 0; i < w.size(); ++i) out[i] = static_cast<float>(w[i] / sum);
+    return out;
+}
+
+}  // namespace
+
+struct GaussianSplatter::Deposit {
+    float invVoxel = 0.0f;
+    std::uint64_t maxBytes = 0;
+    std::atomic<std::uint64_t> bytes{0};
+    tbb::enumerable_thread_specific<LocalDeposit> locals;
+
+    std::int64_t* block(LocalDeposit& local, std::uint64_t key)
+    {
+        if (key == local.lastKey) return local.last;
+        Block& b = local.blocks[key];
+        if (!b) {
+            constexpr std::uint64_t kBytes = kBlockVoxels * sizeof(std::int64_t);
+            const std::uint64_t total = bytes.fetch_add(kBytes) + kBytes;
+            if (maxBytes != 0 && total > maxBytes) {
+                local.blocks.erase(key);
+                throw VoxelizeTooLarge("voxelize: the particles' deposit passes the limit of " +
+                                       std::to_string(maxBytes >> 20) +
+                                       " MiB; use larger voxels (voxelSize)");
+            }
+            b.reset(new std::int64_t[kBlockVoxels]());
+        }
+        local.lastKey = key;
+        local.last = b.get();
+        return local.last;
+    }
+};
+
+double gaussianKernelSigma(double radius)
+{
+    const double pi = 3.14159265358979323846;
+    // (2 pi)^(3/2) sigma^3 = 64 pi R^3 / 315: the smooth kernel's integral at the same peak.
+    return radius * std::cbrt(64.0 * pi / 315.0) / std::sqrt(2.0 * pi);
+}
+
+GaussianSplatter::GaussianSplatter(const VoxelizeSettings& settings)
+    : mSettings(settings), mDeposit(std::make_unique<Deposit>())
+{
+    if (!(settings.voxelSize > 0.0) || !std::isfinite(settings.voxelSize))
+        throw std::invalid_argument("voxelize: voxel size must be > 0");
+    if (!(settings.radius > 0.0) || settings.radius > 32.0 * settings.voxelSize)
+        throw std::invalid_argument("voxelize: radius must be > 0 and at most 32 voxels");
+    if (!(settings.density >= 0.0) || !std::isfinite(settings.density))
+        throw std::invalid_argument("voxelize: density must be finite and >= 0");
+    mDeposit->invVoxel = static_cast<float>(1.0 / settings.voxelSize);
+    mDeposit->maxBytes = settings.maxBytes;
+}
+
+GaussianSplatter::~GaussianSplatter() = default;
+
+void GaussianSplatter::add(const float* xyz, std::size_t count)
+{
+    Deposit& d = *mDeposit;
+    LocalDeposit& local = d.locals.local();
+    for (std::size_t i = 0; i < count; ++i) {
+        int c[3];
+        double w[3][2];
+        for (int a = 0; a < 3; ++a) {
+            const float q = xyz[3 * i + a] * d.invVoxel;
+            if (!(std::fabs(q) < kMaxIndex))  // also catches NaN
+                throw std::invalid_argument("voxelize: a particle position is not finite or lies "
+                                            "beyond 2^20 voxels from the origin");
+            c[a] = floorInt(q);
+            const double f = static_cast<double>(q) - c[a];
+            w[a][0] = 1.0 - f;
+            w[a][1] = f;
+        }
+        constexpr int kLast = kBlock - 1;  // a corner there has its +1 neighbour in the next block
+        const bool oneBlock = (c[0] & kLast) != kLast && (c[1] & kLast) != kLast && (c[2] & kLast) != kLast;
+        std::int64_t* same = oneBlock ? d.block(local, blockKey(c[0] >> kBlockLog2, c[1] >> kBlockLog2,
+                                                                c[2] >> kBlockLog2))
+                                      : nullptr;
+        for (int dx = 0; dx < 2; ++dx)
+            for (int dy = 0; dy < 2; ++dy)
+                for (int dz = 0; dz < 2; ++dz) {
+                    const int x = c[0] + dx, y = c[1] + dy, z = c[2] + dz;
+                    std::int64_t* b = same ? same
+                                           : d.block(local, blockKey(x >> kBlockLog2, y >> kBlockLog2,
+                                                                     z >> kBlockLog2));
+                    const double weight = w[0][dx] * w[1][dy] * w[2][dz];
+                    b[blockIndex(x & (kBlock - 1), y & (kBlock - 1), z & (kBlock - 1))] +=
+                        static_cast<std::int64_t>(weight * kWeightUnit + 0.5);
+                }
+    }
+    mCount.fetch_add(count);
+}
+
+openvdb::FloatGrid::Ptr GaussianSplatter::finish(const std::function<void()>& checkCancelled)
+{
+    Deposit& d = *mDeposit;
+    // 1. One block per key: the threads' blocks summed (integers: any order gives the same).
+    std::vector<std::pair<std::uint64_t, Block*>> parts;
+    for (LocalDeposit& local : d.locals)
+        for (auto& [key, block] : local.blocks) parts.emplace_back(key, &block);
+    std::sort(parts.begin(), parts.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<std::size_t> firsts;
+    for (std::size_t i = 0; i < parts.size(); ++i)
+        if (i == 0 || parts[i].first != parts[i - 1].first) firsts.push_back(i);
+    firsts.push_back(parts.size());
+    const std::size_t blockCount = firsts.size() - 1;
+    std::unordered_map<std::uint64_t, const std::int64_t*> blocks(blockCount);
+    for (std::size_t u = 0; u < blockCount; ++u)
+        blocks.emplace(parts[firsts[u]].first, parts[firsts[u]].second->get());
+    tbb::parallel_for(std::size_t(0), blockCount, [&](std::size_t u) {
+        std::int64_t* sum = parts[firsts[u]].second->get();
+        for (std::size_t j = firsts[u] + 1; j < firsts[u + 1]; ++j) {
+            const std::int64_t* other = parts[j].second->get();
+            for (int v = 0; v < kBlockVoxels; ++v) sum[v] += other[v];
+            parts[j].second->reset();
+        }
+    });
+    if (checkCancelled) checkCancelled();
+
+    // 2. The bricks the blur can reach: each block's voxels, widened by the taps.
+    const double rv = mSettings.radius / mSettings.voxelSize;
+    const std::vector<float> taps = blurTaps(gaussianKernelSigma(rv));
+    const int reach = static_cast<int>(taps.size() / 2);
+    std::vector<std::uint64_t> bricks;
+    for (std::size_t u = 0; u < blockCount; ++u) {
+        const openvdb::Coord b = blockCoord(parts[firsts[u]].first);
+        int lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = (b[a] * kBlock - reach) >> kBrickLog2;
+            hi[a] = (b[a] * kBlock + kBlock - 1 + reach) >> kBrickLog2;
+        }
+        for (int x = lo[0]; x <= hi[0]; ++x)
+            for (int y = lo[1]; y <= hi[1]; ++y)
+                for (int z = lo[2]; z <= hi[2]; ++z) bricks.push_back(blockKey(x, y, z));
+    }
+    std::sort(bricks.begin(), bricks.end());
+    bricks.erase(std::unique(bricks.begin(), bricks.end()), bricks.end());
+    constexpr std::uint64_t kBrickBytes = std::uint64_t(kBrick) * kBrick * kBrick * sizeof(float);
+    if (d.maxBytes != 0 && d.bytes.load() + bricks.size() * kBrickBytes > d.maxBytes)
+        throw VoxelizeTooLarge("voxelize: the blurred grid would pass the limit of " +
+                               std::to_string(d.maxBytes >> 20) +
+                               " MiB; use larger voxels (voxelSize)");
+
+    // 3. Each brick: its deposit and a margin of `reach` voxels, converted to density, then
+    // blurred along z, y and x; only the leaves holding something are kept.
+    const double rv3 = rv * rv * rv;
+    const double pi = 3.14159265358979323846;
+    // Each particle carries the smooth kernel's integral (in voxels) times its peak density.
+    const double mass = mSettings.density * 64.0 * pi * rv3 / 315.0;
+    const double scale = mass / kWeightUnit;
+    const int span = kBrick + 2 * reach;
+    const int width = static_cast<int>(taps.size());
+    constexpr int kLeaves = (kBrick / 8) * (kBrick / 8) * (kBrick / 8);
+    std::vector<std::unique_ptr<LeafT>> leaves(bricks.size() * kLeaves);
+    struct Scratch {
+        std::vector<float> in, alongZ, alongY, out;
+    };
+    tbb::enumerable_thread_specific<Scratch> scratch([&] {
+        return Scratch{std::vector<float>(std::size_t(span) * span * span),
+                       std::vector<float>(std::size_t(span) * span * kBrick),
+                       std::vector<float>(std::size_t(span) * kBrick * kBrick),
+                       std::vector<float>(std::size_t(kBrick) * kBrick * kBrick)};
+    });
+    const bool clamp = mSettings.clamp;
+    tbb::parallel_for(std::size_t(0), bricks.size(), [&](std::size_t k) {
+        Scratch& s = scratch.local();
+        const openvdb::Coord brick = blockCoord(bricks[k]);
+        const openvdb::Coord origin(brick.x() * kBrick, brick.y() * kBrick, brick.z() * kBrick);
+        const openvdb::Coord lo = origin - openvdb::Coord(reach);  // first voxel of `in`
+        // in[x][y][z]: the deposit over [lo, lo + span)^3, gathered block by block.
+        std::fill(s.in.begin(), s.in.end(), 0.0f);
+        const openvdb::Coord firstBlock(lo.x() >> kBlockLog2, lo.y() >> kBlockLog2, lo.z() >> kBlockLog2);
+        const openvdb::Coord lastBlock((lo.x() + span - 1) >> kBlockLog2,
+                                       (lo.y() + span - 1) >> kBlockLog2,
+                                       (lo.z() + span - 1) >> kBlockLog2);
+        bool any = false;
+        for (int bx = firstBlock.x(); bx <= lastBlock.x(); ++bx)
+            for (int by = firstBlock.y(); by <= lastBlock.y(); ++by)
+                for (int bz = firstBlock.z(); bz <= lastBlock.z(); ++bz) {
+                    const auto found = blocks.find(blockKey(bx, by, bz));
+                    if (found == blocks.end()) continue;
+                    any = true;
+                    const std::int64_t* b = found->second;
+                    const openvdb::Coord b0(bx * kBlock, by * kBlock, bz * kBlock);
+                    int from[3], to[3];
+                    for (int a = 0; a < 3; ++a) {
+                        from[a] = std::max(b0[a], lo[a]);
+                        to[a] = std::min(b0[a] + kBlock, lo[a] + span);
+                    }
+                    for (int x = from[0]; x < to[0]; ++x)
+                        for (int y = from[1]; y < to[1]; ++y) {
+                            const std::int64_t* src = b + blockIndex(x - b0.x(), y - b0.y(), 0);
+                            float* dst = &s.in[(std::size_t(x - lo.x()) * span + (y - lo.y())) * span];
+                            for (int z = from[2]; z < to[2]; ++z)
+                                dst[z - lo.z()] = static_cast<float>(
+                                    static_cast<double>(src[z - b0.z()]) * scale);
+                        }
+                }
+        if (!any) return;
+        // Along z: alongZ[x][y][z], z in [0, kBrick).
+        for (int xy = 0; xy < span * span; ++xy) {
+            const float* row = &s.in[std::size_t(xy) * span];
+            float* out = &s.alongZ[std::size_t(xy) * kBrick];
+            std::fill(out, out + kBrick, 0.0f);
+            for (int t = 0; t < width; ++t) {
+                const float w = taps[t];
+                for (int z = 0; z < kBrick; ++z) out[z] += w * row[z + t];
+            }
+        }
+        // Along y: alongY[x][y][z], y in [0, kBrick).
+        for (int x = 0; x < span; ++x)
+            for (int y = 0; y < kBrick; ++y) {
+                float* out = &s.alongY[(std::size_t(x) * kBrick + y) * kBrick];
+                std::fill(out, out + kBrick, 0.0f);
+                for (int t = 0; t < width; ++t) {
+                    const float w = taps[t];
+                    const float* row = &s.alongZ[(std::size_t(x) * span + y + t) * kBrick];
+                    for (int z = 0; z < kBrick; ++z) out[z] += w * row[z];
+                }
+            }
+        // Along x: out[x][y][z], x in [0, kBrick).
+        for (int x = 0; x < kBrick; ++x) {
+            float* out = &s.out[std::size_t(x) * kBrick * kBrick];
+            std::fill(out, out + kBrick * kBrick, 0.0f);
+            for (int t = 0; t < width; ++t) {
+                const float w = taps[t];
+                const float* plane = &s.alongY[std::size_t(x + t) * kBrick * kBrick];
+                for (int yz = 0; yz < kBrick * kBrick; ++yz) out[yz] += w * plane[yz];
+            }
+        }
+        std::unique_ptr<LeafT>* leaf = &leaves[k * kLeaves];
+        for (int x = 0; x < kBrick; x += 8)
+            for (int y = 0; y < kBrick; y += 8)
+                for (int z = 0; z < kBrick; z += 8)
+                    *leaf++ = leafFromDense(&s.out[(std::size_t(x) * kBrick + y) * kBrick + z],
+                                            kBrick * kBrick, kBrick, origin + openvdb::Coord(x, y, z),
+                                            clamp);
+    });
+    for (LocalDeposit& local : d.locals) local.blocks.clear();
+    if (checkCancelled) checkCancelled();
+
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    for (auto& leaf : leaves)
+        if (leaf) grid->tree().addLeaf(leaf.release());
+    grid->setName("density");
+    grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(mSettings.voxelSize));
+    return grid;
+}
+
+}  // namespace cg::algo
