@@ -64,7 +64,8 @@ protected:
 const char* kGraph = R"({"cloudgraph": 1, "nodes": {
     "cloud": {"type": "TestCloudSource", "params": {"radius": 30, "spacing": 2}},
     "vox": {"type": "Voxelizer", "inputs": {"particles": "cloud.particles"},
-            "params": {"voxelSize": 1.5, "radius": 4.0, "density": 0.4, "detailAmplitude": 0}}}})";
+            "params": {"voxelSize": 1.5, "radius": 4.0, "density": 0.4, "detailAmplitude": 0,
+                       "kernel": "smooth"}}}})";
 
 }  // namespace
 
