@@ -513,6 +513,8 @@ void runChunks(const FramePlan& plan, const SourceTable& table, int frame, const
                 chunk.positions = xyz;
                 chunk.levels = levels;
                 chunk.sources = sources;
+                chunk.copyOrigins = plan.copyOrigins.data();
+                chunk.copyCount = plan.copyOrigins.size() / 3;
                 consume(chunk);
             }
         }

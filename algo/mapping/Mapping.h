@@ -255,6 +255,11 @@ struct CloudChunk {
     const float* positions = nullptr;        ///< 3 count floats: x, y, z in metres (Eq. 10)
     const std::uint8_t* levels = nullptr;    ///< count levels L; nullptr unless requested
     const std::uint32_t* sources = nullptr;  ///< count source indices j; nullptr unless requested
+    /// The frame's copy origins (as CloudParticleArrays::copyOrigins: 3 floats for each of
+    /// copyCount sources), the same for every chunk; what a consumer of sources needs to
+    /// place a particle in its copy.
+    const float* copyOrigins = nullptr;
+    std::uint64_t copyCount = 0;
 };
 
 struct CloudChunkOptions {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "algo/CounterRandom.h"
@@ -15,8 +16,12 @@ namespace {
 /// Cell coordinates lie in [-2^20, 2^20): 21 bits each, packed into one key.
 constexpr int kKeyBits = 21;
 constexpr std::int64_t kKeyBias = std::int64_t(1) << (kKeyBits - 1);
-/// Fixed work unit, so that the sums never depend on the thread count.
+/// Particles per task when a whole array is added (the sums do not depend on it).
 constexpr std::size_t kChunk = std::size_t(1) << 16;
+/// Copy origins are summed in units of 2^-10 m: |origin| < 2^20 m keeps a term under 2^30
+/// and the sum of up to 2^32 particles inside an int64.
+constexpr double kOriginUnits = 1024.0;
+constexpr double kMaxOrigin = 1048576.0;
 
 int cellOf(double x, double cellSize) { return static_cast<int>(std::floor(x / cellSize)); }
 
@@ -41,57 +46,98 @@ std::uint64_t CopyOriginField::key(int i, int j, int k)
     return out;
 }
 
-CopyOriginField::CopyOriginField(const float* xyz, const std::uint32_t* sources, std::size_t count,
-                                 const float* copyOrigins, std::size_t copyCount, double cellSize)
-    : mCellSize(cellSize)
+namespace {
+
+/// A cell's sums while particles are added: origins in units of 2^-10 m.
+struct IntegerCell {
+    std::int64_t sum[3] = {0, 0, 0};
+    std::uint64_t count = 0;
+};
+
+}  // namespace
+
+struct CopyOriginField::Accumulator {
+    /// One thread's cells; the last cell used is remembered (neighbours in a copy mostly
+    /// share a cell: the hash is skipped).
+    struct LocalCells {
+        std::unordered_map<std::uint64_t, IntegerCell, KeyHash> cells;
+        std::uint64_t lastKey = ~std::uint64_t(0);
+        IntegerCell* last = nullptr;
+    };
+    tbb::enumerable_thread_specific<LocalCells> locals;
+};
+
+CopyOriginField::CopyOriginField(double cellSize)
+    : mCellSize(cellSize), mAccumulator(std::make_unique<Accumulator>())
 {
     if (!(cellSize > 0.0) || !std::isfinite(cellSize))
         throw std::invalid_argument("copy origin field: the cell size must be > 0");
-    struct Partial {
-        std::vector<std::uint64_t> keys;  ///< in order of first appearance
-        std::vector<Cell> cells;
-        bool badSource = false;
-    };
-    const std::size_t chunks = (count + kChunk - 1) / kChunk;
-    std::vector<Partial> partials(chunks);
-    tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
-        Partial& part = partials[c];
-        std::unordered_map<std::uint64_t, std::uint32_t, KeyHash> local;
-        std::uint64_t lastKey = ~std::uint64_t(0);
-        std::uint32_t last = 0;
-        const std::size_t end = std::min(count, (c + 1) * kChunk);
-        for (std::size_t i = c * kChunk; i < end; ++i) {
-            const std::uint32_t s = sources[i];
-            if (s >= copyCount) {
-                part.badSource = true;
-                return;
-            }
-            const float* p = xyz + 3 * i;
-            const std::uint64_t k = key(cellOf(p[0], cellSize), cellOf(p[1], cellSize), cellOf(p[2], cellSize));
-            if (k != lastKey) {  // neighbours in a copy mostly share a cell: skip the hash
-                const auto [it, fresh] = local.try_emplace(k, static_cast<std::uint32_t>(part.cells.size()));
-                if (fresh) {
-                    part.keys.push_back(k);
-                    part.cells.emplace_back();
-                }
-                lastKey = k;
-                last = it->second;
-            }
-            Cell& cell = part.cells[last];
-            for (int a = 0; a < 3; ++a) cell.sum[a] += copyOrigins[3 * static_cast<std::size_t>(s) + a];
-            cell.count += 1.0;
-        }
+}
+
+CopyOriginField::CopyOriginField(const float* xyz, const std::uint32_t* sources, std::size_t count,
+                                 const float* copyOrigins, std::size_t copyCount, double cellSize)
+    : CopyOriginField(cellSize)
+{
+    tbb::parallel_for(std::size_t(0), (count + kChunk - 1) / kChunk, [&](std::size_t c) {
+        const std::size_t first = c * kChunk;
+        add(xyz + 3 * first, sources + first, std::min(kChunk, count - first), copyOrigins,
+            copyCount);
     });
-    for (const Partial& part : partials) {
-        if (part.badSource)
-            throw std::invalid_argument("copy origin field: a particle's source has no copy origin");
-        for (std::size_t n = 0; n < part.keys.size(); ++n) {
-            const auto [it, fresh] = mIndex.try_emplace(part.keys[n], static_cast<std::uint32_t>(mCells.size()));
-            if (fresh) mCells.emplace_back();
-            Cell& cell = mCells[it->second];
-            for (int a = 0; a < 3; ++a) cell.sum[a] += part.cells[n].sum[a];
-            cell.count += part.cells[n].count;
+    finish();
+}
+
+CopyOriginField::~CopyOriginField() = default;
+CopyOriginField::CopyOriginField(CopyOriginField&&) noexcept = default;
+CopyOriginField& CopyOriginField::operator=(CopyOriginField&&) noexcept = default;
+
+void CopyOriginField::add(const float* xyz, const std::uint32_t* sources, std::size_t count,
+                          const float* copyOrigins, std::size_t copyCount)
+{
+    Accumulator::LocalCells& local = mAccumulator->locals.local();
+    for (std::size_t i = 0; i < count; ++i) {
+        const std::uint32_t s = sources[i];
+        if (s >= copyCount)
+            throw std::invalid_argument(
+                "copy origin field: a particle's source has no copy origin");
+        std::int64_t origin[3];
+        for (int a = 0; a < 3; ++a) {
+            const double o = copyOrigins[3 * static_cast<std::size_t>(s) + a];
+            if (!(std::fabs(o) < kMaxOrigin))
+                throw std::invalid_argument(
+                    "copy origin field: a copy origin is not finite or lies "
+                    "beyond 1,000 km");
+            origin[a] = std::llround(o * kOriginUnits);
         }
+        const float* p = xyz + 3 * i;
+        const std::uint64_t k =
+            key(cellOf(p[0], mCellSize), cellOf(p[1], mCellSize), cellOf(p[2], mCellSize));
+        if (k != local.lastKey) {
+            local.last = &local.cells[k];  // unordered_map nodes stay where they are
+            local.lastKey = k;
+        }
+        for (int a = 0; a < 3; ++a) local.last->sum[a] += origin[a];
+        ++local.last->count;
+    }
+}
+
+void CopyOriginField::finish()
+{
+    std::unordered_map<std::uint64_t, IntegerCell, KeyHash> total;
+    for (const Accumulator::LocalCells& local : mAccumulator->locals)
+        for (const auto& [k, cell] : local.cells) {
+            IntegerCell& t = total[k];
+            for (int a = 0; a < 3; ++a) t.sum[a] += cell.sum[a];
+            t.count += cell.count;
+        }
+    mAccumulator->locals.clear();
+    mIndex.reserve(total.size());
+    mCells.reserve(total.size());
+    for (const auto& [k, cell] : total) {
+        mIndex.emplace(k, static_cast<std::uint32_t>(mCells.size()));
+        Cell c;
+        for (int a = 0; a < 3; ++a) c.sum[a] = static_cast<double>(cell.sum[a]) / kOriginUnits;
+        c.count = static_cast<double>(cell.count);
+        mCells.push_back(c);
     }
 }
 

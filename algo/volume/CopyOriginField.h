@@ -12,11 +12,14 @@
 /// mean. With cells of 2R, a point within R of any particle always has that particle's cell
 /// among its eight corners, so every voxel a splat reaches has an origin.
 ///
-/// Deterministic for any thread count: fixed chunks of particles are summed in index order
-/// and merged in chunk order. No engine includes.
+/// Deterministic for any thread count and any order of the particles: the sums are integers
+/// (origins in units of 2^-10 m, so a copy origin must lie within 1,000 km), which add
+/// associatively. So particles can be added in chunks from several threads as they stream
+/// from the mapper. No engine includes.
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
@@ -29,6 +32,20 @@ public:
     /// (std::invalid_argument otherwise). cellSize > 0, in metres.
     CopyOriginField(const float* xyz, const std::uint32_t* sources, std::size_t count,
                     const float* copyOrigins, std::size_t copyCount, double cellSize);
+
+    /// An empty field to `add` particles to, then `finish` before reading it.
+    explicit CopyOriginField(double cellSize);
+    ~CopyOriginField();
+    CopyOriginField(CopyOriginField&&) noexcept;
+    CopyOriginField& operator=(CopyOriginField&&) noexcept;
+
+    /// Bins particles as the first constructor does. Safe to call from several threads at
+    /// once, before finish. Throws std::invalid_argument for a source without a copy origin,
+    /// an origin that is not finite or lies beyond 1,000 km, a particle beyond 2^20 cells.
+    void add(const float* xyz, const std::uint32_t* sources, std::size_t count,
+             const float* copyOrigins, std::size_t copyCount);
+    /// Merges what the threads added; the field can be read from then on.
+    void finish();
 
     /// A cell: the sum of its particles' copy origins and their count.
     struct Cell {
@@ -62,7 +79,10 @@ private:
     };
     static std::uint64_t key(int i, int j, int k);
 
+    struct Accumulator;  ///< the threads' integer sums while particles are added
+
     double mCellSize;
+    std::unique_ptr<Accumulator> mAccumulator;
     std::unordered_map<std::uint64_t, std::uint32_t, KeyHash> mIndex;  ///< cell -> mCells index
     std::vector<Cell> mCells;
 };

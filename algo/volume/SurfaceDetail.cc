@@ -26,8 +26,9 @@ float erode(float v, float e)
 
 }  // namespace
 
-void erodeSurface(openvdb::FloatGrid& grid, const DetailParticles& particles, double radius,
-                  const SurfaceDetailSettings& s, const std::function<void()>& checkCancelled)
+namespace {
+
+void checkSettings(const SurfaceDetailSettings& s)
 {
     if (!(s.amplitude >= 0.0 && s.amplitude <= 1.0))
         throw std::invalid_argument("surface detail: amplitude must lie in [0, 1]");
@@ -35,17 +36,35 @@ void erodeSurface(openvdb::FloatGrid& grid, const DetailParticles& particles, do
         throw std::invalid_argument("surface detail: frequency must be > 0");
     if (s.octaves < 1 || s.octaves > 8)
         throw std::invalid_argument("surface detail: octaves must lie in 1..8");
+}
+
+}  // namespace
+
+double copyOriginCellSize(double radius, double voxelSize)
+{
+    return std::max(2.0 * radius, voxelSize);
+}
+
+void erodeSurface(openvdb::FloatGrid& grid, const DetailParticles& particles, double radius,
+                  const SurfaceDetailSettings& s, const std::function<void()>& checkCancelled)
+{
+    checkSettings(s);
     if (!(radius > 0.0)) throw std::invalid_argument("surface detail: radius must be > 0");
     if (s.amplitude == 0.0 || grid.empty()) return;
-
-    const double voxel = grid.voxelSize()[0];
-    // Cells of at least 2R: every voxel a splat reaches has its particle's cell as a corner.
     std::optional<CopyOriginField> field;
     if (particles.copyOrigins != nullptr)
         field.emplace(particles.xyz, particles.sources, particles.count, particles.copyOrigins,
-                      particles.copyCount, std::max(2.0 * radius, voxel));
+                      particles.copyCount, copyOriginCellSize(radius, grid.voxelSize()[0]));
     if (checkCancelled) checkCancelled();
+    erodeSurface(grid, field ? &*field : nullptr, s, checkCancelled);
+}
 
+void erodeSurface(openvdb::FloatGrid& grid, const CopyOriginField* field,
+                  const SurfaceDetailSettings& s, const std::function<void()>& checkCancelled)
+{
+    checkSettings(s);
+    if (s.amplitude == 0.0 || grid.empty()) return;
+    const double voxel = grid.voxelSize()[0];
     const auto amplitude = static_cast<float>(s.amplitude);
     openvdb::tree::LeafManager<openvdb::FloatTree> leaves(grid.tree());
     leaves.foreach([&](LeafT& leaf, std::size_t) {

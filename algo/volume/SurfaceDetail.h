@@ -20,6 +20,8 @@
 
 #include <openvdb/openvdb.h>
 
+#include "algo/volume/CopyOriginField.h"
+
 namespace cg::algo {
 
 struct SurfaceDetailSettings {
@@ -47,6 +49,17 @@ struct DetailParticles {
 /// a particle whose source has no copy origin. `checkCancelled` (optional) is called between
 /// phases and may throw.
 void erodeSurface(openvdb::FloatGrid& grid, const DetailParticles& particles, double radius,
+                  const SurfaceDetailSettings& settings,
+                  const std::function<void()>& checkCancelled = {});
+
+/// The cell edge of the copy origin field for splats of radius `radius` on voxels of
+/// `voxelSize` (metres): at least 2R, so every voxel a splat reaches has its particle's cell
+/// as a corner.
+double copyOriginCellSize(double radius, double voxelSize);
+
+/// The same erosion with the copy origin field already built (cells of copyOriginCellSize),
+/// as a streaming voxelizer builds it while splatting; null: world coordinates.
+void erodeSurface(openvdb::FloatGrid& grid, const CopyOriginField* field,
                   const SurfaceDetailSettings& settings,
                   const std::function<void()>& checkCancelled = {});
 

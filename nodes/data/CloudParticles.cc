@@ -4,6 +4,8 @@
 #include <string>
 #include <utility>
 
+#include <tbb/parallel_for.h>
+
 #include "core/Registry.h"
 #include "nodes/data/ValueChecks.h"
 
@@ -48,46 +50,110 @@ DataPtr readCloudParticles(ByteReader& in)
 
 }  // namespace
 
-CloudParticlesData::CloudParticlesData(algo::UninitArray<float> positions_, algo::UninitArray<std::uint8_t> levels_,
-                                       algo::UninitArray<std::uint32_t> sources_,
-                                       algo::UninitArray<float> copyOrigins_)
-    : positions(std::move(positions_)), levels(std::move(levels_)), sources(std::move(sources_)),
-      copyOrigins(std::move(copyOrigins_))
+namespace {
+
+/// Throws std::invalid_argument unless the arrays agree in length and every particle's source
+/// has a copy origin (when there are copy origins).
+void checkArrays(const algo::CloudParticleArrays& a)
 {
-    if (positions.size() != 3 * levels.size() || sources.size() != levels.size())
+    if (a.positions.size() != 3 * a.levels.size() || a.sources.size() != a.levels.size())
         throw std::invalid_argument("CloudParticles: arrays differ in length");
-    if (copyOrigins.size() % 3 != 0)
+    if (a.copyOrigins.size() % 3 != 0)
         throw std::invalid_argument("CloudParticles: copy origins are not xyz triples");
-    if (!copyOrigins.empty()) {
-        const std::size_t copies = copyOrigins.size() / 3;
-        for (std::size_t i = 0; i < sources.size(); ++i)
-            if (sources[i] >= copies)
-                throw std::invalid_argument("CloudParticles: particle " + std::to_string(i) + " names source " +
-                                            std::to_string(sources[i]) + ", which has no copy origin");
+    if (!a.copyOrigins.empty()) {
+        const std::size_t copies = a.copyOrigins.size() / 3;
+        for (std::size_t i = 0; i < a.sources.size(); ++i)
+            if (a.sources[i] >= copies)
+                throw std::invalid_argument("CloudParticles: particle " + std::to_string(i) +
+                                            " names source " + std::to_string(a.sources[i]) +
+                                            ", which has no copy origin");
     }
 }
 
-CloudParticlesData::CloudParticlesData(const std::vector<float>& positions_,
-                                       const std::vector<std::uint8_t>& levels_,
-                                       const std::vector<std::uint32_t>& sources_,
-                                       const std::vector<float>& copyOrigins_)
-    : CloudParticlesData(algo::UninitArray<float>(positions_), algo::UninitArray<std::uint8_t>(levels_),
-                         algo::UninitArray<std::uint32_t>(sources_), algo::UninitArray<float>(copyOrigins_))
+/// Particles per chunk when the arrays are handed out in chunks.
+constexpr std::size_t kArrayChunk = std::size_t(1) << 16;
+
+}  // namespace
+
+CloudParticlesData::CloudParticlesData(algo::UninitArray<float> positions,
+                                       algo::UninitArray<std::uint8_t> levels,
+                                       algo::UninitArray<std::uint32_t> sources,
+                                       algo::UninitArray<float> copyOrigins)
+    : mArrays{std::move(positions), std::move(levels), std::move(sources), std::move(copyOrigins)}
 {
+    checkArrays(mArrays);
+    std::call_once(mMade, [] {});
+    mHaveArrays = true;
+}
+
+CloudParticlesData::CloudParticlesData(const std::vector<float>& positions,
+                                       const std::vector<std::uint8_t>& levels,
+                                       const std::vector<std::uint32_t>& sources,
+                                       const std::vector<float>& copyOrigins)
+    : CloudParticlesData(
+          algo::UninitArray<float>(positions), algo::UninitArray<std::uint8_t>(levels),
+          algo::UninitArray<std::uint32_t>(sources), algo::UninitArray<float>(copyOrigins))
+{
+}
+
+CloudParticlesData::CloudParticlesData(std::shared_ptr<const CloudParticleStream> stream)
+    : mStream(std::move(stream))
+{
+    if (!mStream) throw std::invalid_argument("CloudParticles: no stream");
+}
+
+const algo::CloudParticleArrays& CloudParticlesData::arrays(
+    const std::function<void()>& checkCancelled) const
+{
+    std::call_once(mMade, [&] {
+        algo::CloudParticleArrays made = mStream->materialise(checkCancelled);
+        checkArrays(made);
+        mArrays = std::move(made);
+        mHaveArrays = true;
+    });
+    return mArrays;
+}
+
+void CloudParticlesData::forEachChunk(const std::function<void(const algo::CloudChunk&)>& consume,
+                                      bool sources,
+                                      const std::function<void()>& checkCancelled) const
+{
+    if (!mHaveArrays) {
+        mStream->forEachChunk(consume, sources, checkCancelled);
+        return;
+    }
+    const std::size_t n = size();
+    tbb::parallel_for(std::size_t(0), (n + kArrayChunk - 1) / kArrayChunk, [&](std::size_t c) {
+        if (checkCancelled) checkCancelled();
+        algo::CloudChunk chunk;
+        chunk.first = c * kArrayChunk;
+        chunk.count = std::min(kArrayChunk, n - c * kArrayChunk);
+        chunk.positions = mArrays.positions.data() + 3 * chunk.first;
+        chunk.levels = mArrays.levels.data() + chunk.first;
+        if (sources) {
+            chunk.sources = mArrays.sources.data() + chunk.first;
+            chunk.copyOrigins = mArrays.copyOrigins.data();
+            chunk.copyCount = mArrays.copyOrigins.size() / 3;
+        }
+        consume(chunk);
+    });
 }
 
 std::size_t CloudParticlesData::byteSize() const
 {
-    return sizeof(*this) + positions.size() * sizeof(float) + levels.size() + sources.size() * 4 +
-           copyOrigins.size() * sizeof(float);
+    // A stream not yet materialised holds only its inputs, which their own nodes account for.
+    if (!mHaveArrays) return sizeof(*this);
+    return sizeof(*this) + mArrays.positions.size() * sizeof(float) + mArrays.levels.size() +
+           mArrays.sources.size() * 4 + mArrays.copyOrigins.size() * sizeof(float);
 }
 
 bool CloudParticlesData::serialize(ByteWriter& out) const
 {
-    writeArray(out, positions);
-    writeArray(out, levels);
-    writeArray(out, sources);
-    writeArray(out, copyOrigins);
+    const algo::CloudParticleArrays& a = arrays();
+    writeArray(out, a.positions);
+    writeArray(out, a.levels);
+    writeArray(out, a.sources);
+    writeArray(out, a.copyOrigins);
     return true;
 }
 

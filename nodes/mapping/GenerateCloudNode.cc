@@ -1,6 +1,13 @@
 // GenerateCloud: the cloud particles of one frame, made on demand from the source table
 // (Eq. 10-12).
 
+#include <memory>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
+
 #include "algo/mapping/Evaporation.h"
 #include "core/Error.h"
 #include "core/Node.h"
@@ -14,6 +21,82 @@
 namespace cg {
 
 namespace {
+
+/// A frame's cloud particles made on demand from the source table: chunk by chunk for
+/// consumers that stream, whole for those that read arrays.
+class GeneratedCloud final : public CloudParticleStream {
+public:
+    GeneratedCloud(std::shared_ptr<const CloudSourcesData> sources,
+                   std::shared_ptr<const CondensationData> condensation,
+                   std::shared_ptr<const PrimitiveSetData> primitive, int frame,
+                   bool evaporateBelowBase)
+        : mSources(std::move(sources)),
+          mCondensation(std::move(condensation)),
+          mPrimitive(std::move(primitive)),
+          mPrim(*mPrimitive),
+          mFrame(frame)
+    {
+        if (evaporateBelowBase) mBase = algo::condensationLevel(condensationView(*mCondensation));
+    }
+
+    void forEachChunk(const std::function<void(const algo::CloudChunk&)>& consume, bool sources,
+                      const std::function<void()>& checkCancelled) const override
+    {
+        algo::CloudChunkOptions o;
+        o.sources = sources;
+        o.checkCancelled = checkCancelled;
+        if (!mBase) {
+            algo::forEachCloudChunk(mSources->table, mFrame, condensationView(*mCondensation),
+                                    mPrim.view, mSources->settings, consume, o);
+            return;
+        }
+        // Evaporation: each chunk handed on without its particles under the base.
+        struct Kept {
+            std::vector<float> xyz;
+            std::vector<std::uint32_t> sources;
+        };
+        tbb::enumerable_thread_specific<Kept> perThread;
+        const float base = *mBase;
+        algo::forEachCloudChunk(
+            mSources->table, mFrame, condensationView(*mCondensation), mPrim.view,
+            mSources->settings,
+            [&](const algo::CloudChunk& chunk) {
+                Kept& k = perThread.local();
+                k.xyz.clear();
+                k.sources.clear();
+                for (std::uint64_t i = 0; i < chunk.count; ++i) {
+                    if (!(chunk.positions[3 * i + 2] >= base)) continue;
+                    k.xyz.insert(k.xyz.end(), chunk.positions + 3 * i, chunk.positions + 3 * i + 3);
+                    if (chunk.sources) k.sources.push_back(chunk.sources[i]);
+                }
+                algo::CloudChunk kept = chunk;
+                kept.count = k.xyz.size() / 3;
+                kept.positions = k.xyz.data();
+                kept.levels = nullptr;
+                kept.sources = chunk.sources ? k.sources.data() : nullptr;
+                consume(kept);
+            },
+            o);
+    }
+
+    algo::CloudParticleArrays materialise(
+        const std::function<void()>& checkCancelled) const override
+    {
+        auto arrays =
+            algo::generateCloudParticles(mSources->table, mFrame, condensationView(*mCondensation),
+                                         mPrim.view, mSources->settings, checkCancelled);
+        if (mBase) algo::dropCloudParticlesBelow(arrays, *mBase);
+        return arrays;
+    }
+
+private:
+    std::shared_ptr<const CloudSourcesData> mSources;
+    std::shared_ptr<const CondensationData> mCondensation;
+    std::shared_ptr<const PrimitiveSetData> mPrimitive;
+    PrimitiveViewHolder mPrim;
+    int mFrame;
+    std::optional<float> mBase;  ///< evaporation: particles under it are dropped
+};
 
 class GenerateCloudNode final : public Node {
 public:
@@ -34,15 +117,10 @@ public:
                                                " cloud particles, over parameter maxCloudParticles = " +
                                                std::to_string(limit));
         }
-        const algo::CondensationView condensed = condensationView(*condensation);
-        auto arrays = algo::generateCloudParticles(sources->table, ctx.frame(), condensed, prim.view,
-                                                   sources->settings, [&ctx] { ctx.checkCancelled(); });
-        if (ctx.params().getBool("evaporateBelowBase"))
-            if (const auto base = algo::condensationLevel(condensed)) algo::dropCloudParticlesBelow(arrays, *base);
-        ctx.setOutput("particles", std::make_shared<CloudParticlesData>(std::move(arrays.positions),
-                                                                        std::move(arrays.levels),
-                                                                        std::move(arrays.sources),
-                                                                        std::move(arrays.copyOrigins)));
+        ctx.setOutput("particles",
+                      std::make_shared<CloudParticlesData>(std::make_shared<GeneratedCloud>(
+                          sources, condensation, primitive, ctx.frame(),
+                          ctx.params().getBool("evaporateBelowBase"))));
     }
 };
 
@@ -59,15 +137,18 @@ void registerGenerateCloudNode(Registry& registry)
     // Kept in memory they evict everything else and cost fresh pages every frame.
     d.cacheOnDisk = false;
     d.cacheInMemory = false;
-    d.doc = "The cloud particles of this frame, generated from PrimitiveMapper's source table: "
-            "particle (L, j, i) is at P_s[L, j](t) + scale R[L, j] P_f[i](s), s = A[L, j] "
-            "(t - t0[L, j]) dt / ds (Eq. 10-11), with P_s the condensation particle (L = 1) or "
-            "the parent cloud particle (L >= 2, Eq. 12). P_f at a fractional s is interpolated "
-            "between primitive frames; past the last frame the copy keeps its last shape and drifts "
-            "on or holds (PrimitiveMapper's pastLastFrame). Particles are "
-            "in source-table order, with their level and source index; the result does not "
-            "depend on the thread count. Nothing is kept between frames. With evaporateBelowBase "
-            "(ours), particles under the condensation level are dropped.";
+    d.doc =
+        "The cloud particles of this frame, generated from PrimitiveMapper's source table: "
+        "particle (L, j, i) is at P_s[L, j](t) + scale R[L, j] P_f[i](s), s = A[L, j] "
+        "(t - t0[L, j]) dt / ds (Eq. 10-11), with P_s the condensation particle (L = 1) or "
+        "the parent cloud particle (L >= 2, Eq. 12). P_f at a fractional s is interpolated "
+        "between primitive frames; past the last frame the copy keeps its last shape and drifts "
+        "on or holds (PrimitiveMapper's pastLastFrame). Particles are "
+        "in source-table order, with their level and source index; the result does not "
+        "depend on the thread count. Nothing is kept between frames, and nothing frame-sized is "
+        "made for a consumer that takes the particles in chunks (the Voxelizer with the "
+        "gaussian kernel): they are generated as it reads them. With evaporateBelowBase "
+        "(ours), particles under the condensation level are dropped.";
     d.inputs = {port("sources", "CloudSources", "the source table at this frame"),
                 port("condensation", "Condensation", "the condensation particles at this frame"),
                 port("primitive", "PrimitiveSet", "the 3D cloud primitive set")};

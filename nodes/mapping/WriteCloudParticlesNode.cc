@@ -22,10 +22,10 @@ public:
         const auto cloud = ctx.input<CloudParticlesData>("particles");
         const auto path = ctx.outputPath("file");
         util::AtomicOutput out(path);
-        formats::writeCloudPly(out.tempPath(), cloud->size(), cloud->positions.data(),
-                            cloud->levels.data(), cloud->sources.data(),
-                            "cloud particles, frame " + std::to_string(ctx.frame()),
-                            [&ctx] { ctx.checkCancelled(); });
+        formats::writeCloudPly(out.tempPath(), cloud->size(), cloud->positions().data(),
+                               cloud->levels().data(), cloud->sources().data(),
+                               "cloud particles, frame " + std::to_string(ctx.frame()),
+                               [&ctx] { ctx.checkCancelled(); });
         out.commit();
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));
     }

@@ -1,9 +1,12 @@
 // Voxelizer: cloud particles to an OpenVDB fog volume (Sec. 6.3).
 
+#include <atomic>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
+#include "algo/volume/GaussianSplat.h"
 #include "algo/volume/SurfaceDetail.h"
 #include "algo/volume/Voxelize.h"
 #include "core/Error.h"
@@ -18,6 +21,38 @@
 namespace cg {
 
 namespace {
+
+/// The gaussian splat and the copy origin field fed chunk by chunk as the particles stream
+/// (nothing frame-sized when they come from GenerateCloud), then the surface eroded.
+/// `count` gets the number of particles.
+openvdb::FloatGrid::Ptr splatStreaming(const CloudParticlesData& particles,
+                                       const algo::VoxelizeSettings& s,
+                                       const algo::SurfaceDetailSettings& detail, CookContext& ctx,
+                                       std::uint64_t& count)
+{
+    algo::GaussianSplatter splatter(s);
+    const bool eroding = detail.amplitude > 0.0;
+    std::optional<algo::CopyOriginField> field;
+    std::atomic<bool> withOrigins{false};
+    if (eroding) field.emplace(algo::copyOriginCellSize(s.radius, s.voxelSize));
+    particles.forEachChunk(
+        [&](const algo::CloudChunk& chunk) {
+            splatter.add(chunk.positions, chunk.count);
+            if (field && chunk.copyCount > 0) {
+                withOrigins = true;
+                field->add(chunk.positions, chunk.sources, chunk.count, chunk.copyOrigins,
+                           chunk.copyCount);
+            }
+        },
+        eroding, [&] { ctx.checkCancelled(); });
+    count = splatter.count();
+    auto grid = splatter.finish([&] { ctx.checkCancelled(); });
+    if (field) field->finish();
+    // Particles without copies (vapour, primitive frames): detail in world coordinates.
+    algo::erodeSurface(*grid, withOrigins ? &*field : nullptr, detail,
+                       [&] { ctx.checkCancelled(); });
+    return grid;
+}
 
 class VoxelizerNode final : public Node {
 public:
@@ -37,16 +72,23 @@ public:
         detail.amplitude = p.getFloat("detailAmplitude");
         detail.frequency = p.getFloat("detailFrequency") / s.radius;
         detail.octaves = static_cast<int>(p.getInt("detailOctaves"));
-        const algo::DetailParticles detailParticles{
-            particles->positions.data(), particles->sources.data(), particles->size(),
-            particles->copyOrigins.empty() ? nullptr : particles->copyOrigins.data(),
-            particles->copyOrigins.size() / 3};
-
         openvdb::FloatGrid::Ptr grid;
+        std::uint64_t count = 0;
         try {
-            grid = algo::voxelizeParticles(particles->positions.data(), particles->size(), s,
-                                           [&] { ctx.checkCancelled(); });
-            algo::erodeSurface(*grid, detailParticles, s.radius, detail, [&] { ctx.checkCancelled(); });
+            if (s.kernel == algo::VoxelKernel::Gaussian) {
+                grid = splatStreaming(*particles, s, detail, ctx, count);
+            } else {
+                const auto& a = particles->arrays([&] { ctx.checkCancelled(); });
+                count = particles->size();
+                grid = algo::voxelizeParticles(a.positions.data(), count, s,
+                                               [&] { ctx.checkCancelled(); });
+                const algo::DetailParticles detailParticles{
+                    a.positions.data(), a.sources.data(), count,
+                    a.copyOrigins.empty() ? nullptr : a.copyOrigins.data(),
+                    a.copyOrigins.size() / 3};
+                algo::erodeSurface(*grid, detailParticles, s.radius, detail,
+                                   [&] { ctx.checkCancelled(); });
+            }
         } catch (const algo::VoxelizeTooLarge& e) {
             throw InputError(ctx.nodeId() + "/params/voxelSize", e.what());
         } catch (const std::invalid_argument& e) {
@@ -63,7 +105,7 @@ public:
         grid->insertMeta("particle_radius_m", openvdb::DoubleMetadata(s.radius));
         grid->insertMeta("kernel", openvdb::StringMetadata(p.getString("kernel")));
         grid->insertMeta("particle_count",
-                         openvdb::Int64Metadata(static_cast<openvdb::Int64>(particles->size())));
+                         openvdb::Int64Metadata(static_cast<openvdb::Int64>(count)));
         ctx.setOutput("volume", std::make_shared<FogVolumeData>(grid));
     }
 };

@@ -29,8 +29,8 @@ public:
         const auto particles = ctx.input<CloudParticlesData>("particles");
         if (!writesSequenceFrame(ctx, /*empty=*/particles->size() == 0)) return;
         const ParamSet& p = ctx.params();
-        if (particles->positions.size() != 3 * particles->size() ||
-            particles->sources.size() != particles->size())
+        if (particles->positions().size() != 3 * particles->size() ||
+            particles->sources().size() != particles->size())
             throw InputError(ctx.nodeId(), "input 'particles' has arrays of different lengths");
 
         formats::PointsGridSettings s;
@@ -40,9 +40,9 @@ public:
                                                           : formats::PointPrecision::Fixed16;
         openvdb::points::PointDataGrid::Ptr grid;
         try {
-            grid = formats::makeParticlePointsGrid(particles->positions.data(),
-                                                particles->levels.data(),
-                                                particles->sources.data(), particles->size(), s);
+            grid = formats::makeParticlePointsGrid(
+                particles->positions().data(), particles->levels().data(),
+                particles->sources().data(), particles->size(), s);
         } catch (const std::invalid_argument& e) {
             throw InputError(ctx.nodeId(), e.what());
         }

@@ -54,10 +54,11 @@ void cloudParticles(Stats& s, const CloudParticlesData& d)
 {
     count(s, "count", static_cast<std::int64_t>(d.size()));
     std::int64_t perLevel[kMaxCloudLevel + 1] = {};
-    for (std::size_t i = 0; i < d.size(); ++i) ++perLevel[std::min<int>(d.levels[i], kMaxCloudLevel)];
+    for (std::size_t i = 0; i < d.size(); ++i)
+        ++perLevel[std::min<int>(d.levels()[i], kMaxCloudLevel)];
     for (int l = 0; l <= kMaxCloudLevel; ++l)
         if (perLevel[l] > 0) count(s, "level_" + std::to_string(l) + "_count", perLevel[l]);
-    pointStats(s, d.positions.data(), d.size());
+    pointStats(s, d.positions().data(), d.size());
 }
 
 void fogVolume(Stats& s, const FogVolumeData& d) { s = gridStats(*d.grid); }

@@ -41,7 +41,8 @@ std::vector<CloudSize> cloudByTenth(const std::string& name)
         const auto cloud = std::dynamic_pointer_cast<const CloudParticlesData>(r[g.indexOf("cloud")]->at("particles"));
         CloudSize s;
         s.count = cloud->size();
-        for (std::size_t i = 0; i < s.count; ++i) s.top = std::max(s.top, cloud->positions[3 * i + 2]);
+        for (std::size_t i = 0; i < s.count; ++i)
+            s.top = std::max(s.top, cloud->positions()[3 * i + 2]);
         sizes.push_back(s);
     });
     return sizes;

@@ -138,12 +138,12 @@ TEST_F(AtmospherePipeline, VapourPointsSplitTheParticlesIntoVapourAndCondensatio
             const auto& part = c->condensed(i) ? condensed : vapour;
             std::size_t& k = c->condensed(i) ? ic : iv;
             for (int a = 0; a < 3; ++a) {
-                ASSERT_EQ(all->positions[3 * i + static_cast<std::size_t>(a)], xyz[a]);
-                ASSERT_EQ(part->positions[3 * k + static_cast<std::size_t>(a)], xyz[a]);
+                ASSERT_EQ(all->positions()[3 * i + static_cast<std::size_t>(a)], xyz[a]);
+                ASSERT_EQ(part->positions()[3 * k + static_cast<std::size_t>(a)], xyz[a]);
             }
-            EXPECT_EQ(all->sources[i], v.statics->id[i]);
-            EXPECT_EQ(part->sources[k], v.statics->id[i]);
-            EXPECT_EQ(all->levels[i], 0);
+            EXPECT_EQ(all->sources()[i], v.statics->id[i]);
+            EXPECT_EQ(part->sources()[k], v.statics->id[i]);
+            EXPECT_EQ(all->levels()[i], 0);
             ++k;
         }
     }

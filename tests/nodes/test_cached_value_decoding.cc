@@ -381,10 +381,10 @@ TEST(CachedValueDecoding, CloudParticlesRoundTripAndRefuseBadLevelsAndLengths)
     const CloudParticlesData c(positions, std::vector<std::uint8_t>{0, kMaxCloudLevel},
                                std::vector<std::uint32_t>{7, 9}, origins);
     const auto back = roundTrip(c);
-    EXPECT_EQ(std::vector<std::uint8_t>(back->levels),
+    EXPECT_EQ(std::vector<std::uint8_t>(back->levels()),
               (std::vector<std::uint8_t>{0, kMaxCloudLevel}));
-    EXPECT_EQ(std::vector<std::uint32_t>(back->sources), (std::vector<std::uint32_t>{7, 9}));
-    EXPECT_EQ(std::vector<float>(back->copyOrigins), origins);
+    EXPECT_EQ(std::vector<std::uint32_t>(back->sources()), (std::vector<std::uint32_t>{7, 9}));
+    EXPECT_EQ(std::vector<float>(back->copyOrigins()), origins);
 
     const auto payload = [&](const std::vector<std::uint8_t>& levels, const std::vector<std::uint32_t>& sources,
                              const std::vector<float>& copyOrigins) {

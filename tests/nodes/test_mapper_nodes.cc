@@ -4,15 +4,19 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include <tbb/global_control.h>
 
+#include "algo/volume/SurfaceDetail.h"
+#include "algo/volume/Voxelize.h"
 #include "core/CoreData.h"
 #include "core/Evaluator.h"
 #include "core/Graph.h"
 #include "nodes/Builtin.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/data/CloudSources.h"
+#include "nodes/data/FogVolume.h"
 #include "nodes/data/PrimitiveSet.h"
 #include "nodes/data/VapourParticles.h"
 #include "support/FixtureNodes.h"
@@ -65,8 +69,8 @@ TEST_F(MapperNodes, CloudGrowsLevelByLevelAndCountsAgree)
         ASSERT_EQ(static_cast<std::int64_t>(cloud->size()), count->value);
         EXPECT_GE(count->value, lastCount);  // sources only accumulate, N_f never decreases
         lastCount = count->value;
-        for (float v : cloud->positions) ASSERT_TRUE(std::isfinite(v));
-        for (auto l : cloud->levels) maxLevelSeen = std::max<int>(maxLevelSeen, l);
+        for (float v : cloud->positions()) ASSERT_TRUE(std::isfinite(v));
+        for (auto l : cloud->levels()) maxLevelSeen = std::max<int>(maxLevelSeen, l);
     });
     EXPECT_GT(lastCount, 0);
     EXPECT_EQ(maxLevelSeen, 3);
@@ -89,8 +93,9 @@ TEST_F(MapperNodes, CloudIsBitIdenticalForOneAndTwoThreads)
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
         const Graph g = parseGraph(kGraph, "mapper.json", registry);
         Evaluator ev(registry, {});
-        const auto cloud = std::dynamic_pointer_cast<const CloudParticlesData>(ev.pull(g, "cloud", 125)->at("particles"));
-        results.push_back(cloud->positions);
+        const auto cloud = std::dynamic_pointer_cast<const CloudParticlesData>(
+            ev.pull(g, "cloud", 125)->at("particles"));
+        results.push_back(cloud->positions());
     }
     EXPECT_FALSE(results[0].empty());
     EXPECT_EQ(results[0], results[1]);
@@ -112,15 +117,18 @@ TEST_F(MapperNodes, EvaporateBelowBaseDropsExactlyTheParticlesUnderTheLowestCond
     ASSERT_TRUE(std::isfinite(base));
     std::vector<float> expected;  // the full frame's particles at or above the base, in order
     for (std::size_t i = 0; i < full->size(); ++i)
-        if (full->positions[3 * i + 2] >= base)
-            expected.insert(expected.end(), &full->positions[3 * i], &full->positions[3 * i] + 3);
-    ASSERT_LT(expected.size(), 3 * full->size());  // the copies hang below the base: the test can fail
+        if (full->positions()[3 * i + 2] >= base)
+            expected.insert(expected.end(), &full->positions()[3 * i],
+                            &full->positions()[3 * i] + 3);
+    ASSERT_LT(expected.size(),
+              3 * full->size());  // the copies hang below the base: the test can fail
 
     g.setParam("cloud", "evaporateBelowBase", true);
-    const auto kept = std::dynamic_pointer_cast<const CloudParticlesData>(ev.pull(g, "cloud", frame)->at("particles"));
-    EXPECT_EQ(std::vector<float>(kept->positions), expected);
-    ASSERT_EQ(kept->levels.size(), expected.size() / 3);
-    for (std::size_t i = 0; i < kept->size(); ++i) EXPECT_GE(kept->positions[3 * i + 2], base);
+    const auto kept = std::dynamic_pointer_cast<const CloudParticlesData>(
+        ev.pull(g, "cloud", frame)->at("particles"));
+    EXPECT_EQ(std::vector<float>(kept->positions()), expected);
+    ASSERT_EQ(kept->levels().size(), expected.size() / 3);
+    for (std::size_t i = 0; i < kept->size(); ++i) EXPECT_GE(kept->positions()[3 * i + 2], base);
 }
 
 TEST_F(MapperNodes, PrimitiveSubsetKeepsEveryKthParticleOnItsTrajectory)
@@ -167,6 +175,72 @@ TEST_F(MapperNodes, LogTextRecordsTheLinesItPrints)
         }
     }
     EXPECT_EQ(printed, 4);  // frames 0, 40, 80, 120
+}
+
+namespace {
+
+/// FNV-1a over every active voxel's coordinate and value bits, in the tree's order.
+std::uint64_t gridBits(const openvdb::FloatGrid& grid)
+{
+    std::uint64_t h = 14695981039346656037ull;
+    const auto mix = [&h](std::uint32_t word) {
+        for (int b = 0; b < 4; ++b) h = (h ^ ((word >> (8 * b)) & 0xffu)) * 1099511628211ull;
+    };
+    for (auto it = grid.tree().cbeginValueOn(); it; ++it) {
+        for (int a = 0; a < 3; ++a) mix(static_cast<std::uint32_t>(it.getCoord()[a]));
+        std::uint32_t bits;
+        std::memcpy(&bits, &*it, sizeof(bits));
+        mix(bits);
+    }
+    return h;
+}
+
+}  // namespace
+
+// The Voxelizer takes GenerateCloud's particles chunk by chunk as they are generated, with no
+// frame array; its grid must be the one made from the frame's arrays, bit for bit, with and
+// without evaporation (which drops particles from the streamed chunks).
+TEST_F(MapperNodes, StreamedVoxelizationEqualsTheFrameArrayPathBitForBit)
+{
+    std::string text = kGraph;
+    const std::string write = R"("write": {)";
+    text.replace(text.find(write), write.size(),
+                 R"("vox": {"type": "Voxelizer", "inputs": {"particles": "cloud.particles"},
+                            "params": {"voxelSize": 4, "radius": 14}},
+                    "write": {)");
+    Graph g = parseGraph(text, "mapper.json", registry);
+    g.setParam("primitive", "sink", 1.0);
+    g.setParam("mapper", "level1Origin", std::string("condensationLevel"));
+    const int frame = 125;
+    for (const bool evaporate : {false, true}) {
+        g.setParam("cloud", "evaporateBelowBase", evaporate);
+        Evaluator ev(registry, {});
+        const auto streamed =
+            std::dynamic_pointer_cast<const FogVolumeData>(ev.pull(g, "vox", frame)->at("volume"));
+        // GenerateCloud keeps nothing: this pull makes a fresh frame, read here as arrays.
+        const auto cloud = std::dynamic_pointer_cast<const CloudParticlesData>(
+            ev.pull(g, "cloud", frame)->at("particles"));
+        const auto& a = cloud->arrays();
+        ASSERT_GT(cloud->size(), 10000u);
+        algo::VoxelizeSettings s;
+        s.voxelSize = 4.0;
+        s.radius = 14.0;
+        s.kernel = algo::VoxelKernel::Gaussian;
+        auto expected = algo::voxelizeParticles(a.positions.data(), cloud->size(), s);
+        algo::SurfaceDetailSettings detail;
+        detail.amplitude = 0.8;
+        detail.frequency = 1.5 / s.radius;
+        detail.octaves = 2;
+        algo::erodeSurface(
+            *expected,
+            algo::DetailParticles{a.positions.data(), a.sources.data(), cloud->size(),
+                                  a.copyOrigins.data(), a.copyOrigins.size() / 3},
+            s.radius, detail);
+        EXPECT_EQ(streamed->grid->metaValue<openvdb::Int64>("particle_count"),
+                  static_cast<openvdb::Int64>(cloud->size()));
+        EXPECT_EQ(streamed->grid->activeVoxelCount(), expected->activeVoxelCount());
+        EXPECT_EQ(gridBits(*streamed->grid), gridBits(*expected)) << "evaporate " << evaporate;
+    }
 }
 
 }  // namespace cg

@@ -119,10 +119,11 @@ TEST(PrimitiveNodes, PrimitiveFrameIsTheFrameScaledAndOffsetHeldAtTheEnds)
         ASSERT_EQ(cloud->size(), counts[static_cast<std::size_t>(s)]);
         for (std::size_t q = 0; q < cloud->size(); ++q) {
             for (std::size_t a = 0; a < 3; ++a)
-                EXPECT_EQ(cloud->positions[3 * q + a],
-                          static_cast<float>(offset[a]) + 2.5f * positions[static_cast<std::size_t>(first) + 3 * q + a]);
-            EXPECT_EQ(cloud->levels[q], 1);
-            EXPECT_EQ(cloud->sources[q], 0u);
+                EXPECT_EQ(cloud->positions()[3 * q + a],
+                          static_cast<float>(offset[a]) +
+                              2.5f * positions[static_cast<std::size_t>(first) + 3 * q + a]);
+            EXPECT_EQ(cloud->levels()[q], 1);
+            EXPECT_EQ(cloud->sources()[q], 0u);
         }
     }
     const auto empty = std::dynamic_pointer_cast<const CloudParticlesData>(ev.pull(g, "frame", 0)->at("particles"));

@@ -95,7 +95,7 @@ TEST_F(VoxelizerNodeTest, OutputsTheAlgorithmsGridWithMetadata)
     s.radius = 4.0;
     s.density = 0.4;
     const auto expected =
-        algo::voxelizeParticles(particles->positions.data(), particles->size(), s);
+        algo::voxelizeParticles(particles->positions().data(), particles->size(), s);
     ASSERT_EQ(grid.activeVoxelCount(), expected->activeVoxelCount());
     auto acc = grid.getConstAccessor();
     for (auto it = expected->tree().cbeginValueOn(); it; ++it)
