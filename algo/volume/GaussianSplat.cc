@@ -129,12 +129,7 @@ double gaussianKernelSigma(double radius)
 GaussianSplatter::GaussianSplatter(const VoxelizeSettings& settings)
     : mSettings(settings), mDeposit(std::make_unique<Deposit>())
 {
-    if (!(settings.voxelSize > 0.0) || !std::isfinite(settings.voxelSize))
-        throw std::invalid_argument("voxelize: voxel size must be > 0");
-    if (!(settings.radius > 0.0) || settings.radius > 32.0 * settings.voxelSize)
-        throw std::invalid_argument("voxelize: radius must be > 0 and at most 32 voxels");
-    if (!(settings.density >= 0.0) || !std::isfinite(settings.density))
-        throw std::invalid_argument("voxelize: density must be finite and >= 0");
+    checkVoxelizeSettings(settings);
     mDeposit->invVoxel = static_cast<float>(1.0 / settings.voxelSize);
     mDeposit->maxBytes = settings.maxBytes;
 }

@@ -548,9 +548,7 @@ double kernelIntegral(VoxelKernel kernel, double radius)
     return kernel == VoxelKernel::Sphere ? 4.0 * pi * r3 / 3.0 : 64.0 * pi * r3 / 315.0;
 }
 
-openvdb::FloatGrid::Ptr voxelizeParticles(const float* xyz, std::size_t count,
-                                          const VoxelizeSettings& settings,
-                                          const std::function<void()>& checkCancelled)
+void checkVoxelizeSettings(const VoxelizeSettings& settings)
 {
     if (!(settings.voxelSize > 0.0) || !std::isfinite(settings.voxelSize))
         throw std::invalid_argument("voxelize: voxel size must be > 0");
@@ -558,6 +556,13 @@ openvdb::FloatGrid::Ptr voxelizeParticles(const float* xyz, std::size_t count,
         throw std::invalid_argument("voxelize: radius must be > 0 and at most 32 voxels");
     if (!(settings.density >= 0.0) || !std::isfinite(settings.density))
         throw std::invalid_argument("voxelize: density must be finite and >= 0");
+}
+
+openvdb::FloatGrid::Ptr voxelizeParticles(const float* xyz, std::size_t count,
+                                          const VoxelizeSettings& settings,
+                                          const std::function<void()>& checkCancelled)
+{
+    checkVoxelizeSettings(settings);
     if (count > std::numeric_limits<std::uint32_t>::max())
         throw std::invalid_argument("voxelize: more than 2^32 - 1 particles");
     if (settings.kernel == VoxelKernel::Gaussian) {

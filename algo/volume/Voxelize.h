@@ -52,6 +52,10 @@ struct VoxelizeSettings {
     std::uint64_t maxBytes = 0;
 };
 
+/// Throws std::invalid_argument unless the voxel size is > 0, the radius in (0, 32 voxels]
+/// and the density finite and >= 0.
+void checkVoxelizeSettings(const VoxelizeSettings& settings);
+
 /// The splat would need more memory than VoxelizeSettings::maxBytes: bad settings (voxels
 /// too small for the particles' spacing, or too many particles), said before any work.
 class VoxelizeTooLarge : public std::invalid_argument {

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 
 #include <tbb/global_control.h>
 
@@ -20,6 +19,7 @@
 #include "nodes/data/PrimitiveSet.h"
 #include "nodes/data/VapourParticles.h"
 #include "support/FixtureNodes.h"
+#include "support/GridChecksum.h"
 #include "support/TestUtil.h"
 
 namespace cg {
@@ -179,21 +179,6 @@ TEST_F(MapperNodes, LogTextRecordsTheLinesItPrints)
 
 namespace {
 
-/// FNV-1a over every active voxel's coordinate and value bits, in the tree's order.
-std::uint64_t gridBits(const openvdb::FloatGrid& grid)
-{
-    std::uint64_t h = 14695981039346656037ull;
-    const auto mix = [&h](std::uint32_t word) {
-        for (int b = 0; b < 4; ++b) h = (h ^ ((word >> (8 * b)) & 0xffu)) * 1099511628211ull;
-    };
-    for (auto it = grid.tree().cbeginValueOn(); it; ++it) {
-        for (int a = 0; a < 3; ++a) mix(static_cast<std::uint32_t>(it.getCoord()[a]));
-        std::uint32_t bits;
-        std::memcpy(&bits, &*it, sizeof(bits));
-        mix(bits);
-    }
-    return h;
-}
 
 }  // namespace
 
@@ -239,7 +224,7 @@ TEST_F(MapperNodes, StreamedVoxelizationEqualsTheFrameArrayPathBitForBit)
         EXPECT_EQ(streamed->grid->metaValue<openvdb::Int64>("particle_count"),
                   static_cast<openvdb::Int64>(cloud->size()));
         EXPECT_EQ(streamed->grid->activeVoxelCount(), expected->activeVoxelCount());
-        EXPECT_EQ(gridBits(*streamed->grid), gridBits(*expected)) << "evaporate " << evaporate;
+        EXPECT_EQ(test::gridChecksum(*streamed->grid), test::gridChecksum(*expected)) << "evaporate " << evaporate;
     }
 }
 

@@ -19,27 +19,11 @@
 #include "nodes/data/FogVolume.h"
 #include "nodes/volume/VolumeNodes.h"
 #include "support/FixtureNodes.h"
+#include "support/GridChecksum.h"
 
 namespace cg {
 
 namespace {
-
-/// FNV-1a over every active voxel's coordinate and value bits, in the tree's (sorted) order.
-std::uint64_t gridChecksum(const openvdb::FloatGrid& grid)
-{
-    std::uint64_t h = 14695981039346656037ull;
-    const auto mix = [&h](std::uint32_t word) {
-        for (int b = 0; b < 4; ++b) h = (h ^ ((word >> (8 * b)) & 0xffu)) * 1099511628211ull;
-    };
-    for (auto it = grid.tree().cbeginValueOn(); it; ++it) {
-        const openvdb::Coord c = it.getCoord();
-        for (int a = 0; a < 3; ++a) mix(static_cast<std::uint32_t>(c[a]));
-        std::uint32_t bits;
-        std::memcpy(&bits, &*it, sizeof(bits));
-        mix(bits);
-    }
-    return h;
-}
 
 std::shared_ptr<const FogVolumeData> volumeAt(Evaluator& ev, const Graph& g, int frame)
 {
@@ -114,7 +98,7 @@ TEST_F(VoxelizerNodeTest, DetailOffReproducesTheVersion1GridBitForBit)
     Evaluator ev(registry, {});
     const auto volume = volumeAt(ev, g, 3);
     EXPECT_EQ(volume->grid->activeVoxelCount(), 45817u);
-    EXPECT_EQ(gridChecksum(*volume->grid), 2565534684775939884ull);
+    EXPECT_EQ(test::gridChecksum(*volume->grid), 2565534684775939884ull);
 }
 
 TEST_F(VoxelizerNodeTest, FrameOnlyChangesTheMetadata)
