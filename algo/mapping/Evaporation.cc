@@ -12,13 +12,20 @@ std::optional<float> condensationLevel(const CondensationView& c)
     return lowest;
 }
 
+namespace {
+
+/// A particle at height z stays; NaN heights go.
+bool survives(float z, float zMin) { return z >= zMin; }
+
+}  // namespace
+
 void dropCloudParticlesBelow(CloudParticleArrays& cloud, float zMin)
 {
     // In place, front to back: the write index never passes the read index.
     const std::size_t n = cloud.levels.size();
     std::size_t kept = 0;
     for (std::size_t i = 0; i < n; ++i) {
-        if (!(cloud.positions[3 * i + 2] >= zMin)) continue;
+        if (!survives(cloud.positions[3 * i + 2], zMin)) continue;
         if (kept != i) {
             std::copy_n(&cloud.positions[3 * i], 3, &cloud.positions[3 * kept]);
             cloud.levels[kept] = cloud.levels[i];
@@ -29,6 +36,23 @@ void dropCloudParticlesBelow(CloudParticleArrays& cloud, float zMin)
     cloud.positions.shrink(3 * kept);
     cloud.levels.shrink(kept);
     cloud.sources.shrink(kept);
+}
+
+CloudChunk chunkAbove(const CloudChunk& chunk, float zMin, KeptParticles& kept)
+{
+    kept.positions.clear();
+    kept.sources.clear();
+    for (std::uint64_t i = 0; i < chunk.count; ++i) {
+        if (!survives(chunk.positions[3 * i + 2], zMin)) continue;
+        kept.positions.insert(kept.positions.end(), chunk.positions + 3 * i, chunk.positions + 3 * i + 3);
+        if (chunk.sources) kept.sources.push_back(chunk.sources[i]);
+    }
+    CloudChunk out = chunk;
+    out.count = kept.positions.size() / 3;
+    out.positions = kept.positions.data();
+    out.levels = nullptr;
+    out.sources = chunk.sources ? kept.sources.data() : nullptr;
+    return out;
 }
 
 }  // namespace cg::algo

@@ -3,7 +3,9 @@
 /// mapped particle): the primitive's copies hang below their origins, and a level 1 origin is
 /// a condensation particle, so a copy's lower half lies under the cloud base.
 
+#include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "algo/mapping/Mapping.h"
 
@@ -17,5 +19,16 @@ std::optional<float> condensationLevel(const CondensationView& c);
 /// Keeps the particles whose height is at least zMin, in their order (levels and sources
 /// with them), and shrinks the arrays to them.
 void dropCloudParticlesBelow(CloudParticleArrays& cloud, float zMin);
+
+/// Where chunkAbove copies the particles it keeps; reused from chunk to chunk.
+struct KeptParticles {
+    std::vector<float> positions;
+    std::vector<std::uint32_t> sources;
+};
+
+/// The same for one chunk of forEachCloudChunk: its particles whose height is at least zMin,
+/// in their order, copied into `kept` (sources too when the chunk has them; levels are not
+/// carried). The result points into `kept`.
+CloudChunk chunkAbove(const CloudChunk& chunk, float zMin, KeptParticles& kept);
 
 }  // namespace cg::algo

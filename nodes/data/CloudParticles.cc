@@ -82,7 +82,6 @@ CloudParticlesData::CloudParticlesData(algo::UninitArray<float> positions,
     : mArrays{std::move(positions), std::move(levels), std::move(sources), std::move(copyOrigins)}
 {
     checkArrays(mArrays);
-    std::call_once(mMade, [] {});
     mHaveArrays = true;
 }
 
@@ -105,6 +104,7 @@ CloudParticlesData::CloudParticlesData(std::shared_ptr<const CloudParticleStream
 const algo::CloudParticleArrays& CloudParticlesData::arrays(
     const std::function<void()>& checkCancelled) const
 {
+    if (mHaveArrays) return mArrays;
     std::call_once(mMade, [&] {
         algo::CloudParticleArrays made = mStream->materialise(checkCancelled);
         checkArrays(made);

@@ -83,8 +83,8 @@ public:
 
 private:
     std::shared_ptr<const CloudParticleStream> mStream;
-    mutable std::once_flag mMade;
-    mutable std::atomic<bool> mHaveArrays{false};
+    mutable std::once_flag mMade;                  ///< a stream's arrays are made once
+    mutable std::atomic<bool> mHaveArrays{false};  ///< mArrays holds the frame
     mutable algo::CloudParticleArrays mArrays;
 };
 

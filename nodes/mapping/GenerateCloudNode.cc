@@ -4,7 +4,6 @@
 #include <memory>
 #include <optional>
 #include <utility>
-#include <vector>
 
 #include <tbb/enumerable_thread_specific.h>
 
@@ -51,31 +50,12 @@ public:
             return;
         }
         // Evaporation: each chunk handed on without its particles under the base.
-        struct Kept {
-            std::vector<float> xyz;
-            std::vector<std::uint32_t> sources;
-        };
-        tbb::enumerable_thread_specific<Kept> perThread;
+        tbb::enumerable_thread_specific<algo::KeptParticles> perThread;
         const float base = *mBase;
         algo::forEachCloudChunk(
             mSources->table, mFrame, condensationView(*mCondensation), mPrim.view,
             mSources->settings,
-            [&](const algo::CloudChunk& chunk) {
-                Kept& k = perThread.local();
-                k.xyz.clear();
-                k.sources.clear();
-                for (std::uint64_t i = 0; i < chunk.count; ++i) {
-                    if (!(chunk.positions[3 * i + 2] >= base)) continue;
-                    k.xyz.insert(k.xyz.end(), chunk.positions + 3 * i, chunk.positions + 3 * i + 3);
-                    if (chunk.sources) k.sources.push_back(chunk.sources[i]);
-                }
-                algo::CloudChunk kept = chunk;
-                kept.count = k.xyz.size() / 3;
-                kept.positions = k.xyz.data();
-                kept.levels = nullptr;
-                kept.sources = chunk.sources ? k.sources.data() : nullptr;
-                consume(kept);
-            },
+            [&](const algo::CloudChunk& chunk) { consume(algo::chunkAbove(chunk, base, perThread.local())); },
             o);
     }
 

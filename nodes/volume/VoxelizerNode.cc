@@ -1,6 +1,5 @@
 // Voxelizer: cloud particles to an OpenVDB fog volume (Sec. 6.3).
 
-#include <atomic>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -33,23 +32,22 @@ openvdb::FloatGrid::Ptr splatStreaming(const CloudParticlesData& particles,
     algo::GaussianSplatter splatter(s);
     const bool eroding = detail.amplitude > 0.0;
     std::optional<algo::CopyOriginField> field;
-    std::atomic<bool> withOrigins{false};
     if (eroding) field.emplace(algo::copyOriginCellSize(s.radius, s.voxelSize));
     particles.forEachChunk(
         [&](const algo::CloudChunk& chunk) {
             splatter.add(chunk.positions, chunk.count);
-            if (field && chunk.copyCount > 0) {
-                withOrigins = true;
+            if (field && chunk.copyCount > 0)
                 field->add(chunk.positions, chunk.sources, chunk.count, chunk.copyOrigins,
                            chunk.copyCount);
-            }
         },
         eroding, [&] { ctx.checkCancelled(); });
     count = splatter.count();
     auto grid = splatter.finish([&] { ctx.checkCancelled(); });
     if (field) field->finish();
-    // Particles without copies (vapour, primitive frames): detail in world coordinates.
-    algo::erodeSurface(*grid, withOrigins ? &*field : nullptr, detail,
+    // Particles without copies (vapour, primitive frames) leave the field empty: detail in
+    // world coordinates.
+    const bool copies = field && field->cellCount() > 0;
+    algo::erodeSurface(*grid, copies ? &*field : nullptr, detail,
                        [&] { ctx.checkCancelled(); });
     return grid;
 }
