@@ -10,6 +10,7 @@ namespace cg::cli {
 using Args = std::vector<std::string>;
 
 int runCommand(const Args& args);
+int farmCommand(const Args& args);
 int validateCommand(const Args& args);
 int nodesCommand(const Args& args);
 int dotCommand(const Args& args);

@@ -1,7 +1,9 @@
-// cloudgraph run GRAPH [--frames A:B] [--set node.param=value]... [--cache DIR] [--out DIR]
-//                      [--threads N] [--report FILE] [--plugin PATH]...
+// cloudgraph run GRAPH [--frames A:B] [--chunk N [--task I]] [--simulations-only]
+//                      [--set node.param=value]... [--cache DIR] [--out DIR] [--threads N]
+//                      [--report FILE] [--plugin PATH]... [--farm-token T]
 
 #include <csignal>
+#include <cstdlib>
 #include <cstdio>
 #include <memory>
 
@@ -10,6 +12,8 @@
 
 #include "cli/Commands.h"
 #include "cli/Common.h"
+#include "cli/FarmToken.h"
+#include "cli/FrameChunks.h"
 #include "cli/ProgressBar.h"
 #include "core/Error.h"
 #include "core/Evaluator.h"
@@ -39,22 +43,30 @@ void writeReport(const std::string& path, const nlohmann::json& report)
 
 extern "C" void onInterrupt(int) { if (gCancel) gCancel->cancel(); }
 
-FrameRange parseFrames(const std::string& text, const FrameRange& graphRange)
+/// --frames, or chunk --task (SLURM_ARRAY_TASK_ID) of --chunk frames of that range.
+FrameRange framesToCook(const OptionParser& opts, const Graph& graph)
 {
-    const auto colon = text.find(':');
-    auto frame = [&](const std::string& part) {
-        return static_cast<int>(parseIntegerOption(part, "--frames", "a frame", graphRange.start,
-                                                   graphRange.end));
-    };
-    FrameRange r;
-    r.start = frame(text.substr(0, colon));
-    r.end = colon == std::string::npos ? r.start : frame(text.substr(colon + 1));
-    if (r.end < r.start) {
-        throw InputError("--frames", "range " + text + " is not inside the graph's frames " +
-                                         std::to_string(graphRange.start) + ":" +
-                                         std::to_string(graphRange.end));
+    const FrameRange range =
+        opts.value("--frames") ? parseFrameRange(*opts.value("--frames"), graph.frames) : graph.frames;
+    const auto chunk = opts.value("--chunk");
+    if (!chunk) {
+        if (opts.has("--task")) throw InputError("--task", "needs --chunk N (frames per chunk)");
+        return range;
     }
-    return r;
+    const char* slurmTask = std::getenv("SLURM_ARRAY_TASK_ID");
+    return chunkFrames(range, parseChunkSize(*chunk), opts.value("--task"),
+                       slurmTask ? std::optional<std::string>(slurmTask) : std::nullopt);
+}
+
+/// The ids of the graph's simulation nodes: what --simulations-only cooks (with what they
+/// read), so that a farm's frame jobs find every simulation state in the shared cache.
+std::vector<std::string> simulationNodes(const Graph& graph)
+{
+    std::vector<std::string> ids;
+    for (const GraphNode& node : graph.nodes())
+        if (node.decl->simulation) ids.push_back(node.id);
+    if (ids.empty()) spdlog::info("the graph has no simulation nodes: nothing to cook");
+    return ids;
 }
 
 /// Refuses, before anything cooks, an --out that is not a directory and a --report that
@@ -66,6 +78,8 @@ void checkOutputLocations(const OptionParser& opts)
     const fs::path out = opts.value("--out").value_or("out");
     if (fs::exists(out, ec) && !fs::is_directory(out, ec))
         throw InputError("--out " + out.string(), "is not a directory");
+    if (opts.has("--simulations-only") && !opts.value("--cache"))
+        throw InputError("--simulations-only", "needs --cache DIR: the states are cooked to be kept there");
     if (const auto report = opts.value("--report")) {
         const fs::path file(*report);
         if (report->empty() || report->back() == '/' || fs::is_directory(file, ec))
@@ -82,8 +96,10 @@ int runCommand(const Args& args)
 {
     OptionParser opts(args);
     declareGraphOptions(opts);
-    for (const char* o : {"--frames", "--cache", "--out", "--threads", "--report", "--cache-memory-mb"})
+    for (const char* o : {"--frames", "--cache", "--out", "--threads", "--report", "--cache-memory-mb",
+                          "--chunk", "--task", "--farm-token"})
         opts.valueOption(o);
+    opts.flag("--simulations-only");
     return guarded([&] {
         opts.parse();
         std::optional<tbb::global_control> threadLimit;
@@ -94,12 +110,17 @@ int runCommand(const Args& args)
 
         Registry registry;
         const Graph graph = loadGraphFromOptions(opts, registry, "run");
-        const FrameRange frames =
-            opts.value("--frames") ? parseFrames(*opts.value("--frames"), graph.frames) : graph.frames;
+        const FrameRange frames = framesToCook(opts, graph);
+        const std::vector<std::string> targets = opts.has("--simulations-only") ? simulationNodes(graph)
+                                                                                 : std::vector<std::string>{};
 
         EvaluatorOptions evalOptions;
         evalOptions.outDir = opts.value("--out").value_or("out");
         if (auto c = opts.value("--cache")) evalOptions.diskCache = std::make_shared<DiskCache>(*c);
+        if (auto token = opts.value("--farm-token")) {
+            if (!evalOptions.diskCache) throw InputError("--farm-token", "needs the farm's --cache");
+            checkFarmToken(*evalOptions.diskCache, *token);
+        }
         if (auto m = opts.value("--cache-memory-mb"))
             evalOptions.memoryBudgetBytes = static_cast<std::uint64_t>(parseIntegerOption(
                                                 *m, "--cache-memory-mb", "a size in MiB", 0,
@@ -114,7 +135,8 @@ int runCommand(const Args& args)
         Evaluator evaluator(registry, evalOptions);
         const auto t0 = std::chrono::steady_clock::now();
         try {
-            evaluator.cookFrames(graph, frames.start, frames.end);
+            if (!opts.has("--simulations-only") || !targets.empty())
+                evaluator.cookFrames(graph, frames.start, frames.end, targets);
         } catch (...) {
             bar.finish();
             // Write the report even for a failed run: it shows what did cook. A report that

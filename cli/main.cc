@@ -15,6 +15,9 @@ const char* kUsage = R"(cloudgraph - node-graph tool that animates the growth of
 usage:
   cloudgraph run GRAPH [options]     cook a graph for its frames
       --frames A:B                   cook only frames A..B (inside the graph's range)
+      --chunk N [--task I]           cook chunk I of N frames each of that range (the last clamped);
+                                     without --task, I is SLURM_ARRAY_TASK_ID
+      --simulations-only             cook only the simulation nodes, into --cache (a farm's first job)
       --set NODE.PARAM=VALUE         override a parameter (JSON value or bare string); repeatable
       --out DIR                      where writers put files (default: out)
       --cache DIR                    on-disk cache shared across runs and processes
@@ -24,7 +27,15 @@ usage:
       --plugin PATH                  load a plugin library; repeatable
       --allow-outside-out            let output paths leave --out (absolute paths, ..)
       --allow-graph-programs         let the graph name the programs it runs (EncodeVideo's ffmpeg)
+      --farm-token T                 (written by `farm`) refuse a --cache that lacks the farm's token
       -v / -q                        more / less logging
+  Writers whose files from an earlier run still verify are skipped, with what only they need.
+  cloudgraph farm GRAPH --chunk N --cache DIR [options]   render on a Slurm cluster (docs/farm.md)
+      --out DIR                      outputs; the scripts, logs and reports go to DIR/farm
+      --scheduler slurm              the scheduler (the one supported)
+      --sbatch OPTION                an #SBATCH line for both jobs, e.g. --sbatch=--partition=render
+      --submit                       queue the jobs with sbatch and print their ids
+      also --frames, --set, --plugin, --threads, --allow-* as for run
   cloudgraph validate GRAPH [--set ...] [--plugin PATH]   check a graph without cooking
   cloudgraph nodes [TYPE] [--markdown]                    the node reference
   cloudgraph dot GRAPH                                    the graph as Graphviz
@@ -55,6 +66,7 @@ int main(int argc, char** argv)
     const std::string command = args[0];
     args.erase(args.begin());
     if (command == "run") return runCommand(args);
+    if (command == "farm") return farmCommand(args);
     if (command == "validate") return validateCommand(args);
     if (command == "nodes") return nodesCommand(args);
     if (command == "dot") return dotCommand(args);

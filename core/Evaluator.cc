@@ -14,6 +14,7 @@
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Hash.h"
+#include "core/WrittenFiles.h"
 #include "util/AtomicFile.h"
 
 namespace cg {
@@ -50,7 +51,7 @@ nlohmann::json smallValues(const OutputMap& outputs)
 /// The state of one cookFrames() call: key memo, simulation states in flight, progress.
 class Evaluator::Session {
 public:
-    Session(Evaluator& ev, const Graph& graph) : mEv(ev), mGraph(graph)
+    Session(Evaluator& ev, const Graph& graph) : mEv(ev), mGraph(graph), mWritten(ev.mOptions.diskCache, ev.mOptions.outDir)
     {
         const auto& nodes = graph.nodes();
         const std::size_t n = nodes.size();
@@ -144,9 +145,10 @@ public:
     }
 
     /// Cooks (or fetches) `nodes` at `frame`, level by level, independent nodes in parallel.
-    FrameOutputs cookFrame(const std::vector<std::size_t>& nodes, int frame)
+    FrameOutputs cookFrame(const std::vector<std::size_t>& closure, int frame)
     {
         FrameOutputs results(mGraph.nodes().size());
+        const std::vector<std::size_t> nodes = withoutVerifiedWriters(closure, frame, results);
         std::vector<int> depth(mGraph.nodes().size(), 0);
         int maxDepth = 0;
         for (std::size_t i : nodes) {  // topological order: inputs first
@@ -167,31 +169,80 @@ public:
     void addToTotal(std::size_t n) { mTotal += n; }
 
 private:
+    /// Writers whose files from an earlier run verify (WrittenFiles) take their recorded
+    /// outputs into `results` and drop out, with every node that only they need. Returns
+    /// the nodes of `closure` left to evaluate, in the same order.
+    std::vector<std::size_t> withoutVerifiedWriters(const std::vector<std::size_t>& closure, int frame,
+                                                    FrameOutputs& results)
+    {
+        const std::size_t n = mGraph.nodes().size();
+        std::vector<bool> verified(n, false);
+        bool any = false;
+        for (std::size_t idx : closure) {
+            const NodeDecl& decl = *mGraph.nodes()[idx].decl;
+            if (!WrittenFiles::keepsRecords(decl)) continue;
+            const auto t0 = std::chrono::steady_clock::now();
+            const Key key = keyOf(idx, frame);
+            auto recorded = mWritten.verified(key, decl);
+            if (!recorded) continue;
+            results[idx] = std::make_shared<const OutputMap>(std::move(*recorded));
+            report(idx, frame, key, CookStatus::Verified, "", t0, *results[idx]);
+            verified[idx] = any = true;
+        }
+        if (!any) return closure;
+        // Downstream first: a node is needed when nothing in the closure reads it (a target)
+        // or a needed node reads it.
+        std::vector<bool> readInClosure(n, false), readByNeeded(n, false), needed(n, false);
+        for (std::size_t idx : closure)
+            for (std::size_t up : mGraph.upstream()[idx]) readInClosure[up] = true;
+        for (auto it = closure.rbegin(); it != closure.rend(); ++it) {
+            const std::size_t idx = *it;
+            if (verified[idx] || (readInClosure[idx] && !readByNeeded[idx])) continue;
+            needed[idx] = true;
+            for (std::size_t up : mGraph.upstream()[idx]) readByNeeded[up] = true;
+        }
+        std::vector<std::size_t> left;
+        for (std::size_t idx : closure)
+            if (needed[idx]) left.push_back(idx);
+        mTotal -= closure.size() - left.size();
+        return left;
+    }
+
     OutputsPtr evaluate(std::size_t idx, int frame, const FrameOutputs& results)
     {
         mEv.mOptions.cancel->throwIfCancelled();
-        const GraphNode& node = mGraph.nodes()[idx];
-        const NodeDecl& decl = *node.decl;
+        const NodeDecl& decl = *mGraph.nodes()[idx].decl;
         const Key key = keyOf(idx, frame);
         const auto t0 = std::chrono::steady_clock::now();
 
+        CookStatus status = CookStatus::Cooked;
+        std::string reason;
+        OutputsPtr outputs;
+        if (!decl.writesFiles) outputs = lookup(key, decl, status);
+        if (!outputs) {
+            outputs = cook(idx, frame, key, results, reason);
+            status = CookStatus::Cooked;
+        }
+        if (decl.simulation) hold(idx, frame, outputs);
+        report(idx, frame, key, status, std::move(reason), t0, *outputs);
+        return outputs;
+    }
+
+    void report(std::size_t idx, int frame, const Key& key, CookStatus status, std::string reason,
+                std::chrono::steady_clock::time_point t0, const OutputMap& outputs)
+    {
+        const GraphNode& node = mGraph.nodes()[idx];
         CookRecord record;
         record.node = node.id;
-        record.type = decl.type;
+        record.type = node.decl->type;
         record.frame = frame;
         record.order = mOrderIndex[idx];
         record.key = key;
-
-        OutputsPtr outputs;
-        if (!decl.writesFiles) outputs = lookup(key, decl, record.status);
-        if (!outputs) {
-            outputs = cook(idx, frame, key, results, record.reason);
-            record.status = CookStatus::Cooked;
-        }
-        if (decl.simulation) hold(idx, frame, outputs);
+        record.status = status;
+        record.reason = std::move(reason);
         record.seconds = secondsSince(t0);
-        record.bytes = outputBytes(*outputs);
-        record.values = smallValues(*outputs);
+        record.bytes = outputBytes(outputs);
+        record.values = smallValues(outputs);
         mEv.mReport.add(std::move(record));
         if (mEv.mOptions.onProgress) {
             Progress p;
@@ -200,7 +251,6 @@ private:
             p.frame = frame;
             mEv.mOptions.onProgress(p);
         }
-        return outputs;
     }
 
     OutputsPtr lookup(const Key& key, const NodeDecl& decl, CookStatus& status)
@@ -251,7 +301,10 @@ private:
         reason = mEv.mHistory.explain(mRecordPrefix + node.id, identity(node),
                                       mTimeVarying[idx] ? std::to_string(frame) : "all", inputKeys,
                                       decl.simulation);
-        if (decl.writesFiles) reason = "writes files (cooks on every run); " + reason;
+        if (decl.writesFiles)
+            reason = (WrittenFiles::keepsRecords(decl) ? "writes files (none verified from an earlier run); "
+                                                       : "writes files (cooks on every run); ") +
+                     reason;
 
         OutputMap out;
         try {
@@ -277,6 +330,7 @@ private:
         if (decl.cacheInMemory) mEv.mMemory.insert(key, shared);
         if (mEv.mOptions.diskCache && !decl.writesFiles && decl.cacheOnDisk)
             mEv.mOptions.diskCache->store(key, *shared);
+        if (WrittenFiles::keepsRecords(decl)) mWritten.record(key, *shared);
         return shared;
     }
 
@@ -333,6 +387,7 @@ private:
 
     Evaluator& mEv;
     const Graph& mGraph;
+    WrittenFiles mWritten;
     std::mutex mKeyMutex;
     std::vector<std::unordered_map<int, Key>> mKeys;
     std::vector<bool> mTimeVarying;

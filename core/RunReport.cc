@@ -11,6 +11,7 @@ const char* cookStatusName(CookStatus s)
     case CookStatus::Cooked: return "cooked";
     case CookStatus::MemoryHit: return "memory-hit";
     case CookStatus::DiskHit: return "disk-hit";
+    case CookStatus::Verified: return "verified";
     }
     return "?";
 }
@@ -52,7 +53,7 @@ nlohmann::json RunReport::toJson() const
 {
     nlohmann::json entries = nlohmann::json::array();
     std::map<std::string, nlohmann::json> perNode;
-    std::size_t cooked = 0, memoryHits = 0, diskHits = 0, bytes = 0;
+    std::size_t cooked = 0, memoryHits = 0, diskHits = 0, verified = 0, bytes = 0;
     double seconds = 0.0;
     for (const CookRecord& r : records()) {
         nlohmann::json e = {{"node", r.node},       {"type", r.type},
@@ -70,7 +71,9 @@ nlohmann::json RunReport::toJson() const
             ++cooked;
         } else {
             n["hits"] = n["hits"].get<int>() + 1;
-            ++(r.status == CookStatus::MemoryHit ? memoryHits : diskHits);
+            ++(r.status == CookStatus::MemoryHit ? memoryHits
+               : r.status == CookStatus::DiskHit ? diskHits
+                                                 : verified);
         }
         n["seconds"] = n["seconds"].get<double>() + r.seconds;
         seconds += r.seconds;
@@ -82,6 +85,7 @@ nlohmann::json RunReport::toJson() const
              {{"cooked", cooked},
               {"memoryHits", memoryHits},
               {"diskHits", diskHits},
+              {"verified", verified},
               {"nodeSeconds", seconds},
               {"bytes", bytes}}}};
 }

@@ -13,7 +13,9 @@
 
 namespace cg {
 
-enum class CookStatus { Cooked, MemoryHit, DiskHit };
+/// Verified: a writer whose files from an earlier run still hold its recorded bytes
+/// (WrittenFiles); it neither cooks nor writes.
+enum class CookStatus { Cooked, MemoryHit, DiskHit, Verified };
 
 const char* cookStatusName(CookStatus s);
 

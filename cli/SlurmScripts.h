@@ -1,0 +1,35 @@
+#pragma once
+/// The batch scripts `cloudgraph farm --scheduler slurm` writes: a job that cooks the
+/// graph's simulation states into the shared cache, a job array whose task I renders
+/// chunk I of the frames, and a submit script that queues the array after the first job
+/// succeeds (--dependency=afterok).
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace cg::cli {
+
+struct FarmJob {
+    std::string name;                       ///< job name stem (the graph file's stem)
+    std::string cloudgraph;                 ///< the executable, absolute
+    std::vector<std::string> runArgs;       ///< `run` arguments both jobs share (absolute paths)
+    std::filesystem::path farmDir;          ///< scripts here; logs/ and reports/ below it
+    std::filesystem::path workDir;          ///< the jobs' working directory
+    int chunk = 1;                          ///< frames per array task
+    int chunks = 1;                         ///< array tasks: 0 .. chunks-1
+    std::vector<std::string> sbatchOptions; ///< extra "#SBATCH" lines, e.g. --partition=render
+};
+
+struct FarmScripts {
+    std::string simulate;  ///< simulate.sbatch
+    std::string frames;    ///< frames.sbatch
+    std::string submit;    ///< submit.sh
+};
+
+FarmScripts slurmScripts(const FarmJob& job);
+
+/// `text` as one POSIX shell word.
+std::string shellQuote(const std::string& text);
+
+}  // namespace cg::cli
