@@ -102,7 +102,7 @@ int farmCommand(const Args& args)
         const fs::path cache = fs::absolute(*cacheDir).lexically_normal();
         const DiskCache diskCache(cache);  // refuses a directory it cannot write
         const fs::path out = fs::absolute(opts.value("--out").value_or("out")).lexically_normal();
-        job.farmDir = out / "farm";
+        job.farmDir = out / "slurm";
         job.workDir = fs::current_path();
         job.name = fs::path(opts.positionals()[0]).stem().string();
         job.cloudgraph = fs::read_symlink("/proc/self/exe").string();
@@ -114,6 +114,7 @@ int farmCommand(const Args& args)
         const FarmScripts scripts = slurmScripts(job);
         writeScript(job.farmDir / "simulate.sbatch", scripts.simulate);
         writeScript(job.farmDir / "frames.sbatch", scripts.frames);
+        writeScript(job.farmDir / "finish.sbatch", scripts.finish);
         writeScript(job.farmDir / "submit.sh", scripts.submit);
         spdlog::info("frames {}..{} in {} array tasks of {} frames; scripts in {}", range.start, range.end,
                      job.chunks, job.chunk, job.farmDir.string());

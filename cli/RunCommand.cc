@@ -69,6 +69,29 @@ std::vector<std::string> simulationNodes(const Graph& graph)
     return ids;
 }
 
+/// What a chunk cooks: the graph's sinks, with each node that gathers every frame's files
+/// (EncodeVideo), which would find other chunks' frames missing, replaced by its inputs.
+std::vector<std::string> targetsOfOneChunk(const Graph& graph)
+{
+    std::vector<std::size_t> stack = graph.sinks();
+    std::vector<bool> seen(graph.nodes().size(), false);
+    std::vector<std::string> ids;
+    while (!stack.empty()) {
+        const std::size_t idx = stack.back();
+        stack.pop_back();
+        if (seen[idx]) continue;
+        seen[idx] = true;
+        const GraphNode& node = graph.nodes()[idx];
+        if (!node.decl->gathersFrames) {
+            ids.push_back(node.id);
+            continue;
+        }
+        spdlog::info("{} ({}) gathers every frame: a chunk leaves it out", node.id, node.decl->type);
+        for (std::size_t up : graph.upstream()[idx]) stack.push_back(up);
+    }
+    return ids;
+}
+
 /// Refuses, before anything cooks, an --out that is not a directory and a --report that
 /// names one: found after the cook, they would cost the whole run.
 void checkOutputLocations(const OptionParser& opts)
@@ -112,7 +135,8 @@ int runCommand(const Args& args)
         const Graph graph = loadGraphFromOptions(opts, registry, "run");
         const FrameRange frames = framesToCook(opts, graph);
         const std::vector<std::string> targets = opts.has("--simulations-only") ? simulationNodes(graph)
-                                                                                 : std::vector<std::string>{};
+                                                 : opts.has("--chunk")          ? targetsOfOneChunk(graph)
+                                                                                : std::vector<std::string>{};
 
         EvaluatorOptions evalOptions;
         evalOptions.outDir = opts.value("--out").value_or("out");
@@ -135,7 +159,7 @@ int runCommand(const Args& args)
         Evaluator evaluator(registry, evalOptions);
         const auto t0 = std::chrono::steady_clock::now();
         try {
-            if (!opts.has("--simulations-only") || !targets.empty())
+            if ((!opts.has("--simulations-only") && !opts.has("--chunk")) || !targets.empty())
                 evaluator.cookFrames(graph, frames.start, frames.end, targets);
         } catch (...) {
             bar.finish();

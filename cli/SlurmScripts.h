@@ -1,8 +1,9 @@
 #pragma once
 /// The batch scripts `cloudgraph farm --scheduler slurm` writes: a job that cooks the
 /// graph's simulation states into the shared cache, a job array whose task I renders
-/// chunk I of the frames, and a submit script that queues the array after the first job
-/// succeeds (--dependency=afterok).
+/// chunk I of the frames, a last job that runs what gathers every frame (EncodeVideo) and
+/// verifies every frame's files, and a submit script that queues each job after the one
+/// before it succeeds (--dependency=afterok).
 
 #include <filesystem>
 #include <string>
@@ -24,6 +25,7 @@ struct FarmJob {
 struct FarmScripts {
     std::string simulate;  ///< simulate.sbatch
     std::string frames;    ///< frames.sbatch
+    std::string finish;    ///< finish.sbatch
     std::string submit;    ///< submit.sh
 };
 

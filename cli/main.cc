@@ -31,7 +31,7 @@ usage:
       -v / -q                        more / less logging
   Writers whose files from an earlier run still verify are skipped, with what only they need.
   cloudgraph farm GRAPH --chunk N --cache DIR [options]   render on a Slurm cluster (docs/farm.md)
-      --out DIR                      outputs; the scripts, logs and reports go to DIR/farm
+      --out DIR                      outputs; the scripts, logs and reports go to DIR/slurm
       --scheduler slurm              the scheduler (the one supported)
       --sbatch OPTION                an #SBATCH line for both jobs, e.g. --sbatch=--partition=render
       --submit                       queue the jobs with sbatch and print their ids

@@ -40,8 +40,12 @@ struct NodeDecl {
     /// Frame N is stepped from this node's own output at frame N-1 (see CookContext::previous).
     /// Implies frameDependent.
     bool simulation = false;
-    /// The node writes files; it cooks on every run so outputs on disk are always complete.
+    /// The node writes files. It cooks on every run, unless a disk cache records that its
+    /// files from an earlier run are still there unchanged (WrittenFiles).
     bool writesFiles = false;
+    /// The node reads what other frames wrote (EncodeVideo reads every PNG). A chunked run
+    /// (`run --chunk`) leaves it out; a farm's last job runs it once every chunk is written.
+    bool gathersFrames = false;
     /// Whether the output goes to the disk cache. False for large outputs that are cheaper to
     /// cook again than to store and read back (e.g. a frame's cloud particles); the memory
     /// cache still keeps them.

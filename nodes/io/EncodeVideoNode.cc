@@ -90,8 +90,10 @@ void registerEncodeVideoNode(Registry& registry)
         "ffmpeg program. Cooks on every frame after its input but encodes only on 'lastFrame', "
         "reading frames firstFrame..lastFrame (all must exist); on other frames 'files' is "
         "empty. The video is written beside the target and renamed. Without ffmpeg the cook "
-        "fails with a message saying how to install it.";
+        "fails with a message saying how to install it. A chunked run (run --chunk) leaves it "
+        "out: a farm encodes in its last job, after every chunk is written.";
     d.writesFiles = true;
+    d.gathersFrames = true;
     d.frameDependent = true;
     d.inputs = {port("frames", "Text",
                      "the WriteImage node's 'files' output: makes the encoder cook after each "

@@ -11,6 +11,7 @@
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
+#include "formats/VdbContentUuid.h"
 #include "formats/PointsGrid.h"
 #include "nodes/DeclHelpers.h"
 #include "nodes/data/CloudParticles.h"
@@ -60,6 +61,7 @@ public:
             file.write(openvdb::GridCPtrVec{grid}, fileMeta);
             file.close();
         }
+        formats::setContentUuid(out.tempPath());
         ctx.checkCancelled();
         out.commit();
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));

@@ -9,6 +9,7 @@
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
+#include "formats/VdbContentUuid.h"
 #include "nodes/DeclHelpers.h"
 #include "nodes/data/FogVolume.h"
 #include "nodes/io/WriterSupport.h"
@@ -56,6 +57,7 @@ public:
             file.write(openvdb::GridCPtrVec{grid}, fileMeta);
             file.close();
         }
+        formats::setContentUuid(out.tempPath());
         ctx.checkCancelled();
         out.commit();
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));

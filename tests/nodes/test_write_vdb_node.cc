@@ -208,6 +208,22 @@ TEST_F(WriteVdbTest, WritesAFilePerFrameThatReadsBackIdentically)
     EXPECT_GT(grid->activeVoxelCount(), 1000u);
 }
 
+TEST_F(WriteVdbTest, TheSameGridGivesTheSameBytesAndDifferentGridsDifferentUuids)
+{
+    // OpenVDB's UUID is random per write; ours is derived from the rest of the file.
+    const fs::path first = write(parse(R"({"file": "a/cloud.####.vdb"})"), 42);
+    const fs::path second = write(parse(R"({"file": "b/cloud.####.vdb"})"), 42);
+    const fs::path other = write(parse(R"({"file": "c/cloud.####.vdb"})"), 43);
+    EXPECT_EQ(test::readFile(first), test::readFile(second));
+    openvdb::io::File a(first.string()), c(other.string());
+    a.open();
+    c.open();  // OpenVDB parses the UUID on open: ours must be well formed
+    EXPECT_FALSE(a.isIdentical(c.getUniqueTag()));
+    EXPECT_EQ(a.getUniqueTag().size(), 36u);
+    EXPECT_EQ(a.getUniqueTag()[14], '4');  // laid out as a version 4 UUID
+    ASSERT_TRUE(readBack(first));
+}
+
 TEST_F(WriteVdbTest, HalfFloatIsSmallerAndClose)
 {
     const fs::path full = write(parse(R"({"file": "full.####.vdb", "compression": "none"})"), 1);
