@@ -177,7 +177,7 @@ private:
     {
         const std::size_t n = mGraph.nodes().size();
         std::vector<bool> verified(n, false);
-        bool any = false;
+        std::size_t verifiedCount = 0;
         for (std::size_t idx : closure) {
             const NodeDecl& decl = *mGraph.nodes()[idx].decl;
             if (!WrittenFiles::keepsRecords(decl)) continue;
@@ -187,9 +187,10 @@ private:
             if (!recorded) continue;
             results[idx] = std::make_shared<const OutputMap>(std::move(*recorded));
             report(idx, frame, key, CookStatus::Verified, "", t0, *results[idx]);
-            verified[idx] = any = true;
+            verified[idx] = true;
+            ++verifiedCount;
         }
-        if (!any) return closure;
+        if (verifiedCount == 0) return closure;
         // Downstream first: a node is needed when nothing in the closure reads it (a target)
         // or a needed node reads it.
         std::vector<bool> readInClosure(n, false), readByNeeded(n, false), needed(n, false);
@@ -204,7 +205,7 @@ private:
         std::vector<std::size_t> left;
         for (std::size_t idx : closure)
             if (needed[idx]) left.push_back(idx);
-        mTotal -= closure.size() - left.size();
+        mTotal -= closure.size() - left.size() - verifiedCount;  // verified ones were reported
         return left;
     }
 
