@@ -159,7 +159,8 @@ int runCommand(const Args& args)
         Evaluator evaluator(registry, evalOptions);
         const auto t0 = std::chrono::steady_clock::now();
         try {
-            if ((!opts.has("--simulations-only") && !opts.has("--chunk")) || !targets.empty())
+            // Empty targets mean the graph's sinks, except for a graph with no simulation.
+            if (!(opts.has("--simulations-only") && targets.empty()))
                 evaluator.cookFrames(graph, frames.start, frames.end, targets);
         } catch (...) {
             bar.finish();

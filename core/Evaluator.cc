@@ -220,10 +220,7 @@ private:
         std::string reason;
         OutputsPtr outputs;
         if (!decl.writesFiles) outputs = lookup(key, decl, status);
-        if (!outputs) {
-            outputs = cook(idx, frame, key, results, reason);
-            status = CookStatus::Cooked;
-        }
+        if (!outputs) outputs = cook(idx, frame, key, results, reason);  // status stays Cooked
         if (decl.simulation) hold(idx, frame, outputs);
         report(idx, frame, key, status, std::move(reason), t0, *outputs);
         return outputs;

@@ -122,8 +122,8 @@ struct GaussianSplatter::Deposit {
 double gaussianKernelSigma(double radius)
 {
     const double pi = 3.14159265358979323846;
-    // (2 pi)^(3/2) sigma^3 = 64 pi R^3 / 315: the smooth kernel's integral at the same peak.
-    return radius * std::cbrt(64.0 * pi / 315.0) / std::sqrt(2.0 * pi);
+    // (2 pi)^(3/2) sigma^3 = the smooth kernel's integral: the same peak for the same mass.
+    return std::cbrt(kernelIntegral(VoxelKernel::Smooth, radius)) / std::sqrt(2.0 * pi);
 }
 
 GaussianSplatter::GaussianSplatter(const VoxelizeSettings& settings)
@@ -226,10 +226,8 @@ openvdb::FloatGrid::Ptr GaussianSplatter::finish(const std::function<void()>& ch
 
     // 3. Each brick: its deposit and a margin of `reach` voxels, converted to density, then
     // blurred along z, y and x; only the leaves holding something are kept.
-    const double rv3 = rv * rv * rv;
-    const double pi = 3.14159265358979323846;
-    // Each particle carries the smooth kernel's integral (in voxels) times its peak density.
-    const double mass = mSettings.density * 64.0 * pi * rv3 / 315.0;
+    // Each particle carries the kernel's integral (in voxels) times its peak density.
+    const double mass = mSettings.density * kernelIntegral(VoxelKernel::Gaussian, rv);
     const double scale = mass / kWeightUnit;
     const int span = kBrick + 2 * reach;
     const int width = static_cast<int>(taps.size());

@@ -33,9 +33,18 @@ public:
           mCondensation(std::move(condensation)),
           mPrimitive(std::move(primitive)),
           mPrim(*mPrimitive),
+          mCond(condensationView(*mCondensation)),
           mFrame(frame)
     {
-        if (evaporateBelowBase) mBase = algo::condensationLevel(condensationView(*mCondensation));
+        if (evaporateBelowBase) mBase = algo::condensationLevel(mCond);
+    }
+
+    /// How many particles the frame has before evaporation, without generating them.
+    std::uint64_t particleCount() const
+    {
+        std::uint64_t total = 0;
+        for (auto c : algo::cloudCounts(mSources->table, mFrame, mPrim.view, mSources->settings)) total += c;
+        return total;
     }
 
     void forEachChunk(const std::function<void(const algo::CloudChunk&)>& consume, bool sources,
@@ -45,16 +54,14 @@ public:
         o.sources = sources;
         o.checkCancelled = checkCancelled;
         if (!mBase) {
-            algo::forEachCloudChunk(mSources->table, mFrame, condensationView(*mCondensation),
-                                    mPrim.view, mSources->settings, consume, o);
+            algo::forEachCloudChunk(mSources->table, mFrame, mCond, mPrim.view, mSources->settings, consume, o);
             return;
         }
         // Evaporation: each chunk handed on without its particles under the base.
         tbb::enumerable_thread_specific<algo::KeptParticles> perThread;
         const float base = *mBase;
         algo::forEachCloudChunk(
-            mSources->table, mFrame, condensationView(*mCondensation), mPrim.view,
-            mSources->settings,
+            mSources->table, mFrame, mCond, mPrim.view, mSources->settings,
             [&](const algo::CloudChunk& chunk) { consume(algo::chunkAbove(chunk, base, perThread.local())); },
             o);
     }
@@ -62,9 +69,8 @@ public:
     algo::CloudParticleArrays materialise(
         const std::function<void()>& checkCancelled) const override
     {
-        auto arrays =
-            algo::generateCloudParticles(mSources->table, mFrame, condensationView(*mCondensation),
-                                         mPrim.view, mSources->settings, checkCancelled);
+        auto arrays = algo::generateCloudParticles(mSources->table, mFrame, mCond, mPrim.view,
+                                                   mSources->settings, checkCancelled);
         if (mBase) algo::dropCloudParticlesBelow(arrays, *mBase);
         return arrays;
     }
@@ -74,6 +80,7 @@ private:
     std::shared_ptr<const CondensationData> mCondensation;
     std::shared_ptr<const PrimitiveSetData> mPrimitive;
     PrimitiveViewHolder mPrim;
+    algo::CondensationView mCond;  ///< views into *mCondensation
     int mFrame;
     std::optional<float> mBase;  ///< evaporation: particles under it are dropped
 };
@@ -87,9 +94,9 @@ public:
         const auto primitive = ctx.input<PrimitiveSetData>("primitive");
         // A table read from a disk cache must index these inputs before anything reads them.
         checkSourcesFit(sources->table, sources->settings, *condensation, *primitive);
-        const PrimitiveViewHolder prim(*primitive);
-        std::uint64_t total = 0;
-        for (auto c : algo::cloudCounts(sources->table, ctx.frame(), prim.view, sources->settings)) total += c;
+        auto cloud = std::make_shared<GeneratedCloud>(sources, condensation, primitive, ctx.frame(),
+                                                      ctx.params().getBool("evaporateBelowBase"));
+        const std::uint64_t total = cloud->particleCount();
         const auto limit = static_cast<std::uint64_t>(ctx.params().getInt("maxCloudParticles"));
         if (total > limit) {
             throw InputError(ctx.nodeId(), "frame " + std::to_string(ctx.frame()) + " has " +
@@ -97,10 +104,7 @@ public:
                                                " cloud particles, over parameter maxCloudParticles = " +
                                                std::to_string(limit));
         }
-        ctx.setOutput("particles",
-                      std::make_shared<CloudParticlesData>(std::make_shared<GeneratedCloud>(
-                          sources, condensation, primitive, ctx.frame(),
-                          ctx.params().getBool("evaporateBelowBase"))));
+        ctx.setOutput("particles", std::make_shared<CloudParticlesData>(std::move(cloud)));
     }
 };
 

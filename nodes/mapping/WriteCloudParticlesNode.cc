@@ -22,8 +22,9 @@ public:
         const auto cloud = ctx.input<CloudParticlesData>("particles");
         const auto path = ctx.outputPath("file");
         util::AtomicOutput out(path);
-        formats::writeCloudPly(out.tempPath(), cloud->size(), cloud->positions().data(),
-                               cloud->levels().data(), cloud->sources().data(),
+        const auto& a = cloud->arrays([&ctx] { ctx.checkCancelled(); });  // a stream materialises here
+        formats::writeCloudPly(out.tempPath(), a.levels.size(), a.positions.data(), a.levels.data(),
+                               a.sources.data(),
                                "cloud particles, frame " + std::to_string(ctx.frame()),
                                [&ctx] { ctx.checkCancelled(); });
         out.commit();

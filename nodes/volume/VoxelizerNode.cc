@@ -21,13 +21,16 @@ namespace cg {
 
 namespace {
 
+/// A voxelized frame and how many particles went into it.
+struct Voxelized {
+    openvdb::FloatGrid::Ptr grid;
+    std::uint64_t count = 0;
+};
+
 /// The gaussian splat and the copy origin field fed chunk by chunk as the particles stream
 /// (nothing frame-sized when they come from GenerateCloud), then the surface eroded.
-/// `count` gets the number of particles.
-openvdb::FloatGrid::Ptr splatStreaming(const CloudParticlesData& particles,
-                                       const algo::VoxelizeSettings& s,
-                                       const algo::SurfaceDetailSettings& detail, CookContext& ctx,
-                                       std::uint64_t& count)
+Voxelized splatStreaming(const CloudParticlesData& particles, const algo::VoxelizeSettings& s,
+                         const algo::SurfaceDetailSettings& detail, CookContext& ctx)
 {
     algo::GaussianSplatter splatter(s);
     const bool eroding = detail.amplitude > 0.0;
@@ -41,7 +44,7 @@ openvdb::FloatGrid::Ptr splatStreaming(const CloudParticlesData& particles,
                            chunk.copyCount);
         },
         eroding, [&] { ctx.checkCancelled(); });
-    count = splatter.count();
+    const std::uint64_t count = splatter.count();
     auto grid = splatter.finish([&] { ctx.checkCancelled(); });
     if (field) field->finish();
     // Particles without copies (vapour, primitive frames) leave the field empty: detail in
@@ -49,7 +52,21 @@ openvdb::FloatGrid::Ptr splatStreaming(const CloudParticlesData& particles,
     const bool copies = field && field->cellCount() > 0;
     algo::erodeSurface(*grid, copies ? &*field : nullptr, detail,
                        [&] { ctx.checkCancelled(); });
-    return grid;
+    return {grid, count};
+}
+
+/// The smooth and sphere kernels sum in a fixed order: they splat the frame's arrays.
+Voxelized splatArrays(const CloudParticlesData& particles, const algo::VoxelizeSettings& s,
+                      const algo::SurfaceDetailSettings& detail, CookContext& ctx)
+{
+    const auto& a = particles.arrays([&] { ctx.checkCancelled(); });
+    const std::uint64_t count = particles.size();
+    auto grid = algo::voxelizeParticles(a.positions.data(), count, s, [&] { ctx.checkCancelled(); });
+    const algo::DetailParticles detailParticles{a.positions.data(), a.sources.data(), count,
+                                                a.copyOrigins.empty() ? nullptr : a.copyOrigins.data(),
+                                                a.copyOrigins.size() / 3};
+    algo::erodeSurface(*grid, detailParticles, s.radius, detail, [&] { ctx.checkCancelled(); });
+    return {grid, count};
 }
 
 class VoxelizerNode final : public Node {
@@ -70,41 +87,29 @@ public:
         detail.amplitude = p.getFloat("detailAmplitude");
         detail.frequency = p.getFloat("detailFrequency") / s.radius;
         detail.octaves = static_cast<int>(p.getInt("detailOctaves"));
-        openvdb::FloatGrid::Ptr grid;
-        std::uint64_t count = 0;
+        Voxelized voxelized;
         try {
-            if (s.kernel == algo::VoxelKernel::Gaussian) {
-                grid = splatStreaming(*particles, s, detail, ctx, count);
-            } else {
-                const auto& a = particles->arrays([&] { ctx.checkCancelled(); });
-                count = particles->size();
-                grid = algo::voxelizeParticles(a.positions.data(), count, s,
-                                               [&] { ctx.checkCancelled(); });
-                const algo::DetailParticles detailParticles{
-                    a.positions.data(), a.sources.data(), count,
-                    a.copyOrigins.empty() ? nullptr : a.copyOrigins.data(),
-                    a.copyOrigins.size() / 3};
-                algo::erodeSurface(*grid, detailParticles, s.radius, detail,
-                                   [&] { ctx.checkCancelled(); });
-            }
+            voxelized = s.kernel == algo::VoxelKernel::Gaussian ? splatStreaming(*particles, s, detail, ctx)
+                                                                : splatArrays(*particles, s, detail, ctx);
         } catch (const algo::VoxelizeTooLarge& e) {
             throw InputError(ctx.nodeId() + "/params/voxelSize", e.what());
         } catch (const std::invalid_argument& e) {
             throw InputError(ctx.nodeId(), e.what());
         }
-        algo::filterVolume(*grid, algo::voxelFilterFromName(p.getString("filter")),
+        openvdb::FloatGrid& grid = *voxelized.grid;
+        algo::filterVolume(grid, algo::voxelFilterFromName(p.getString("filter")),
                            static_cast<int>(p.getInt("filterWidth")),
                            static_cast<int>(p.getInt("filterIterations")));
 
         // Provenance for whoever opens the file (vdb_print, Houdini, Blender).
-        grid->insertMeta("frame", openvdb::Int32Metadata(ctx.frame()));
-        grid->insertMeta("units", openvdb::StringMetadata("metres"));
-        grid->insertMeta("voxel_size_m", openvdb::DoubleMetadata(s.voxelSize));
-        grid->insertMeta("particle_radius_m", openvdb::DoubleMetadata(s.radius));
-        grid->insertMeta("kernel", openvdb::StringMetadata(p.getString("kernel")));
-        grid->insertMeta("particle_count",
-                         openvdb::Int64Metadata(static_cast<openvdb::Int64>(count)));
-        ctx.setOutput("volume", std::make_shared<FogVolumeData>(grid));
+        grid.insertMeta("frame", openvdb::Int32Metadata(ctx.frame()));
+        grid.insertMeta("units", openvdb::StringMetadata("metres"));
+        grid.insertMeta("voxel_size_m", openvdb::DoubleMetadata(s.voxelSize));
+        grid.insertMeta("particle_radius_m", openvdb::DoubleMetadata(s.radius));
+        grid.insertMeta("kernel", openvdb::StringMetadata(p.getString("kernel")));
+        grid.insertMeta("particle_count",
+                        openvdb::Int64Metadata(static_cast<openvdb::Int64>(voxelized.count)));
+        ctx.setOutput("volume", std::make_shared<FogVolumeData>(voxelized.grid));
     }
 };
 

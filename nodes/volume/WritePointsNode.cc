@@ -5,19 +5,16 @@
 #include <stdexcept>
 #include <string>
 
-#include <openvdb/io/File.h>
-
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
-#include "formats/VdbContentUuid.h"
 #include "formats/PointsGrid.h"
+#include "formats/VdbFileWriter.h"
 #include "nodes/DeclHelpers.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/io/WriterSupport.h"
 #include "nodes/volume/VolumeNodes.h"
-#include "util/AtomicFile.h"
 
 namespace cg {
 
@@ -28,11 +25,10 @@ public:
     void cook(CookContext& ctx) override
     {
         const auto particles = ctx.input<CloudParticlesData>("particles");
-        if (!writesSequenceFrame(ctx, /*empty=*/particles->size() == 0)) return;
+        // A stream becomes the frame's arrays here (CloudParticlesData checks their lengths).
+        const auto& a = particles->arrays([&] { ctx.checkCancelled(); });
+        if (!writesSequenceFrame(ctx, /*empty=*/a.levels.size() == 0)) return;
         const ParamSet& p = ctx.params();
-        if (particles->positions().size() != 3 * particles->size() ||
-            particles->sources().size() != particles->size())
-            throw InputError(ctx.nodeId(), "input 'particles' has arrays of different lengths");
 
         formats::PointsGridSettings s;
         s.voxelSize = p.getFloat("voxelSize");
@@ -42,8 +38,7 @@ public:
         openvdb::points::PointDataGrid::Ptr grid;
         try {
             grid = formats::makeParticlePointsGrid(
-                particles->positions().data(), particles->levels().data(),
-                particles->sources().data(), particles->size(), s);
+                a.positions.data(), a.levels.data(), a.sources.data(), a.levels.size(), s);
         } catch (const std::invalid_argument& e) {
             throw InputError(ctx.nodeId(), e.what());
         }
@@ -52,18 +47,7 @@ public:
         ctx.checkCancelled();
 
         const std::filesystem::path path = ctx.outputPath("file");
-        // OpenVDB truncates and writes in place: write beside, then rename.
-        util::AtomicOutput out(path);
-        {
-            openvdb::io::File file(out.tempPath().string());
-            openvdb::MetaMap fileMeta;
-            fileMeta.insertMeta("creator", openvdb::StringMetadata("CloudGraph WritePoints"));
-            file.write(openvdb::GridCPtrVec{grid}, fileMeta);
-            file.close();
-        }
-        formats::setContentUuid(out.tempPath());
-        ctx.checkCancelled();
-        out.commit();
+        formats::writeVdbFile(path, grid, "CloudGraph WritePoints", std::nullopt, [&] { ctx.checkCancelled(); });
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));
     }
 };

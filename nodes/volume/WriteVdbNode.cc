@@ -9,12 +9,11 @@
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
-#include "formats/VdbContentUuid.h"
+#include "formats/VdbFileWriter.h"
 #include "nodes/DeclHelpers.h"
 #include "nodes/data/FogVolume.h"
 #include "nodes/io/WriterSupport.h"
 #include "nodes/volume/VolumeNodes.h"
-#include "util/AtomicFile.h"
 
 namespace cg {
 
@@ -47,19 +46,7 @@ public:
         grid->setSaveFloatAsHalf(ctx.params().getBool("halfFloat"));
 
         const std::filesystem::path path = ctx.outputPath("file");
-        // OpenVDB truncates and writes in place: write beside, then rename.
-        util::AtomicOutput out(path);
-        {
-            openvdb::io::File file(out.tempPath().string());
-            file.setCompression(flags);
-            openvdb::MetaMap fileMeta;
-            fileMeta.insertMeta("creator", openvdb::StringMetadata("CloudGraph WriteVDB"));
-            file.write(openvdb::GridCPtrVec{grid}, fileMeta);
-            file.close();
-        }
-        formats::setContentUuid(out.tempPath());
-        ctx.checkCancelled();
-        out.commit();
+        formats::writeVdbFile(path, grid, "CloudGraph WriteVDB", flags, [&] { ctx.checkCancelled(); });
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));
     }
 };

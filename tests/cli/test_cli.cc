@@ -16,12 +16,11 @@ namespace cg {
 
 using test::dataPath;
 using test::readFile;
+using test::readJson;
 using test::runCli;
 using test::TempDir;
 
 namespace {
-
-nlohmann::json readJson(const std::filesystem::path& p) { return nlohmann::json::parse(readFile(p)); }
 
 /// status of each (node, frame) in a run report, e.g. {"n3@0", "cooked"}.
 std::map<std::string, std::string> statuses(const nlohmann::json& report)

@@ -16,14 +16,13 @@ namespace cg {
 
 using test::dataPath;
 using test::readFile;
+using test::readJson;
 using test::runCli;
 using test::TempDir;
 
 namespace {
 
 namespace fs = std::filesystem;
-
-nlohmann::json readJson(const fs::path& p) { return nlohmann::json::parse(readFile(p)); }
 
 /// Status of node `node` at each frame of a run report.
 std::map<int, std::string> statusesOf(const nlohmann::json& report, const std::string& node)

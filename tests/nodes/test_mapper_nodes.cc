@@ -177,11 +177,6 @@ TEST_F(MapperNodes, LogTextRecordsTheLinesItPrints)
     EXPECT_EQ(printed, 4);  // frames 0, 40, 80, 120
 }
 
-namespace {
-
-
-}  // namespace
-
 // The Voxelizer takes GenerateCloud's particles chunk by chunk as they are generated, with no
 // frame array; its grid must be the one made from the frame's arrays, bit for bit, with and
 // without evaporation (which drops particles from the streamed chunks).

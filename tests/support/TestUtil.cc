@@ -41,6 +41,8 @@ std::string readFile(const std::filesystem::path& p)
     return s.str();
 }
 
+nlohmann::json readJson(const std::filesystem::path& p) { return nlohmann::json::parse(readFile(p)); }
+
 void writeFile(const std::filesystem::path& p, const std::string& text)
 {
     std::ofstream f(p, std::ios::binary | std::ios::trunc);

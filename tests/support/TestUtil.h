@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace cg::test {
 
 /// A fresh directory under the system temp dir, removed with its contents on destruction.
@@ -22,6 +24,7 @@ private:
 };
 
 std::string readFile(const std::filesystem::path& p);
+nlohmann::json readJson(const std::filesystem::path& p);
 void writeFile(const std::filesystem::path& p, const std::string& text);
 
 struct CliResult {

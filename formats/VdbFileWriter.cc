@@ -1,4 +1,4 @@
-#include "formats/VdbContentUuid.h"
+#include "formats/VdbFileWriter.h"
 
 #include <cstdint>
 #include <cstdio>
@@ -9,7 +9,10 @@
 #include <string>
 #include <vector>
 
+#include <openvdb/io/File.h>
 #include <xxhash.h>
+
+#include "util/AtomicFile.h"
 
 namespace cg::formats {
 
@@ -26,8 +29,7 @@ std::uint32_t u32At(const std::vector<char>& bytes, std::size_t at)
     return v;
 }
 
-}  // namespace
-
+/// Rewrites, in place, the UUID of the VDB file at `path` (just written by openvdb::io::File).
 void setContentUuid(const std::filesystem::path& path)
 {
     std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
@@ -59,6 +61,27 @@ void setContentUuid(const std::filesystem::path& path)
     file.write(uuid, kUuidChars);
     file.flush();
     if (!file) throw std::runtime_error("cannot write the UUID of " + path.string());
+}
+
+}  // namespace
+
+void writeVdbFile(const std::filesystem::path& target, const openvdb::GridBase::ConstPtr& grid,
+                  const std::string& creator, std::optional<std::uint32_t> compression,
+                  const std::function<void()>& beforeCommit)
+{
+    // OpenVDB truncates and writes in place: write beside, then rename.
+    util::AtomicOutput out(target);
+    {
+        openvdb::io::File file(out.tempPath().string());
+        if (compression) file.setCompression(*compression);
+        openvdb::MetaMap fileMeta;
+        fileMeta.insertMeta("creator", openvdb::StringMetadata(creator));
+        file.write(openvdb::GridCPtrVec{grid}, fileMeta);
+        file.close();
+    }
+    setContentUuid(out.tempPath());
+    if (beforeCommit) beforeCommit();
+    out.commit();
 }
 
 }  // namespace cg::formats
