@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "algo/CounterRandom.h"
+#include "algo/volume/RecentLookup.h"
 
 namespace cg::algo {
 
@@ -57,12 +58,11 @@ struct IntegerCell {
 }  // namespace
 
 struct CopyOriginField::Accumulator {
-    /// One thread's cells; the last cell used is remembered (neighbours in a copy mostly
-    /// share a cell: the hash is skipped).
+    /// One thread's cells; the cells used lately are remembered (a copy's particles fall in a
+    /// few dozen cells: the hash is mostly skipped).
     struct LocalCells {
         std::unordered_map<std::uint64_t, IntegerCell, KeyHash> cells;
-        std::uint64_t lastKey = ~std::uint64_t(0);
-        IntegerCell* last = nullptr;
+        RecentLookup<IntegerCell, 9> recent;
     };
     tbb::enumerable_thread_specific<LocalCells> locals;
 };
@@ -94,29 +94,32 @@ void CopyOriginField::add(const float* xyz, const std::uint32_t* sources, std::s
                           const float* copyOrigins, std::size_t copyCount)
 {
     Accumulator::LocalCells& local = mAccumulator->locals.local();
+    // Particles come in runs of one source: its origin is checked and rounded once a run.
+    std::uint32_t lastSource = 0;
+    std::int64_t origin[3] = {0, 0, 0};
     for (std::size_t i = 0; i < count; ++i) {
         const std::uint32_t s = sources[i];
-        if (s >= copyCount)
-            throw std::invalid_argument(
-                "copy origin field: a particle's source has no copy origin");
-        std::int64_t origin[3];
-        for (int a = 0; a < 3; ++a) {
-            const double o = copyOrigins[3 * static_cast<std::size_t>(s) + a];
-            if (!(std::fabs(o) < kMaxOrigin))
+        if (i == 0 || s != lastSource) {
+            if (s >= copyCount)
                 throw std::invalid_argument(
-                    "copy origin field: a copy origin is not finite or lies "
-                    "beyond 1,000 km");
-            origin[a] = std::llround(o * kOriginUnits);
+                    "copy origin field: a particle's source has no copy origin");
+            for (int a = 0; a < 3; ++a) {
+                const double o = copyOrigins[3 * static_cast<std::size_t>(s) + a];
+                if (!(std::fabs(o) < kMaxOrigin))
+                    throw std::invalid_argument(
+                        "copy origin field: a copy origin is not finite or lies "
+                        "beyond 1,000 km");
+                origin[a] = std::llround(o * kOriginUnits);
+            }
+            lastSource = s;
         }
         const float* p = xyz + 3 * i;
         const std::uint64_t k =
             key(cellOf(p[0], mCellSize), cellOf(p[1], mCellSize), cellOf(p[2], mCellSize));
-        if (k != local.lastKey) {
-            local.last = &local.cells[k];  // unordered_map nodes stay where they are
-            local.lastKey = k;
-        }
-        for (int a = 0; a < 3; ++a) local.last->sum[a] += origin[a];
-        ++local.last->count;
+        // unordered_map nodes stay where they are: the remembered pointers stay valid.
+        IntegerCell* cell = local.recent.get(k, [&] { return &local.cells[k]; });
+        for (int a = 0; a < 3; ++a) cell->sum[a] += origin[a];
+        ++cell->count;
     }
 }
 
@@ -129,7 +132,7 @@ void CopyOriginField::finish()
             for (int a = 0; a < 3; ++a) t.sum[a] += cell.sum[a];
             t.count += cell.count;
         }
-    mAccumulator->locals.clear();
+    mAccumulator->locals.clear();  // the cells and the pointers remembered to them
     mIndex.reserve(total.size());
     mCells.reserve(total.size());
     for (const auto& [k, cell] : total) {

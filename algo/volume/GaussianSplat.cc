@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "algo/volume/LeafFromDense.h"
+#include "algo/volume/RecentLookup.h"
 
 namespace cg::algo {
 
@@ -29,8 +30,11 @@ constexpr int kBlockVoxels = kBlock * kBlock * kBlock;
 /// The blur writes bricks of 32^3 voxels (4^3 leaves) at a time.
 constexpr int kBrickLog2 = 5;
 constexpr int kBrick = 1 << kBrickLog2;
-/// Cloud-in-cell weights are summed as integers in units of 2^-30: a voxel's sum is at most
-/// the particle count (< 2^32) times 2^30, inside an int64.
+/// Cloud-in-cell weights are integers: each axis's weight in units of 2^-10 (the position
+/// within its voxel rounded to 1/1024 voxel), their product in units of 2^-30, so a
+/// particle's 8 weights sum to exactly 2^30 and the deposit conserves mass exactly. A
+/// voxel's sum is at most the particle count (< 2^32) times 2^30, inside an int64.
+constexpr std::int32_t kAxisUnit = 1024;
 constexpr double kWeightUnit = 1073741824.0;
 /// Index coordinates are limited to +-2^20 voxels, as in voxelizeParticles.
 constexpr float kMaxIndex = 1048576.0f;
@@ -64,12 +68,11 @@ inline int floorInt(float x)
 
 using Block = std::unique_ptr<std::int64_t[]>;
 
-/// One thread's blocks; the last block used is remembered, since consecutive particles of a
-/// source lie close together.
+/// One thread's blocks; the blocks used lately are remembered, since consecutive particles
+/// of a source lie in a few blocks.
 struct LocalDeposit {
     std::unordered_map<std::uint64_t, Block> blocks;
-    std::uint64_t lastKey = ~std::uint64_t(0);
-    std::int64_t* last = nullptr;
+    RecentLookup<std::int64_t> recent;
 };
 
 /// 1D blur taps, normalised to sum 1: w[t] for offsets t - taps, t in [0, 2 taps].
@@ -100,7 +103,11 @@ struct GaussianSplatter::Deposit {
 
     std::int64_t* block(LocalDeposit& local, std::uint64_t key)
     {
-        if (key == local.lastKey) return local.last;
+        return local.recent.get(key, [&] { return newOrOldBlock(local, key); });
+    }
+
+    std::int64_t* newOrOldBlock(LocalDeposit& local, std::uint64_t key)
+    {
         Block& b = local.blocks[key];
         if (!b) {
             constexpr std::uint64_t kBytes = kBlockVoxels * sizeof(std::int64_t);
@@ -113,9 +120,7 @@ struct GaussianSplatter::Deposit {
             }
             b.reset(new std::int64_t[kBlockVoxels]());
         }
-        local.lastKey = key;
-        local.last = b.get();
-        return local.last;
+        return b.get();
     }
 };
 
@@ -142,15 +147,15 @@ void GaussianSplatter::add(const float* xyz, std::size_t count)
     LocalDeposit& local = d.locals.local();
     for (std::size_t i = 0; i < count; ++i) {
         int c[3];
-        double w[3][2];
+        std::int32_t w[3][2];
         for (int a = 0; a < 3; ++a) {
             const float q = xyz[3 * i + a] * d.invVoxel;
             if (!(std::fabs(q) < kMaxIndex))  // also catches NaN
                 throw std::invalid_argument("voxelize: a particle position is not finite or lies "
                                             "beyond 2^20 voxels from the origin");
             c[a] = floorInt(q);
-            const double f = static_cast<double>(q) - c[a];
-            w[a][0] = 1.0 - f;
+            const std::int32_t f = static_cast<std::int32_t>((q - static_cast<float>(c[a])) * kAxisUnit + 0.5f);
+            w[a][0] = kAxisUnit - f;
             w[a][1] = f;
         }
         constexpr int kLast = kBlock - 1;  // a corner there has its +1 neighbour in the next block
@@ -159,16 +164,16 @@ void GaussianSplatter::add(const float* xyz, std::size_t count)
                                                                 c[2] >> kBlockLog2))
                                       : nullptr;
         for (int dx = 0; dx < 2; ++dx)
-            for (int dy = 0; dy < 2; ++dy)
+            for (int dy = 0; dy < 2; ++dy) {
+                const std::int32_t wxy = w[0][dx] * w[1][dy];
                 for (int dz = 0; dz < 2; ++dz) {
                     const int x = c[0] + dx, y = c[1] + dy, z = c[2] + dz;
                     std::int64_t* b = same ? same
                                            : d.block(local, blockKey(x >> kBlockLog2, y >> kBlockLog2,
                                                                      z >> kBlockLog2));
-                    const double weight = w[0][dx] * w[1][dy] * w[2][dz];
-                    b[blockIndex(x & (kBlock - 1), y & (kBlock - 1), z & (kBlock - 1))] +=
-                        static_cast<std::int64_t>(weight * kWeightUnit + 0.5);
+                    b[blockIndex(x & (kBlock - 1), y & (kBlock - 1), z & (kBlock - 1))] += wxy * w[2][dz];
                 }
+            }
     }
     mCount.fetch_add(count);
 }
@@ -317,7 +322,10 @@ openvdb::FloatGrid::Ptr GaussianSplatter::finish(const std::function<void()>& ch
                                             kBrick * kBrick, kBrick, origin + openvdb::Coord(x, y, z),
                                             clamp);
     });
-    for (LocalDeposit& local : d.locals) local.blocks.clear();
+    for (LocalDeposit& local : d.locals) {
+        local.blocks.clear();
+        local.recent.clear();
+    }
     if (checkCancelled) checkCancelled();
 
     auto grid = openvdb::FloatGrid::create(0.0f);

@@ -13,7 +13,8 @@
 /// left for the passes and the kernel is the trilinear deposit alone.
 ///
 /// Deterministic for any thread count and any order of `add` calls: the deposit sums
-/// integer weights (cloud-in-cell weights in units of 2^-30), which add associatively, and
+/// integer weights (each axis's cloud-in-cell weight in units of 2^-10, their product in units
+/// of 2^-30, so a particle deposits exactly 1), which add associatively, and
 /// the blur reads a fixed neighbourhood. That is what lets particles stream in chunks from
 /// several threads without a frame-sized array. No engine includes.
 

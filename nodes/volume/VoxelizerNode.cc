@@ -119,7 +119,7 @@ void registerVoxelizerNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "Voxelizer";
-    d.version = 3;  // 2: surface detail; 3: the gaussian kernel by default
+    d.version = 4;  // 2: surface detail; 3: the gaussian kernel by default; 4: its weights exact
     d.category = "volume";
     d.doc =
         "Splats cloud particles into a sparse OpenVDB fog volume (Sec. 6.3: volume data with "

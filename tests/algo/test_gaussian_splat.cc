@@ -83,7 +83,7 @@ TEST(GaussianSplat, SigmaGivesTheSmoothKernelsIntegralAtTheSamePeak)
 
 TEST(GaussianSplat, OneParticleKeepsItsMassAndCentroidAndTheKernelsWidth)
 {
-    // Unclamped: the deposit's weights sum to 1 (to 2^-30) and the taps to 1, so the grid
+    // Unclamped: the deposit's weights sum to exactly 1 and the taps to 1, so the grid
     // holds the kernel's integral exactly; both are symmetric, so the centroid is the
     // particle. The variance per axis is the blur's plus the deposit's f (1 - f), f the
     // offset from the voxel below; averaged over f it is sigma^2 (taps cut at 3 sigma_b:
