@@ -77,6 +77,8 @@ std::vector<GoldenSpec> makeSpecs()
              set(g, "field", "height", 64);
          }, {}},
         {"figure1_cloudscape", figureFrames, smallFigure, video},
+        // Issue 17's 20 km field: the same small wiring (its copies are the small primitive's).
+        {"cloudscape_20km", figureFrames, smallFigure, video},
         {"figure5_progress", figureFrames, [](Graph& g) {
              smallFigure(g);
              coarserVoxels(g, "vapourVolume");  // CombineVolumes needs the same grid
