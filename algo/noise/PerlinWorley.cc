@@ -23,10 +23,35 @@ static_assert(kSize % kPerlinWorleyTexelsPerCycle == 0, "whole cycles tile");
 constexpr std::uint64_t kWorleySeed = 0x5713a11d0f3e9c21ull;
 constexpr std::uint64_t kPerlinSeed = 0x2b7e151628aed2a6ull;
 
-/// Worley's F1 in cell units at point p (in cells) of a lattice of `cells` cells per axis
-/// that wraps: the distance to the nearest of the feature points, one per cell at a hashed
-/// place inside it.
-double worleyF1(const double p[3], int cells, std::uint64_t seed)
+/// A wrapping lattice of `cells` cells per axis with one feature point per cell, at a hashed
+/// place inside it: the jitters are hashed once per cell, not once per texel and neighbour.
+struct WorleyLattice {
+    WorleyLattice(int cellsPerAxis, std::uint64_t seed)
+        : cells(cellsPerAxis), jitters(std::size_t(3) * cells * cells * cells)
+    {
+        for (int i = 0; i < cells; ++i)
+            for (int j = 0; j < cells; ++j)
+                for (int k = 0; k < cells; ++k) {
+                    std::uint64_t h = seed;
+                    for (const int c : {i, j, k}) h = mix64(h ^ static_cast<std::uint64_t>(c));
+                    double* jitter = &jitters[3 * ((std::size_t(i) * cells + j) * cells + k)];
+                    for (int a = 0; a < 3; ++a)
+                        jitter[a] = static_cast<double>((h >> (21 * a)) & 0x1fffff) * 0x1.0p-21;
+                }
+    }
+    const double* jitter(const int c[3]) const
+    {
+        int w[3];
+        for (int a = 0; a < 3; ++a) w[a] = ((c[a] % cells) + cells) % cells;
+        return &jitters[3 * ((std::size_t(w[0]) * cells + w[1]) * cells + w[2])];
+    }
+    int cells;
+    std::vector<double> jitters;
+};
+
+/// Worley's F1 in cell units at point p (in cells) of the lattice: the distance to the
+/// nearest feature point.
+double worleyF1(const double p[3], const WorleyLattice& lattice)
 {
     int base[3];
     for (int a = 0; a < 3; ++a) base[a] = static_cast<int>(std::floor(p[a]));
@@ -35,13 +60,10 @@ double worleyF1(const double p[3], int cells, std::uint64_t seed)
         for (int dy = -1; dy <= 1; ++dy)
             for (int dz = -1; dz <= 1; ++dz) {
                 const int c[3] = {base[0] + dx, base[1] + dy, base[2] + dz};
-                std::uint64_t h = seed;
-                for (int a = 0; a < 3; ++a)
-                    h = mix64(h ^ static_cast<std::uint64_t>(((c[a] % cells) + cells) % cells));
+                const double* jitter = lattice.jitter(c);
                 double d2 = 0.0;
                 for (int a = 0; a < 3; ++a) {
-                    const double jitter = static_cast<double>((h >> (21 * a)) & 0x1fffff) * 0x1.0p-21;
-                    const double d = c[a] + jitter - p[a];
+                    const double d = c[a] + jitter[a] - p[a];
                     d2 += d * d;
                 }
                 best = std::min(best, d2);
@@ -50,13 +72,13 @@ double worleyF1(const double p[3], int cells, std::uint64_t seed)
 }
 
 /// The noise at point p in cycles (periodic with kCycles): the texel value of the header.
-float perlinWorleyAt(const double p[3])
+float perlinWorleyAt(const double p[3], const WorleyLattice& coarse, const WorleyLattice& fine)
 {
-    const auto billow = [&](int factor, std::uint64_t seed) {
+    const auto billow = [&](int factor, const WorleyLattice& lattice) {
         const double q[3] = {p[0] * factor, p[1] * factor, p[2] * factor};
-        return 1.0 - std::min(worleyF1(q, kCycles * factor, seed), 1.0);
+        return 1.0 - std::min(worleyF1(q, lattice), 1.0);
     };
-    const double worley = 0.75 * billow(1, kWorleySeed) + 0.25 * billow(2, kWorleySeed + 1);
+    const double worley = 0.75 * billow(1, coarse) + 0.25 * billow(2, fine);
     const double perlin = 0.5 + 0.5 * gradientNoise(p[0], p[1], p[2], kPerlinSeed, kCycles);
     return static_cast<float>(std::clamp(0.7 * worley + 0.3 * perlin, 0.0, 1.0));
 }
@@ -66,13 +88,14 @@ const std::vector<float>& texture()
 {
     static const std::vector<float> texels = [] {
         std::vector<float> t(static_cast<std::size_t>(kSize) * kSize * kSize);
-        tbb::parallel_for(0, kSize, [&t](int i) {
+        const WorleyLattice coarse(kCycles, kWorleySeed), fine(2 * kCycles, kWorleySeed + 1);
+        tbb::parallel_for(0, kSize, [&](int i) {
             for (int j = 0; j < kSize; ++j)
                 for (int k = 0; k < kSize; ++k) {
                     const double p[3] = {static_cast<double>(i) / kPerlinWorleyTexelsPerCycle,
                                          static_cast<double>(j) / kPerlinWorleyTexelsPerCycle,
                                          static_cast<double>(k) / kPerlinWorleyTexelsPerCycle};
-                    t[(static_cast<std::size_t>(i) * kSize + j) * kSize + k] = perlinWorleyAt(p);
+                    t[(static_cast<std::size_t>(i) * kSize + j) * kSize + k] = perlinWorleyAt(p, coarse, fine);
                 }
         });
         return t;
