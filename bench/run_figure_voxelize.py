@@ -3,16 +3,18 @@
 gaussian kernel (the default since), and how much the picture moves between the two.
 
 Usage: bench/run_figure_voxelize.py BUILD_DIR [GRAPH ...]   (default: every graphs/figure*.json)
+       FRAMES=N bench/run_figure_voxelize.py ...           (frames a span; default 8)
 
-For each graph, four frames (a quarter, half, three quarters and the end of its range). The
-simulation states are cooked once into a cache shared by every graph (`run
---simulations-only`); then each frame is cooked once per kernel (`--set NODE.kernel=...` on
-every Voxelizer of the graph), and after each run the cache is put back as the simulations
-left it, so every run voxelizes and renders. Voxelize seconds are the Voxelizer nodes' own
-times from the run reports, summed over the four frames. The picture: each frame is also
-written as a linear EXR, and build/bench/image_error gives the gaussian kernel's luminance
-error against the smooth kernel's over the cloud pixels (mean and 90th percentile, the
-measure of docs/rendering.md), at the last frame.
+For each graph, two spans of FRAMES frames (default 8), cooked in one process each: the
+middle of its range and its end (where the clouds are largest). The simulation states are
+cooked once into a cache shared by every graph (`run --simulations-only`); then each span
+is cooked once per kernel (`--set NODE.kernel=...` on every Voxelizer of the graph), and
+after each run the cache is put back as the simulations left it, so every run voxelizes and
+renders. Voxelize seconds are the Voxelizer nodes' own times from the run reports, summed
+over the frames. The picture: each frame is also written as a linear EXR, and
+build/bench/image_error gives the gaussian kernel's luminance error against the smooth
+kernel's over the cloud pixels (mean and 90th percentile, the measure of
+docs/rendering.md), at the last frame.
 """
 import json
 import os
@@ -76,18 +78,20 @@ def main():
             voxelizers = [n for n, v in graph["nodes"].items() if v["type"] == "Voxelizer"]
             videos = [n for n, v in graph["nodes"].items() if v["type"] == "EncodeVideo"]
             end = graph["frames"]["end"]
-            frames = [round(end * f) for f in (0.25, 0.5, 0.75, 1.0)]
+            span = int(os.environ.get("FRAMES", "8"))
+            spans = [(end // 2 - span + 1, end // 2), (end - span + 1, end)]
             subprocess.run([cli, "run", copy, "--simulations-only", "--cache", cache,
                             "--out", os.path.join(work, "out"), "-q"], check=True)
             kept = files_under(cache)
             seconds = {k: 0.0 for k in KERNELS}
             for kernel in KERNELS:
-                for frame in frames:
+                for first, frame in spans:
                     out = os.path.join(work, kernel)
                     report = os.path.join(work, "report.json")
                     sets = [f"{v}.kernel={kernel}" for v in voxelizers]
-                    sets += [f"{v}.{p}={frame}" for v in videos for p in ("firstFrame", "lastFrame")]
-                    argv = [cli, "run", copy, "--frames", f"{frame}:{frame}", "--cache", cache,
+                    sets += [f"{v}.firstFrame={first}" for v in videos]
+                    sets += [f"{v}.lastFrame={frame}" for v in videos]
+                    argv = [cli, "run", copy, "--frames", f"{first}:{frame}", "--cache", cache,
                             "--out", out, "--report", report, "-q"]
                     for s in sets:
                         argv += ["--set", s]
@@ -96,7 +100,7 @@ def main():
                     with open(report) as f:
                         records = json.load(f)["records"]
                     seconds[kernel] += sum(r["seconds"] for r in records if r["type"] == "Voxelizer")
-            last = f"bench/frame.{frames[-1]:04d}.exr"
+            last = f"bench/frame.{end:04d}.exr"
             error = subprocess.run([image_error, os.path.join(work, "gaussian", last),
                                     os.path.join(work, "smooth", last)],
                                    check=True, capture_output=True, text=True).stdout
@@ -104,7 +108,7 @@ def main():
             p90 = float(re.search(r"p90=(\S+)", error).group(1))
             for k in KERNELS:
                 total[k] += seconds[k]
-            print(f"| {name} | {', '.join(map(str, frames))} | "
+            print(f"| {name} | {', '.join(f'{a}-{b}' for a, b in spans)} | "
                   f"{seconds['smooth']:.2f} | {seconds['gaussian']:.2f} | "
                   f"**{seconds['smooth'] / seconds['gaussian']:.1f}x** | "
                   f"{100 * mean:.2f}% / {100 * p90:.2f}% |", flush=True)

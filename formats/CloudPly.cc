@@ -1,20 +1,109 @@
 #include "formats/CloudPly.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+
 #include "formats/PlyFile.h"
 
 namespace cg::formats {
+
+namespace {
+
+std::vector<PlyProperty> cloudProperties(std::size_t count, const float* positions,
+                                         const std::uint8_t* levels, const std::uint32_t* sources)
+{
+    return {{"x", PlyType::Float, positions, 3},
+            {"y", PlyType::Float, count ? positions + 1 : nullptr, 3},
+            {"z", PlyType::Float, count ? positions + 2 : nullptr, 3},
+            {"level", PlyType::UChar, levels},
+            {"source", PlyType::UInt, sources}};
+}
+
+[[noreturn]] void failed(const std::filesystem::path& path, int error)
+{
+    throw std::runtime_error("cannot write '" + path.string() + "': " + std::strerror(error));
+}
+
+/// Writes all of `bytes` at `offset`, resuming after short writes and interrupts.
+void writeAt(int fd, const std::filesystem::path& path, const unsigned char* bytes, std::size_t size,
+             std::uint64_t offset)
+{
+    while (size > 0) {
+        const ssize_t n = ::pwrite(fd, bytes, size, static_cast<off_t>(offset));
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            failed(path, errno);
+        }
+        bytes += n;
+        size -= static_cast<std::size_t>(n);
+        offset += static_cast<std::uint64_t>(n);
+    }
+}
+
+}  // namespace
 
 void writeCloudPly(const std::filesystem::path& path, std::size_t count, const float* positions,
                    const std::uint8_t* levels, const std::uint32_t* sources,
                    const std::string& comment, const std::function<void()>& poll)
 {
-    writeBinaryPly(path, count,
-                   {{"x", PlyType::Float, positions, 3},
-                    {"y", PlyType::Float, count ? positions + 1 : nullptr, 3},
-                    {"z", PlyType::Float, count ? positions + 2 : nullptr, 3},
-                    {"level", PlyType::UChar, levels},
-                    {"source", PlyType::UInt, sources}},
-                   comment, poll);
+    writeBinaryPly(path, count, cloudProperties(count, positions, levels, sources), comment, poll);
+}
+
+CloudPlyChunkWriter::CloudPlyChunkWriter(std::filesystem::path path,
+                                         std::vector<std::pair<std::uint64_t, std::uint64_t>> chunks,
+                                         const std::string& comment)
+    : mPath(std::move(path))
+{
+    std::sort(chunks.begin(), chunks.end());
+    const std::size_t recordBytes = plyRecordBytes(cloudProperties(0, nullptr, nullptr, nullptr));
+    for (std::size_t i = 0; i < chunks.size(); ++i) {
+        if (i > 0 && chunks[i].first == chunks[i - 1].first)
+            throw std::invalid_argument("cloud PLY: chunk " + std::to_string(chunks[i].first) +
+                                        " given twice");
+        mFirsts.push_back(chunks[i].first);
+        mCounts.push_back(chunks[i].second);
+        mOffsets.push_back(mTotal * recordBytes);  // from the end of the header, for now
+        mTotal += chunks[i].second;
+    }
+    const std::string header =
+        binaryPlyHeader(mTotal, cloudProperties(mTotal, nullptr, nullptr, nullptr), comment);
+    for (std::uint64_t& offset : mOffsets) offset += header.size();
+    mFd = ::open(mPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (mFd < 0) failed(mPath, errno);
+    writeAt(mFd, mPath, reinterpret_cast<const unsigned char*>(header.data()), header.size(), 0);
+}
+
+CloudPlyChunkWriter::~CloudPlyChunkWriter()
+{
+    if (mFd >= 0) ::close(mFd);
+}
+
+void CloudPlyChunkWriter::write(std::uint64_t first, std::uint64_t count, const float* positions,
+                                const std::uint8_t* levels, const std::uint32_t* sources)
+{
+    const auto at = std::lower_bound(mFirsts.begin(), mFirsts.end(), first);
+    const std::size_t index = static_cast<std::size_t>(at - mFirsts.begin());
+    if (at == mFirsts.end() || *at != first || mCounts[index] != count)
+        throw std::invalid_argument("cloud PLY: chunk " + std::to_string(first) + " of " +
+                                    std::to_string(count) + " particles was not announced");
+    if (count == 0) return;
+    const auto properties = cloudProperties(count, positions, levels, sources);
+    thread_local std::vector<unsigned char> records;
+    records.resize(count * plyRecordBytes(properties));
+    packPlyRecords(properties, 0, count, records.data());
+    writeAt(mFd, mPath, records.data(), records.size(), mOffsets[index]);
+}
+
+void CloudPlyChunkWriter::close()
+{
+    const int fd = mFd;
+    mFd = -1;
+    if (fd >= 0 && ::close(fd) != 0) failed(mPath, errno);
 }
 
 }  // namespace cg::formats

@@ -58,9 +58,8 @@ void pack(const PlyProperty& p, std::size_t i, unsigned char* out)
 
 }  // namespace
 
-void writeBinaryPly(const std::filesystem::path& path, std::size_t count,
-                    const std::vector<PlyProperty>& properties, const std::string& comment,
-                    const std::function<void()>& poll)
+std::string binaryPlyHeader(std::size_t count, const std::vector<PlyProperty>& properties,
+                            const std::string& comment)
 {
     std::string line = comment;
     std::replace(line.begin(), line.end(), '\n', ' ');
@@ -68,12 +67,34 @@ void writeBinaryPly(const std::filesystem::path& path, std::size_t count,
     std::string header = "ply\nformat binary_little_endian 1.0\ncomment CloudGraph";
     if (!line.empty()) header += " " + line;
     header += "\nelement vertex " + std::to_string(count) + "\n";
-    std::size_t recordBytes = 0;
-    for (const PlyProperty& p : properties) {
+    for (const PlyProperty& p : properties)
         header += std::string("property ") + nameOf(p.type) + " " + p.name + "\n";
-        recordBytes += sizeOf(p.type);
-    }
-    header += "end_header\n";
+    return header + "end_header\n";
+}
+
+std::size_t plyRecordBytes(const std::vector<PlyProperty>& properties)
+{
+    std::size_t bytes = 0;
+    for (const PlyProperty& p : properties) bytes += sizeOf(p.type);
+    return bytes;
+}
+
+void packPlyRecords(const std::vector<PlyProperty>& properties, std::size_t begin, std::size_t end,
+                    unsigned char* out)
+{
+    for (std::size_t i = begin; i < end; ++i)
+        for (const PlyProperty& p : properties) {
+            pack(p, i, out);
+            out += sizeOf(p.type);
+        }
+}
+
+void writeBinaryPly(const std::filesystem::path& path, std::size_t count,
+                    const std::vector<PlyProperty>& properties, const std::string& comment,
+                    const std::function<void()>& poll)
+{
+    const std::string header = binaryPlyHeader(count, properties, comment);
+    const std::size_t recordBytes = plyRecordBytes(properties);
 
     errno = 0;
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
@@ -85,12 +106,7 @@ void writeBinaryPly(const std::filesystem::path& path, std::size_t count,
     for (std::size_t begin = 0; begin < count && out; begin += perChunk) {
         if (poll) poll();
         const std::size_t end = std::min(count, begin + perChunk);
-        unsigned char* r = chunk.data();
-        for (std::size_t i = begin; i < end; ++i)
-            for (const PlyProperty& p : properties) {
-                pack(p, i, r);
-                r += sizeOf(p.type);
-            }
+        packPlyRecords(properties, begin, end, chunk.data());
         out.write(reinterpret_cast<const char*>(chunk.data()),
                   static_cast<std::streamsize>((end - begin) * recordBytes));
     }

@@ -33,4 +33,14 @@ void writeBinaryPly(const std::filesystem::path& path, std::size_t count,
                     const std::vector<PlyProperty>& properties, const std::string& comment = "",
                     const std::function<void()>& poll = {});
 
+/// The header writeBinaryPly writes for these arguments, through "end_header\n".
+std::string binaryPlyHeader(std::size_t count, const std::vector<PlyProperty>& properties,
+                            const std::string& comment);
+/// Bytes of one record of `properties`.
+std::size_t plyRecordBytes(const std::vector<PlyProperty>& properties);
+/// Packs the records [begin, end) of `properties` at `out`, (end - begin) plyRecordBytes bytes,
+/// as writeBinaryPly writes them.
+void packPlyRecords(const std::vector<PlyProperty>& properties, std::size_t begin, std::size_t end,
+                    unsigned char* out);
+
 }  // namespace cg::formats

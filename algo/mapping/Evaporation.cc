@@ -41,16 +41,18 @@ void dropCloudParticlesBelow(CloudParticleArrays& cloud, float zMin)
 CloudChunk chunkAbove(const CloudChunk& chunk, float zMin, KeptParticles& kept)
 {
     kept.positions.clear();
+    kept.levels.clear();
     kept.sources.clear();
     for (std::uint64_t i = 0; i < chunk.count; ++i) {
         if (!survives(chunk.positions[3 * i + 2], zMin)) continue;
         kept.positions.insert(kept.positions.end(), chunk.positions + 3 * i, chunk.positions + 3 * i + 3);
+        if (chunk.levels) kept.levels.push_back(chunk.levels[i]);
         if (chunk.sources) kept.sources.push_back(chunk.sources[i]);
     }
     CloudChunk out = chunk;
     out.count = kept.positions.size() / 3;
     out.positions = kept.positions.data();
-    out.levels = nullptr;
+    out.levels = chunk.levels ? kept.levels.data() : nullptr;
     out.sources = chunk.sources ? kept.sources.data() : nullptr;
     return out;
 }

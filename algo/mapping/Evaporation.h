@@ -23,12 +23,13 @@ void dropCloudParticlesBelow(CloudParticleArrays& cloud, float zMin);
 /// Where chunkAbove copies the particles it keeps; reused from chunk to chunk.
 struct KeptParticles {
     std::vector<float> positions;
+    std::vector<std::uint8_t> levels;
     std::vector<std::uint32_t> sources;
 };
 
 /// The same for one chunk of forEachCloudChunk: its particles whose height is at least zMin,
-/// in their order, copied into `kept` (sources too when the chunk has them; levels are not
-/// carried). The result points into `kept`.
+/// in their order, copied into `kept` (levels and sources too when the chunk has them). The
+/// result points into `kept`; its `first` stays the chunk's, which names the chunk.
 CloudChunk chunkAbove(const CloudChunk& chunk, float zMin, KeptParticles& kept);
 
 }  // namespace cg::algo

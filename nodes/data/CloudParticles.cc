@@ -115,11 +115,11 @@ const algo::CloudParticleArrays& CloudParticlesData::arrays(
 }
 
 void CloudParticlesData::forEachChunk(const std::function<void(const algo::CloudChunk&)>& consume,
-                                      bool sources,
+                                      CloudChunkFields fields,
                                       const std::function<void()>& checkCancelled) const
 {
     if (!mHaveArrays) {
-        mStream->forEachChunk(consume, sources, checkCancelled);
+        mStream->forEachChunk(consume, fields, checkCancelled);
         return;
     }
     const std::size_t n = size();
@@ -130,7 +130,7 @@ void CloudParticlesData::forEachChunk(const std::function<void(const algo::Cloud
         chunk.count = std::min(kArrayChunk, n - c * kArrayChunk);
         chunk.positions = mArrays.positions.data() + 3 * chunk.first;
         chunk.levels = mArrays.levels.data() + chunk.first;
-        if (sources) {
+        if (fields.sources) {
             chunk.sources = mArrays.sources.data() + chunk.first;
             chunk.copyOrigins = mArrays.copyOrigins.data();
             chunk.copyCount = mArrays.copyOrigins.size() / 3;

@@ -22,17 +22,26 @@ class Registry;
 /// most this.
 inline constexpr int kMaxCloudLevel = 32;
 
+/// What a chunk of cloud particles carries besides the positions.
+struct CloudChunkFields {
+    bool levels = false;   ///< CloudChunk::levels
+    bool sources = false;  ///< CloudChunk::sources, with the frame's copy origins
+};
+
 /// What makes a frame's cloud particles on demand (GenerateCloud's generator), so that a
 /// consumer that needs no frame-sized array gets none.
 class CloudParticleStream {
 public:
     virtual ~CloudParticleStream() = default;
-    /// Hands every particle to `consume` once, in chunks: positions always, sources (with the
-    /// frame's copy origins) when asked. Chunks come concurrently from several threads in no
-    /// fixed order, so only a consumer whose result does not depend on the order may use
-    /// this (the gaussian splat, the copy origin field: integer sums).
+    /// Hands every particle to `consume` once, in chunks: positions always, levels and
+    /// sources (with the frame's copy origins) when asked. Chunks come concurrently from
+    /// several threads in no fixed order, so only a consumer whose result does not depend on
+    /// the order may use this (the gaussian splat, the copy origin field: integer sums), or
+    /// one that places each chunk by its `first` (the PLY writer). The same frame gives the
+    /// same chunks (first, count) on every call.
     virtual void forEachChunk(const std::function<void(const algo::CloudChunk&)>& consume,
-                              bool sources, const std::function<void()>& checkCancelled) const = 0;
+                              CloudChunkFields fields,
+                              const std::function<void()>& checkCancelled) const = 0;
     /// The frame's arrays, particles in order.
     virtual algo::CloudParticleArrays materialise(
         const std::function<void()>& checkCancelled) const = 0;
@@ -72,10 +81,10 @@ public:
 
     /// Hands every particle to `consume` once, in chunks, concurrently and in no fixed order
     /// (see CloudParticleStream): over the arrays once they exist, else from the stream
-    /// without a frame-sized array. Sources and copy origins come with the chunks when `sources` is
-    /// set.
-    void forEachChunk(const std::function<void(const algo::CloudChunk&)>& consume, bool sources,
-                      const std::function<void()>& checkCancelled = {}) const;
+    /// without a frame-sized array. Levels, sources and copy origins come with the chunks as
+    /// `fields` asks.
+    void forEachChunk(const std::function<void(const algo::CloudChunk&)>& consume,
+                      CloudChunkFields fields, const std::function<void()>& checkCancelled = {}) const;
 
     std::string typeName() const override { return "CloudParticles"; }
     std::size_t byteSize() const override;

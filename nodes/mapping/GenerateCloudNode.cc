@@ -47,11 +47,12 @@ public:
         return total;
     }
 
-    void forEachChunk(const std::function<void(const algo::CloudChunk&)>& consume, bool sources,
-                      const std::function<void()>& checkCancelled) const override
+    void forEachChunk(const std::function<void(const algo::CloudChunk&)>& consume,
+                      CloudChunkFields fields, const std::function<void()>& checkCancelled) const override
     {
         algo::CloudChunkOptions o;
-        o.sources = sources;
+        o.levels = fields.levels;
+        o.sources = fields.sources;
         o.checkCancelled = checkCancelled;
         if (!mBase) {
             algo::forEachCloudChunk(mSources->table, mFrame, mCond, mPrim.view, mSources->settings, consume, o);

@@ -1,5 +1,9 @@
 // WriteCloudParticles: cloud particles per frame as binary little-endian PLY.
 
+#include <mutex>
+#include <utility>
+#include <vector>
+
 #include "core/CoreData.h"
 #include "core/Node.h"
 #include "core/Registry.h"
@@ -21,12 +25,27 @@ public:
         if (!writesThisFrame(ctx)) return;
         const auto cloud = ctx.input<CloudParticlesData>("particles");
         const auto path = ctx.outputPath("file");
+        const auto cancel = [&ctx] { ctx.checkCancelled(); };
+        // The particles stream twice, with no frame-sized array: once to learn every chunk's
+        // count (evaporation drops some), so each chunk's place in the file is known, then
+        // with their levels and sources to be written there.
+        std::mutex mutex;
+        std::vector<std::pair<std::uint64_t, std::uint64_t>> chunks;
+        cloud->forEachChunk(
+            [&](const algo::CloudChunk& chunk) {
+                const std::lock_guard<std::mutex> lock(mutex);
+                chunks.emplace_back(chunk.first, chunk.count);
+            },
+            CloudChunkFields{}, cancel);
         util::AtomicOutput out(path);
-        const auto& a = cloud->arrays([&ctx] { ctx.checkCancelled(); });  // a stream materialises here
-        formats::writeCloudPly(out.tempPath(), a.levels.size(), a.positions.data(), a.levels.data(),
-                               a.sources.data(),
-                               "cloud particles, frame " + std::to_string(ctx.frame()),
-                               [&ctx] { ctx.checkCancelled(); });
+        formats::CloudPlyChunkWriter ply(out.tempPath(), std::move(chunks),
+                                         "cloud particles, frame " + std::to_string(ctx.frame()));
+        cloud->forEachChunk(
+            [&](const algo::CloudChunk& chunk) {
+                ply.write(chunk.first, chunk.count, chunk.positions, chunk.levels, chunk.sources);
+            },
+            CloudChunkFields{true, true}, cancel);
+        ply.close();
         out.commit();
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));
     }
@@ -40,7 +59,8 @@ void registerWriteCloudParticlesNode(Registry& registry)
         "WriteCloudParticles",
         "Writes cloud particles as a binary little-endian PLY point cloud (Blender, Houdini, "
         "ParaView): float x, y, z (m), uchar level (L), uint source (index in the mapper's "
-        "source table); #### in the name becomes the frame number.",
+        "source table); #### in the name becomes the frame number. A frame streamed from "
+        "GenerateCloud is written chunk by chunk, without a frame-sized array.",
         port("particles", "CloudParticles", "the cloud particles to write"), "cloud.####.ply");
     d.create = [] { return std::make_unique<WriteCloudParticlesNode>(); };
     registry.addNode(std::move(d));

@@ -43,7 +43,7 @@ Voxelized splatStreaming(const CloudParticlesData& particles, const algo::Voxeli
                 field->add(chunk.positions, chunk.sources, chunk.count, chunk.copyOrigins,
                            chunk.copyCount);
         },
-        eroding, [&] { ctx.checkCancelled(); });
+        CloudChunkFields{false, eroding}, [&] { ctx.checkCancelled(); });
     const std::uint64_t count = splatter.count();
     auto grid = splatter.finish([&] { ctx.checkCancelled(); });
     if (field) field->finish();

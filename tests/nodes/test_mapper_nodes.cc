@@ -12,6 +12,7 @@
 #include "core/CoreData.h"
 #include "core/Evaluator.h"
 #include "core/Graph.h"
+#include "formats/CloudPly.h"
 #include "nodes/Builtin.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/data/CloudSources.h"
@@ -221,6 +222,39 @@ TEST_F(MapperNodes, StreamedVoxelizationEqualsTheFrameArrayPathBitForBit)
         EXPECT_EQ(streamed->grid->activeVoxelCount(), expected->activeVoxelCount());
         EXPECT_EQ(test::gridChecksum(*streamed->grid), test::gridChecksum(*expected)) << "evaporate " << evaporate;
     }
+}
+
+// WriteCloudParticles writes GenerateCloud's frame chunk by chunk, each at its place, with no
+// frame array; the file must be the one written from the frame's arrays, byte for byte, with
+// and without evaporation (which changes every chunk's count), for 1 and 2 threads.
+TEST_F(MapperNodes, StreamedPlyEqualsThePlyOfTheFrameArraysByteForByte)
+{
+    Graph g = parseGraph(kGraph, "mapper.json", registry);
+    g.setParam("primitive", "sink", 1.0);
+    g.setParam("mapper", "level1Origin", std::string("condensationLevel"));
+    g.setParam("write", "every", 1);
+    const int frame = 125;
+    for (const bool evaporate : {false, true})
+        for (const int threads : {1, 2}) {
+            tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+            g.setParam("cloud", "evaporateBelowBase", evaporate);
+            test::TempDir out;
+            EvaluatorOptions options;
+            options.outDir = out.path();
+            Evaluator ev(registry, options);
+            ev.pull(g, "write", frame);
+            const std::string streamed = test::readFile(out / "cloud.0125.ply");
+            // GenerateCloud keeps nothing: this pull makes a fresh frame, read here as arrays.
+            const auto cloud = std::dynamic_pointer_cast<const CloudParticlesData>(
+                ev.pull(g, "cloud", frame)->at("particles"));
+            const auto& a = cloud->arrays();
+            ASSERT_GT(cloud->size(), 10000u);
+            formats::writeCloudPly(out / "arrays.ply", cloud->size(), a.positions.data(),
+                                   a.levels.data(), a.sources.data(), "cloud particles, frame 125");
+            const std::string expected = test::readFile(out / "arrays.ply");
+            EXPECT_EQ(streamed.size(), expected.size()) << "evaporate " << evaporate;
+            EXPECT_TRUE(streamed == expected) << "evaporate " << evaporate << ", threads " << threads;
+        }
 }
 
 }  // namespace cg
