@@ -10,7 +10,7 @@ middle of its range and its end (where the clouds are largest). The simulation s
 cooked once into a cache shared by every graph (`run --simulations-only`); then each span
 is cooked once per kernel (`--set NODE.kernel=...` on every Voxelizer of the graph), and
 after each run the cache is put back as the simulations left it, so every run voxelizes and
-renders. Voxelize seconds are the Voxelizer nodes' own times from the run reports, summed
+renders (at half the graph's width and height). Voxelize seconds are the Voxelizer nodes' own times from the run reports, summed
 over the frames. The picture: each frame is also written as a linear EXR, and
 build/bench/image_error gives the gaussian kernel's luminance error against the smooth
 kernel's over the cloud pixels (mean and 90th percentile, the measure of
@@ -77,6 +77,9 @@ def main():
             copy, graph = bench_copy(path, work)
             voxelizers = [n for n, v in graph["nodes"].items() if v["type"] == "Voxelizer"]
             videos = [n for n, v in graph["nodes"].items() if v["type"] == "EncodeVideo"]
+            # Renders at half the width and height: the voxelizer is timed, the picture compared.
+            halves = [f"{n}.{k}={v['params'][k] // 2}" for n, v in graph["nodes"].items()
+                      if v["type"] == "Renderer" for k in ("width", "height") if k in v.get("params", {})]
             end = graph["frames"]["end"]
             span = int(os.environ.get("FRAMES", "8"))
             spans = [(end // 2 - span + 1, end // 2), (end - span + 1, end)]
@@ -88,7 +91,7 @@ def main():
                 for first, frame in spans:
                     out = os.path.join(work, kernel)
                     report = os.path.join(work, "report.json")
-                    sets = [f"{v}.kernel={kernel}" for v in voxelizers]
+                    sets = [f"{v}.kernel={kernel}" for v in voxelizers] + halves
                     sets += [f"{v}.firstFrame={first}" for v in videos]
                     sets += [f"{v}.lastFrame={frame}" for v in videos]
                     argv = [cli, "run", copy, "--frames", f"{first}:{frame}", "--cache", cache,
