@@ -17,9 +17,11 @@ namespace {
 std::vector<PlyProperty> cloudProperties(std::size_t count, const float* positions,
                                          const std::uint8_t* levels, const std::uint32_t* sources)
 {
-    return {{"x", PlyType::Float, positions, 3},
-            {"y", PlyType::Float, count ? positions + 1 : nullptr, 3},
-            {"z", PlyType::Float, count ? positions + 2 : nullptr, 3},
+    // No positions (the header alone needs none): every coordinate property is null.
+    const bool any = count > 0 && positions != nullptr;
+    return {{"x", PlyType::Float, any ? positions : nullptr, 3},
+            {"y", PlyType::Float, any ? positions + 1 : nullptr, 3},
+            {"z", PlyType::Float, any ? positions + 2 : nullptr, 3},
             {"level", PlyType::UChar, levels},
             {"source", PlyType::UInt, sources}};
 }
