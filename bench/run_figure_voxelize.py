@@ -21,10 +21,10 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from bench_args import build_and_graphs
+
 KERNELS = ("smooth", "gaussian")
 
 
@@ -59,12 +59,9 @@ def bench_copy(path, work):
 
 
 def main():
-    build = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build")
+    build, graphs = build_and_graphs()
     cli = os.path.join(build, "cli", "cloudgraph")
     image_error = os.path.join(build, "bench", "image_error")
-    graphs = sys.argv[2:] or sorted(
-        os.path.join(ROOT, "graphs", f) for f in os.listdir(os.path.join(ROOT, "graphs"))
-        if f.startswith("figure") and f.endswith(".json"))
     work = tempfile.mkdtemp(prefix="figure-voxelize-")
     cache = os.path.join(work, "cache")
     print("| graph | frames | voxelize smooth s | voxelize gaussian s | "

@@ -18,7 +18,8 @@ import sys
 import tempfile
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from bench_args import build_and_graphs
+
 PAPER = {  # Table 1: cloud particles, seconds, steps (Pentium 4, 3.8 GHz)
     "figure1_cloudscape": (1592646, 359.0, 488),
     "figure5_progress": (4534381, 559.0, 612),
@@ -48,11 +49,8 @@ def node_seconds(report, types):
 
 
 def main():
-    build = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build")
+    build, graphs = build_and_graphs()
     cli = os.path.join(build, "cli", "cloudgraph")
-    graphs = sys.argv[2:] or sorted(
-        os.path.join(ROOT, "graphs", f) for f in os.listdir(os.path.join(ROOT, "graphs"))
-        if f.startswith("figure") and f.endswith(".json"))
     work = tempfile.mkdtemp(prefix="table1-")
     primitive = os.path.join(work, "primitive.cgp")
     prim_graph = os.path.join(work, "primitive.json")

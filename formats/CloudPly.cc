@@ -62,19 +62,22 @@ CloudPlyChunkWriter::CloudPlyChunkWriter(std::filesystem::path path,
     : mPath(std::move(path))
 {
     std::sort(chunks.begin(), chunks.end());
-    const std::size_t recordBytes = plyRecordBytes(cloudProperties(0, nullptr, nullptr, nullptr));
     for (std::size_t i = 0; i < chunks.size(); ++i) {
         if (i > 0 && chunks[i].first == chunks[i - 1].first)
             throw std::invalid_argument("cloud PLY: chunk " + std::to_string(chunks[i].first) +
                                         " given twice");
-        mFirsts.push_back(chunks[i].first);
-        mCounts.push_back(chunks[i].second);
-        mOffsets.push_back(mTotal * recordBytes);  // from the end of the header, for now
         mTotal += chunks[i].second;
     }
-    const std::string header =
-        binaryPlyHeader(mTotal, cloudProperties(mTotal, nullptr, nullptr, nullptr), comment);
-    for (std::uint64_t& offset : mOffsets) offset += header.size();
+    const auto properties = cloudProperties(mTotal, nullptr, nullptr, nullptr);
+    const std::string header = binaryPlyHeader(mTotal, properties, comment);
+    const std::size_t recordBytes = plyRecordBytes(properties);
+    std::uint64_t offset = header.size();
+    for (const auto& [first, count] : chunks) {
+        mFirsts.push_back(first);
+        mCounts.push_back(count);
+        mOffsets.push_back(offset);
+        offset += count * recordBytes;
+    }
     mFd = ::open(mPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (mFd < 0) failed(mPath, errno);
     writeAt(mFd, mPath, reinterpret_cast<const unsigned char*>(header.data()), header.size(), 0);

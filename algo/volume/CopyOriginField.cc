@@ -8,15 +8,13 @@
 #include <tbb/parallel_for.h>
 
 #include "algo/CounterRandom.h"
+#include "algo/volume/CoordKey.h"
 #include "algo/volume/RecentLookup.h"
 
 namespace cg::algo {
 
 namespace {
 
-/// Cell coordinates lie in [-2^20, 2^20): 21 bits each, packed into one key.
-constexpr int kKeyBits = 21;
-constexpr std::int64_t kKeyBias = std::int64_t(1) << (kKeyBits - 1);
 /// Particles per task when a whole array is added (the sums do not depend on it).
 constexpr std::size_t kChunk = std::size_t(1) << 16;
 /// Copy origins are summed in units of 2^-10 m: |origin| < 2^20 m keeps a term under 2^30
@@ -25,8 +23,6 @@ constexpr double kOriginUnits = 1024.0;
 constexpr double kMaxOrigin = 1048576.0;
 
 int cellOf(double x, double cellSize) { return static_cast<int>(std::floor(x / cellSize)); }
-
-bool keyable(std::int64_t cell) { return cell >= -kKeyBias && cell < kKeyBias; }
 
 }  // namespace
 
@@ -37,14 +33,9 @@ std::size_t CopyOriginField::KeyHash::operator()(std::uint64_t k) const
 
 std::uint64_t CopyOriginField::key(int i, int j, int k)
 {
-    const std::int64_t c[3] = {i, j, k};
-    std::uint64_t out = 0;
-    for (const std::int64_t v : c) {
-        if (!keyable(v))
-            throw std::invalid_argument("copy origin field: a particle lies beyond 2^20 cells");
-        out = (out << kKeyBits) | static_cast<std::uint64_t>(v + kKeyBias);
-    }
-    return out;
+    if (!coordKeyable(i) || !coordKeyable(j) || !coordKeyable(k))
+        throw std::invalid_argument("copy origin field: a particle lies beyond 2^20 cells");
+    return packCoordKey(i, j, k);
 }
 
 namespace {
@@ -159,7 +150,7 @@ CopyOriginField::Block CopyOriginField::block(const double lo[3], const double h
         for (int j = 0; j < b.mDim[1]; ++j)
             for (int k = 0; k < b.mDim[2]; ++k, ++n) {
                 const int c[3] = {b.mLo[0] + i, b.mLo[1] + j, b.mLo[2] + k};
-                if (!keyable(c[0]) || !keyable(c[1]) || !keyable(c[2])) continue;  // beyond every particle: empty
+                if (!coordKeyable(c[0]) || !coordKeyable(c[1]) || !coordKeyable(c[2])) continue;  // beyond every particle: empty
                 const auto it = mIndex.find(key(c[0], c[1], c[2]));
                 if (it != mIndex.end()) b.mCells[n] = mCells[it->second];
             }

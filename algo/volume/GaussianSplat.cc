@@ -13,6 +13,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "algo/volume/CoordKey.h"
 #include "algo/volume/LeafFromDense.h"
 #include "algo/volume/RecentLookup.h"
 
@@ -35,24 +36,16 @@ constexpr int kBrick = 1 << kBrickLog2;
 /// particle's 8 weights sum to exactly 2^30 and the deposit conserves mass exactly. A
 /// voxel's sum is at most the particle count (< 2^32) times 2^30, inside an int64.
 constexpr std::int32_t kAxisUnit = 1024;
-constexpr double kWeightUnit = 1073741824.0;
+constexpr double kWeightUnit = double(kAxisUnit) * kAxisUnit * kAxisUnit;
 /// Index coordinates are limited to +-2^20 voxels, as in voxelizeParticles.
 constexpr float kMaxIndex = 1048576.0f;
-/// Packs block coordinates (|b| < 2^17) into a key ordered x-major, z fastest.
-constexpr int kKeyBits = 21;
-constexpr std::int64_t kKeyBias = std::int64_t(1) << (kKeyBits - 1);
-
-std::uint64_t blockKey(int bx, int by, int bz)
-{
-    return (std::uint64_t(bx + kKeyBias) << (2 * kKeyBits)) |
-           (std::uint64_t(by + kKeyBias) << kKeyBits) | std::uint64_t(bz + kKeyBias);
-}
+/// Block and brick coordinates (|b| < 2^17, positions being checked to 2^20 voxels) as keys
+/// ordered x-major, z fastest.
+std::uint64_t blockKey(int bx, int by, int bz) { return packCoordKey(bx, by, bz); }
 openvdb::Coord blockCoord(std::uint64_t key)
 {
-    constexpr std::uint64_t mask = (std::uint64_t(1) << kKeyBits) - 1;
-    return {static_cast<int>(std::int64_t(key >> (2 * kKeyBits)) - kKeyBias),
-            static_cast<int>(std::int64_t((key >> kKeyBits) & mask) - kKeyBias),
-            static_cast<int>(std::int64_t(key & mask) - kKeyBias)};
+    const auto c = unpackCoordKey(key);
+    return {c[0], c[1], c[2]};
 }
 inline int blockIndex(int x, int y, int z)  // x, y, z inside the block
 {
