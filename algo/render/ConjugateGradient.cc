@@ -30,6 +30,7 @@ struct Column {
     std::vector<double> r, z, p, Ap;
     std::vector<double> partial[3];  ///< per block: r·z, r·r and a scratch sum
     double rz = 0.0, rr = 0.0, bNorm = 0.0;
+    double alpha = 0.0, beta = 0.0;  ///< of the current step
     int iterations = 0;
 
     Column(const std::vector<double>& rhs, std::vector<double>& solution, std::size_t blocks)
@@ -47,11 +48,13 @@ struct Column {
     }
 };
 
-/// Ap = A v(column) for each column, each matrix row read once for all of them.
+/// Ap = A v(column) for each column, each matrix row read once for all of them. With
+/// `dotWithAp`, also each block's v·Ap into the column's scratch sums.
 template <class Vector>
-void multiply(const SparseSystem& A, const std::vector<Column*>& columns, Vector&& v)
+void multiply(const SparseSystem& A, const std::vector<Column*>& columns, Vector&& v,
+              bool dotWithAp)
 {
-    forBlocks(A.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+    forBlocks(A.size(), [&](std::size_t begin, std::size_t end, std::size_t block) {
         for (std::size_t i = begin; i != end; ++i) {
             const std::int32_t* nb = &A.neighbour[6 * i];
             const float* k = &A.coupling[6 * i];
@@ -61,6 +64,13 @@ void multiply(const SparseSystem& A, const std::vector<Column*>& columns, Vector
                 for (int f = 0; f < 6; ++f) sum -= k[f] * x[static_cast<std::size_t>(nb[f])];
                 c->Ap[i] = sum;
             }
+        }
+        if (!dotWithAp) return;
+        for (Column* c : columns) {
+            const std::vector<double>& x = v(*c);
+            double dot = 0.0;
+            for (std::size_t i = begin; i != end; ++i) dot += x[i] * c->Ap[i];
+            c->partial[kScratch][block] = dot;
         }
     });
 }
@@ -80,7 +90,8 @@ int solveConjugateGradient(const SparseSystem& A, const std::vector<SolveColumn>
     for (Column& c : state) active.push_back(&c);
 
     // r = b − A x, z = p = r / diag; |b|, r·z and r·r.
-    multiply(A, active, [](const Column& c) -> const std::vector<double>& { return c.x; });
+    multiply(
+        A, active, [](const Column& c) -> const std::vector<double>& { return c.x; }, false);
     for (Column* c : active) {
         forBlocks(n, [&](std::size_t begin, std::size_t end, std::size_t block) {
             double rz = 0.0, rr = 0.0, bb = 0.0;
@@ -108,35 +119,36 @@ int solveConjugateGradient(const SparseSystem& A, const std::vector<SolveColumn>
         active.swap(next);
         if (active.empty() || (cancelled && cancelled())) break;
 
-        multiply(A, active, [](const Column& c) -> const std::vector<double>& { return c.p; });
-        for (Column* c : active) {
-            forBlocks(n, [&](std::size_t begin, std::size_t end, std::size_t block) {
-                double pAp = 0.0;
-                for (std::size_t i = begin; i != end; ++i) pAp += c->p[i] * c->Ap[i];
-                c->partial[kScratch][block] = pAp;
-            });
-            const double alpha = c->rz / c->total(kScratch);
-            forBlocks(n, [&](std::size_t begin, std::size_t end, std::size_t block) {
+        // Each step is one pass over the rows for every column; the sums are still taken
+        // block by block in order, so they do not depend on how the passes are split.
+        multiply(
+            A, active, [](const Column& c) -> const std::vector<double>& { return c.p; }, true);
+        for (Column* c : active) c->alpha = c->rz / c->total(kScratch);
+        forBlocks(n, [&](std::size_t begin, std::size_t end, std::size_t block) {
+            for (Column* c : active) {
                 double rz = 0.0, rr = 0.0;
                 for (std::size_t i = begin; i != end; ++i) {
-                    c->x[i] += alpha * c->p[i];
-                    c->r[i] -= alpha * c->Ap[i];
+                    c->x[i] += c->alpha * c->p[i];
+                    c->r[i] -= c->alpha * c->Ap[i];
                     c->z[i] = c->r[i] / A.diag[i];
                     rz += c->r[i] * c->z[i];
                     rr += c->r[i] * c->r[i];
                 }
                 c->partial[kRz][block] = rz;
                 c->partial[kRr][block] = rr;
-            });
+            }
+        });
+        for (Column* c : active) {
             const double rzNext = c->total(kRz);
-            const double beta = rzNext / c->rz;
+            c->beta = rzNext / c->rz;
             c->rz = rzNext;
             c->rr = c->total(kRr);
-            forBlocks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
-                for (std::size_t i = begin; i != end; ++i) c->p[i] = c->z[i] + beta * c->p[i];
-            });
             ++c->iterations;
         }
+        forBlocks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
+            for (Column* c : active)
+                for (std::size_t i = begin; i != end; ++i) c->p[i] = c->z[i] + c->beta * c->p[i];
+        });
     }
     int most = 0;
     for (const Column& c : state) most = std::max(most, c.iterations);

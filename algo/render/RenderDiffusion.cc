@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "algo/render/ConjugateGradient.h"
@@ -16,7 +17,7 @@ namespace {
 
 constexpr std::size_t kMaxCells = std::size_t(1) << 21;
 
-
+constexpr std::size_t kVoxelBatch = std::size_t(1) << 16;  ///< voxels shared out at a time
 constexpr int kMaxIterations = 400;
 constexpr int kLimiterPasses = 3;  ///< solves of the sun with the flux limiter updated
 constexpr double kMostLimit = 4.0;  ///< the limiter's largest R, per cell width
@@ -73,12 +74,38 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     const PhaseFunction phase = phaseOf(medium);
     const DeltaEddington split = phase.deltaEddington();
     const double peakless = 1.0 - medium.albedo * split.peak;
+    // Voxels in the tree's order, a batch at a time: each one's cell and share (the sun's
+    // transmittance, the costly part) in parallel, then the sums into the cells in that order,
+    // so that they do not depend on the thread count.
+    struct Share {
+        openvdb::Coord voxel;
+        float value;
+        std::size_t cell;
+        double scatter;
+    };
+    std::vector<Share> batch;
+    batch.reserve(kVoxelBatch);
+    const auto addBatch = [&] {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, batch.size(), 1024),
+                          [&](const tbb::blocked_range<std::size_t>& range) {
+                              for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                                  Share& v = batch[i];
+                                  v.cell = cellOf(v.voxel);
+                                  const RenderVec3 world = mXform.indexToWorld(v.voxel.asVec3d());
+                                  v.scatter = perVoxel * v.value * medium.albedo *
+                                              (1.0 - split.peak) *
+                                              std::exp(-peakless * sunMap.opticalDepth(world));
+                              }
+                          });
+        for (const Share& v : batch) {
+            sigmaT[v.cell] += perVoxel * v.value;
+            scatterOnce[v.cell] += v.scatter;
+        }
+        batch.clear();
+    };
     const auto add = [&](const openvdb::Coord& v, float value) {
-        const std::size_t cell = cellOf(v);
-        sigmaT[cell] += perVoxel * value;
-        const RenderVec3 world = mXform.indexToWorld(v.asVec3d());
-        scatterOnce[cell] += perVoxel * value * medium.albedo * (1.0 - split.peak) *
-                             std::exp(-peakless * sunMap.opticalDepth(world));
+        batch.push_back({v, value, 0, 0.0});
+        if (batch.size() == kVoxelBatch) addBatch();
     };
     for (auto it = grid.tree().cbeginValueOn(); it; ++it) {
         const float value = *it;
@@ -91,6 +118,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
         it.getBoundingBox(box);
         for (auto v = box.begin(); v; ++v) add(*v, value);
     }
+    addBatch();
 
     // The cloud's cells and their couplings.
     const double gMean = phase.meanCosine();
@@ -291,49 +319,31 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     });
 }
 
-RenderDiffusion::Fluence RenderDiffusion::at(const RenderVec3& p) const
+DiffuseLight RenderDiffusion::coloured(const RenderVec3 (&radiance)[kLights]) const
 {
-    Fluence out;
-    if (empty()) return out;
-    const RenderVec3 q = mXform.worldToIndex(p);
-    const double half = 0.5 * (mVoxels - 1);
-    double f[3] = {(q.x() - mFirstVoxel.x() - half) / mVoxels,
-                   (q.y() - mFirstVoxel.y() - half) / mVoxels,
-                   (q.z() - mFirstVoxel.z() - half) / mVoxels};
-    int i0[3];
-    for (int a = 0; a < 3; ++a) {
-        if (!(f[a] >= 0.0) || f[a] >= mN[a] - 1) return out;
-        i0[a] = static_cast<int>(f[a]);
-        f[a] -= i0[a];
-    }
-    double phi[kLights] = {0.0, 0.0, 0.0, 0.0}, D = 0.0;
-    openvdb::Vec3d grad[kLights];  // in cell coordinates
-    for (auto& g : grad) g = openvdb::Vec3d(0.0);
-    RenderVec3 drift(0.0);
-    for (int corner = 0; corner < 8; ++corner) {
-        const int d[3] = {corner & 1, (corner >> 1) & 1, (corner >> 2) & 1};
-        double w = 1.0, dw[3] = {1.0, 1.0, 1.0};
-        for (int a = 0; a < 3; ++a) {
-            const double wa = d[a] ? f[a] : 1.0 - f[a];
-            w *= wa;
-            for (int b = 0; b < 3; ++b) dw[b] *= (a == b) ? (d[a] ? 1.0 : -1.0) : wa;
+    RenderVec3 outside(0.0);
+    for (int l = 0; l < kLights; ++l) outside += radiance[l] * kOutside[l];
+    DiffuseLight light(outside);
+    if (empty()) return light;
+    light.mSun = radiance[Sun];
+    light.mXform = mXform;
+    light.mGradientToWorld = mGradientToWorld;
+    light.mFirstVoxel = mFirstVoxel;
+    light.mVoxels = mVoxels;
+    for (int a = 0; a < 3; ++a) light.mN[a] = mN[a];
+    light.mCells.resize(mD.size());
+    tbb::parallel_for(std::size_t(0), mD.size(), [&](std::size_t i) {
+        DiffuseLight::Cell& cell = light.mCells[i];
+        for (int c = 0; c < 3; ++c) {
+            double phi = 0.0;
+            for (int l = 0; l < kLights; ++l) phi += radiance[l][c] * mPhi[l][i];
+            cell.phi[c] = static_cast<float>(phi);
         }
-        const std::size_t cell = index(i0[0] + d[0], i0[1] + d[1], i0[2] + d[2]);
-        D += w * mD[cell];
-        for (int a = 0; a < 3; ++a) drift[a] += w * mDrift[3 * cell + a];
-        for (int l = 0; l < kLights; ++l) {
-            phi[l] += w * mPhi[l][cell];
-            for (int a = 0; a < 3; ++a) grad[l][a] += dw[a] * mPhi[l][cell];
-        }
-    }
-    // World gradients: cell coordinates are index coordinates / mVoxels; the transform's
-    // inverse Jacobian transpose takes an index-space gradient to world space.
-    for (int l = 0; l < kLights; ++l) {
-        out.phi[l] = phi[l];
-        out.flux[l] = (mGradientToWorld * (grad[l] / double(mVoxels))) * -D;
-    }
-    out.flux[Sun] += drift;
-    return out;
+        cell.D = mD[i];
+        for (int a = 0; a < 3; ++a) cell.drift[a] = mDrift[3 * i + a];
+        cell.unused = 0.0f;
+    });
+    return light;
 }
 
 }  // namespace cg::algo

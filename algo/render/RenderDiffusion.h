@@ -30,6 +30,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include "algo/render/DiffuseLight.h"
 #include "algo/render/RenderLightMap.h"
 #include "algo/render/RenderSettings.h"
 
@@ -55,16 +56,8 @@ public:
     /// sphere's 4π for each of the sky and the ground.
     static constexpr double kOutside[kLights] = {0.0, 6.283185307179586, 6.283185307179586, 0.0};
 
-    struct Fluence {
-        double phi[kLights] = {kOutside[0], kOutside[1], kOutside[2], kOutside[3]};
-        RenderVec3 flux[kLights] = {RenderVec3(0.0), RenderVec3(0.0), RenderVec3(0.0),
-                                    RenderVec3(0.0)};  ///< net flux F per light (0 outside)
-    };
-
-    /// The fluences and their net fluxes at world point p, trilinear between cell centres
-    /// (the fluxes from the trilinear gradient, plus the sun's forward drift); outside the
-    /// lattice, what lies around the cloud.
-    Fluence at(const RenderVec3& p) const;
+    /// The lights together, light l of colour radiance[l] (the sun's in irradiance).
+    DiffuseLight coloured(const RenderVec3 (&radiance)[kLights]) const;
 
     bool empty() const { return mPhi[Sun].empty(); }
     double cell() const { return mH; }  ///< m

@@ -4,9 +4,10 @@
 #include <cmath>
 #include <stdexcept>
 
-#include <openvdb/tools/Interpolation.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+
+#include "algo/render/TrilinearDensity.h"
 
 namespace cg::algo {
 
@@ -101,7 +102,7 @@ RenderLightMap::RenderLightMap(const openvdb::FloatGrid& grid, const RenderOccup
         tbb::blocked_range<std::size_t>(0, mColumns.size(), 16),
         [&](const tbb::blocked_range<std::size_t>& range) {
             if (cancelled && cancelled()) return;
-            auto acc = grid.getConstAccessor();
+            TrilinearDensity density(grid, occupancy);
             std::vector<RenderOccupancy::Span> spans;
             for (std::size_t col = range.begin(); col != range.end(); ++col) {
                 const Column& c = mColumns[col];
@@ -119,8 +120,7 @@ RenderLightMap::RenderLightMap(const openvdb::FloatGrid& grid, const RenderOccup
                         while (si > 0 && spans[si - 1].t0 > s) --si;
                         if (si == 0) break;
                         if (s > spans[si - 1].t1) continue;
-                        const double d =
-                            openvdb::tools::BoxSampler::sample(acc, base + wIdx * s);
+                        const double d = density.sample(base + wIdx * s);
                         if (d > 0.0) sum += extinction * d * ds;
                     }
                     tau[iw - 1 - c.lo] = static_cast<float>(sum);

@@ -9,6 +9,9 @@ namespace cg::algo {
 
 namespace {
 
+/// Domains of more blocks keep no brick masks (8 bytes a block): 128 MB at most.
+constexpr std::uint64_t kMostBrickBlocks = std::uint64_t(1) << 24;
+
 /// Floor division by the block size for possibly negative coordinates.
 int blockOf(int voxel) { return voxel >= 0 ? voxel / 8 : -((-voxel + 7) / 8); }
 
@@ -69,6 +72,7 @@ RenderOccupancy::RenderOccupancy(const openvdb::FloatTree& tree, bool majorants)
                     mOcc[blockIndex(i, j, k)] = 1;
     });
     if (majorants) recordMajorants(tree);
+    if (total <= kMostBrickBlocks) recordBricks(tree);
 }
 
 void RenderOccupancy::spans(const RenderVec3& origin, const RenderVec3& dir, double tMin,
@@ -90,6 +94,52 @@ void RenderOccupancy::spans(const RenderVec3& origin, const RenderVec3& dir, dou
         return true;
     });
     if (open && start < last) out.push_back({start, last});
+}
+
+void RenderOccupancy::recordBricks(const openvdb::FloatTree& tree)
+{
+    mBricks.assign(mOcc.size(), 0);
+    // Brick b (voxels 2b, 2b + 1 per axis) holds samples that read voxels 2b .. 2b + 2, so a
+    // positive voxel v sets brick v / 2 and, when v is even, brick v / 2 − 1 too (which lies
+    // in the block below when v is the first voxel of its block).
+    const auto mark = [this](const openvdb::Coord& v) {
+        int first[3], count[3];
+        for (int a = 0; a < 3; ++a) {
+            first[a] = (v[a] >> 1) - ((v[a] & 1) == 0 ? 1 : 0);
+            count[a] = (v[a] & 1) == 0 ? 2 : 1;
+        }
+        for (int i = 0; i < count[0]; ++i)
+            for (int j = 0; j < count[1]; ++j)
+                for (int k = 0; k < count[2]; ++k) {
+                    const int brick[3] = {first[0] + i, first[1] + j, first[2] + k};
+                    const int b[3] = {(brick[0] >> 2) - mMin[0], (brick[1] >> 2) - mMin[1],
+                                      (brick[2] >> 2) - mMin[2]};
+                    if (b[0] < 0 || b[1] < 0 || b[2] < 0 || b[0] >= mN[0] || b[1] >= mN[1] ||
+                        b[2] >= mN[2])
+                        continue;  // outside the blocks, as in the occupancy
+                    mBricks[blockIndex(b[0], b[1], b[2])] |=
+                        std::uint64_t(1)
+                        << ((brick[0] & 3) | ((brick[1] & 3) << 2) | ((brick[2] & 3) << 4));
+                }
+    };
+    for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) {
+        if (leaf->isEmpty()) continue;  // outside the blocks, as in the occupancy
+        for (auto v = leaf->cbeginValueAll(); v; ++v)
+            if (*v > 0.0f) mark(v.getCoord());
+    }
+    auto it = tree.cbeginValueOn();
+    it.setMaxDepth(openvdb::FloatTree::ValueOnCIter::LEAF_DEPTH - 1);  // tiles only
+    for (; it; ++it) {
+        if (!(*it > 0.0f)) continue;
+        openvdb::CoordBBox box;
+        it.getBoundingBox(box);
+        // Every brick of the blocks it touches, and of those whose samples reach its first
+        // voxels: more than needed at its edges, never less.
+        for (int i = blockOf(box.min().x() - 1); i <= blockOf(box.max().x()); ++i)
+            for (int j = blockOf(box.min().y() - 1); j <= blockOf(box.max().y()); ++j)
+                for (int k = blockOf(box.min().z() - 1); k <= blockOf(box.max().z()); ++k)
+                    mBricks[blockIndex(i - mMin[0], j - mMin[1], k - mMin[2])] = ~std::uint64_t(0);
+    }
 }
 
 void RenderOccupancy::recordMajorants(const openvdb::FloatTree& tree)

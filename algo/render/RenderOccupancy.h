@@ -5,6 +5,10 @@
 /// such blocks. Inactive voxels are taken to hold zero, as in every fog volume. On request it
 /// also keeps each block's majorant, the largest value a trilinear sample inside the block can
 /// take, which the path tracer's free-flight and shadow-ray tracking need.
+///
+/// Inside a block, 4³ bricks of 2³ voxels (a 64-bit mask per block) say more finely where a
+/// sample can be positive: a march skips the samples of empty bricks without reading the
+/// grid (TrilinearDensity), which in a voxelized cloud are most of the samples in its blocks.
 
 #include <algorithm>
 #include <cmath>
@@ -35,6 +39,30 @@ public:
 
     bool empty() const { return mOcc.empty(); }
 
+    /// Whether a trilinear sample whose lower corner is voxel ijk (its floor) can be positive:
+    /// false only where every voxel it reads is <= 0 (or lies outside the blocks).
+    bool mayBePositive(const openvdb::Coord& ijk) const
+    {
+        const std::uint64_t mask = brickMask(ijk.x() >> 3, ijk.y() >> 3, ijk.z() >> 3);
+        return (mask >> brickBit(ijk)) & 1u;
+    }
+
+    /// The brick mask of block (bi, bj, bk) (in block units), 0 outside the blocks; bit
+    /// brickBit(ijk) stands for the brick of voxel ijk. All ones without brick masks.
+    std::uint64_t brickMask(int bi, int bj, int bk) const
+    {
+        const int b[3] = {bi - mMin[0], bj - mMin[1], bk - mMin[2]};
+        for (int a = 0; a < 3; ++a)
+            if (b[a] < 0 || b[a] >= mN[a]) return 0;
+        if (mBricks.empty()) return ~std::uint64_t(0);
+        return mBricks[blockIndex(b[0], b[1], b[2])];
+    }
+
+    static int brickBit(const openvdb::Coord& ijk)
+    {
+        return ((ijk.x() >> 1) & 3) | (((ijk.y() >> 1) & 3) << 2) | (((ijk.z() >> 1) & 3) << 4);
+    }
+
     /// The largest trilinear sample in block `block` (an index walk() passes); 0 without
     /// majorants.
     float majorant(std::size_t block) const { return mMax.empty() ? 0.0f : mMax[block]; }
@@ -61,11 +89,13 @@ private:
     }
 
     void recordMajorants(const openvdb::FloatTree& tree);
+    void recordBricks(const openvdb::FloatTree& tree);
 
     int mMin[3] = {0, 0, 0};  ///< first block, in block units
     int mN[3] = {0, 0, 0};    ///< blocks per axis
     std::vector<std::uint8_t> mOcc;
     std::vector<float> mMax;  ///< per block; empty unless majorants were asked for
+    std::vector<std::uint64_t> mBricks;  ///< per block; empty over a domain too large for them
 };
 
 template <class Fn>

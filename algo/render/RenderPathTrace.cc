@@ -6,7 +6,6 @@
 #include <limits>
 #include <stdexcept>
 
-#include <openvdb/tools/Interpolation.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -14,6 +13,7 @@
 #include "algo/render/Phase.h"
 #include "algo/render/RenderOccupancy.h"
 #include "algo/render/RenderRays.h"
+#include "algo/render/TrilinearDensity.h"
 
 namespace cg::algo {
 
@@ -27,8 +27,6 @@ constexpr double kShadowRoulette = 0.05;
 /// Paths are never ended by roulette before this many events (the first bounces carry most
 /// of the light and cost little).
 constexpr int kPathRouletteAfter = 4;
-
-using Accessor = openvdb::FloatGrid::ConstAccessor;
 
 /// SplitMix64 from a per-path key: a pure function of (seed, pixel, sample).
 class PathRandom {
@@ -77,8 +75,10 @@ public:
         mExtinction = std::max(0.0, settings.medium.extinction);
     }
 
+    const RenderOccupancy& occupancy() const { return mOcc; }
+
     /// Mean over the pixel's paths of beauty, transmittance and background.
-    void pixel(int px, int py, Accessor& acc, float* rgba, float* background) const
+    void pixel(int px, int py, TrilinearDensity& density, float* rgba, float* background) const
     {
         const RenderVec3 dir = mRays.direction(px, py);
         const RenderVec3& origin = mS.camera.position;
@@ -93,12 +93,13 @@ public:
         const int n = mS.pathTrace.samples;
         for (int s = 0; s < n; ++s) {
             PathRandom rng(mix64(pixelKey ^ static_cast<std::uint64_t>(s)));
-            transmittance += this->transmittance(acc, origin, dir, tGround, rng);
-            const double tHit = freeFlight(acc, origin, dir, tGround, rng);
-            if (std::isfinite(tHit)) cloud += pathRadiance(acc, origin + dir * tHit, dir, true, rng);
+            transmittance += this->transmittance(density, origin, dir, tGround, rng);
+            const double tHit = freeFlight(density, origin, dir, tGround, rng);
+            if (std::isfinite(tHit))
+                cloud += pathRadiance(density, origin + dir * tHit, dir, true, rng);
             if (std::isfinite(tGround)) {
                 const RenderVec3 ground = origin + dir * tGround;
-                behind += hazedGround(mS, pathRadiance(acc, ground, dir, false, rng), tGround);
+                behind += hazedGround(mS, pathRadiance(density, ground, dir, false, rng), tGround);
             }
         }
         const double inv = 1.0 / n;
@@ -117,9 +118,9 @@ public:
     }
 
 private:
-    double sigmaT(Accessor& acc, const RenderVec3& indexPoint) const
+    double sigmaT(TrilinearDensity& density, const RenderVec3& indexPoint) const
     {
-        const double d = openvdb::tools::BoxSampler::sample(acc, indexPoint);
+        const double d = density.sample(indexPoint);
         return d > 0.0 ? mExtinction * d : 0.0;
     }
 
@@ -131,7 +132,7 @@ private:
 
     /// Delta tracking: the distance to the first real collision along the ray before tMax,
     /// or +infinity if the ray gets through.
-    double freeFlight(Accessor& acc, const RenderVec3& origin, const RenderVec3& dir,
+    double freeFlight(TrilinearDensity& density, const RenderVec3& origin, const RenderVec3& dir,
                       double tMax, PathRandom& rng) const
     {
         const IndexRay ray = toIndexRay(mGrid.transform(), origin, dir);
@@ -140,7 +141,7 @@ private:
             const double rate = majorant(block);
             if (!(rate > 0.0)) return true;
             for (double t = t0 + rng.exponential(rate); t < t1; t += rng.exponential(rate)) {
-                if (rng.uniform() * rate < sigmaT(acc, ray.o + ray.d * t)) {
+                if (rng.uniform() * rate < sigmaT(density, ray.o + ray.d * t)) {
                     hit = t;
                     return false;
                 }
@@ -151,7 +152,7 @@ private:
     }
 
     /// Ratio tracking with Russian roulette: an unbiased estimate of exp(−∫ σ_t) to tMax.
-    double transmittance(Accessor& acc, const RenderVec3& origin, const RenderVec3& dir,
+    double transmittance(TrilinearDensity& density, const RenderVec3& origin, const RenderVec3& dir,
                          double tMax, PathRandom& rng) const
     {
         const IndexRay ray = toIndexRay(mGrid.transform(), origin, dir);
@@ -160,7 +161,7 @@ private:
             const double rate = majorant(block);
             if (!(rate > 0.0)) return true;
             for (double t = t0 + rng.exponential(rate); t < t1; t += rng.exponential(rate)) {
-                T *= std::max(0.0, 1.0 - sigmaT(acc, ray.o + ray.d * t) / rate);
+                T *= std::max(0.0, 1.0 - sigmaT(density, ray.o + ray.d * t) / rate);
                 if (T < kShadowRoulette) {
                     if (rng.uniform() * kShadowRoulette >= T) {
                         T = 0.0;
@@ -175,14 +176,14 @@ private:
     }
 
     /// Sun light reaching point p (irradiance times transmittance), or 0 below the horizon.
-    double sunVisibility(Accessor& acc, const RenderVec3& p, PathRandom& rng) const
+    double sunVisibility(TrilinearDensity& density, const RenderVec3& p, PathRandom& rng) const
     {
-        return mSunOn ? transmittance(acc, p, mSunDir, kInf, rng) : 0.0;
+        return mSunOn ? transmittance(density, p, mSunDir, kInf, rng) : 0.0;
     }
 
     /// Radiance arriving along −dir at vertex x: a scattering event in the medium
     /// (`inMedium`) or a point on the ground, and every event of the path that follows.
-    RenderVec3 pathRadiance(Accessor& acc, RenderVec3 x, RenderVec3 dir, bool inMedium,
+    RenderVec3 pathRadiance(TrilinearDensity& density, RenderVec3 x, RenderVec3 dir, bool inMedium,
                             PathRandom& rng) const
     {
         const RenderMedium& m = mS.medium;
@@ -192,7 +193,7 @@ private:
                 beta *= m.albedo;
                 if (mSunOn) {
                     L += beta * mSunIrradiance *
-                         (mPhase(mSunDir.dot(dir)) * sunVisibility(acc, x, rng));
+                         (mPhase(mSunDir.dot(dir)) * sunVisibility(density, x, rng));
                 }
                 const double cosTheta = mPhase.sample([&] { return rng.uniform(); });
                 dir = aroundAxis(dir, cosTheta, 2.0 * kPi * rng.uniform());
@@ -200,7 +201,7 @@ private:
                 x = RenderVec3(x.x(), x.y(), 0.0);
                 if (mSunOn && mSunDir.z() > 0.0)
                     L += beta * mS.ground.albedo * mSunIrradiance *
-                         (mSunDir.z() / kPi * sunVisibility(acc, x, rng));
+                         (mSunDir.z() / kPi * sunVisibility(density, x, rng));
                 beta *= mS.ground.albedo;
                 // Cosine-weighted bounce: albedo × cos / π over pdf cos / π leaves the albedo.
                 const double u = rng.uniform();
@@ -214,7 +215,7 @@ private:
                 }
             }
             const double tGround = groundDistance(mS.ground, x, dir);
-            const double tHit = freeFlight(acc, x, dir, tGround, rng);
+            const double tHit = freeFlight(density, x, dir, tGround, rng);
             if (std::isfinite(tHit)) {
                 x += dir * tHit;
                 inMedium = true;
@@ -255,12 +256,12 @@ RenderedImage renderPathTraced(const openvdb::FloatGrid& grid, const RenderSetti
     img.background.assign(pixels * 3, 0.0f);
     tbb::parallel_for(tbb::blocked_range<int>(0, img.height, 1),
                       [&](const tbb::blocked_range<int>& rows) {
-                          Accessor acc = grid.getConstAccessor();
+                          TrilinearDensity density(grid, tracer.occupancy());
                           for (int py = rows.begin(); py != rows.end(); ++py) {
                               if (cancelled && cancelled()) return;
                               const std::size_t row = static_cast<std::size_t>(py) * w;
                               for (int px = 0; px < img.width; ++px)
-                                  tracer.pixel(px, py, acc, &img.rgba[(row + px) * 4],
+                                  tracer.pixel(px, py, density, &img.rgba[(row + px) * 4],
                                                &img.background[(row + px) * 3]);
                           }
                       });

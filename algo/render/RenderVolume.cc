@@ -6,16 +6,17 @@
 #include <stdexcept>
 #include <string>
 
-#include <openvdb/tools/Interpolation.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "algo/CounterRandom.h"
+#include "algo/render/DiffuseLight.h"
 #include "algo/render/Phase.h"
 #include "algo/render/RenderDiffusion.h"
 #include "algo/render/RenderLightMap.h"
 #include "algo/render/RenderOccupancy.h"
 #include "algo/render/RenderRays.h"
+#include "algo/render/TrilinearDensity.h"
 
 namespace cg::algo {
 
@@ -25,7 +26,6 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxOctaves = 16;
 constexpr double kMaxFluxRatio = 0.95;  ///< |F| / φ kept below 1, a fully collimated beam
 
-using Accessor = openvdb::FloatGrid::ConstAccessor;
 using Span = RenderOccupancy::Span;
 
 void require(bool ok, const std::string& what)
@@ -38,8 +38,8 @@ void require(bool ok, const std::string& what)
 /// global along the ray, so span boundaries leave no seams. fn(t, density) returns false to
 /// stop. Zero-density samples are skipped.
 template <class Fn>
-void marchRay(const RenderOccupancy& occ, Accessor& acc, const IndexRay& ray, double tMax,
-              double dt, double offset, std::vector<Span>& spans, Fn&& fn)
+void marchRay(const RenderOccupancy& occ, TrilinearDensity& sampler, const IndexRay& ray,
+              double tMax, double dt, double offset, std::vector<Span>& spans, Fn&& fn)
 {
     spans.clear();
     occ.spans(ray.o, ray.d, 0.0, tMax, spans);
@@ -47,7 +47,7 @@ void marchRay(const RenderOccupancy& occ, Accessor& acc, const IndexRay& ray, do
         for (double k = std::ceil(s.t0 / dt - offset);; k += 1.0) {
             const double t = (k + offset) * dt;
             if (t >= s.t1) break;
-            const double density = openvdb::tools::BoxSampler::sample(acc, ray.o + ray.d * t);
+            const double density = sampler.sample(ray.o + ray.d * t);
             if (density > 0.0 && !fn(t, density)) return;
         }
     }
@@ -60,12 +60,8 @@ struct Frame {
     RenderOccupancy occupancy;
     RenderLightMap sunMap;
     RenderLightMap skyMap;
-    RenderDiffusion diffusion;  ///< with MultiScatterModel::Diffusion
+    DiffuseLight diffuse;  ///< with MultiScatterModel::Diffusion
     bool useDiffusion = false;
-    /// What each RenderDiffusion light's unit stands for: the sun's irradiance; the radiance
-    /// of the sky's mean above, of the ground (or the horizon without one), of the sun-lit
-    /// ground's sun part.
-    RenderVec3 diffuseRadiance[RenderDiffusion::kLights];
     PhaseFunction phase;
     std::optional<PhaseTwice> phaseTwice;  ///< with the diffusion model
     DeltaEddington split;       ///< of the phase function
@@ -125,17 +121,19 @@ struct Frame {
                                     s.march.lightTexel, s.march.lightStep,
                                     std::size_t(8) << 20, cancelled);
         const bool litGround = s.ground.enabled && needSun && groundSun > 0.0;
-        diffuseRadiance[RenderDiffusion::Sun] = sunIrradiance;
-        diffuseRadiance[RenderDiffusion::Sky] = skyUp;
-        diffuseRadiance[RenderDiffusion::Ground] = s.ground.enabled ? groundSky : below;
-        diffuseRadiance[RenderDiffusion::LitGround] =
-            litGround ? s.ground.albedo * sunIrradiance * (groundSun / kPi) : RenderVec3(0.0);
         split = phase.deltaEddington();
         peakless = 1.0 - s.medium.albedo * split.peak;
         if (useDiffusion) {
             phaseTwice.emplace(phase);
-            diffusion = RenderDiffusion(g, sunMap, s.medium, s.multiScatter.cellVoxels,
-                                        litGround, cancelled);
+            // What each light's unit stands for: the sun's irradiance; the radiance of the
+            // sky's mean above, of the ground (or the horizon without one), of the sun-lit
+            // ground's sun part.
+            const RenderVec3 radiance[RenderDiffusion::kLights] = {
+                sunIrradiance, skyUp, s.ground.enabled ? groundSky : below,
+                litGround ? s.ground.albedo * sunIrradiance * (groundSun / kPi) : RenderVec3(0.0)};
+            diffuse = RenderDiffusion(g, sunMap, s.medium, s.multiScatter.cellVoxels, litGround,
+                                      cancelled)
+                          .coloured(radiance);
         }
         if (needSky)
             skyMap = RenderLightMap(g, occupancy, RenderVec3(0, 0, 1), s.medium.extinction,
@@ -173,7 +171,7 @@ struct Frame {
             s, s.ground.albedo * sunIrradiance * (groundSun * sunT / kPi) + groundSky, tGround);
     }
 
-    void shade(int px, int py, Accessor& acc, std::vector<Span>& spans, float* out,
+    void shade(int px, int py, TrilinearDensity& sampler, std::vector<Span>& spans, float* out,
                float* behind) const
     {
         const RenderVec3 dir = rays.direction(px, py);
@@ -199,37 +197,30 @@ struct Frame {
         const bool skyOcclusion = !skyMap.empty();
         double T = 1.0;
         RenderVec3 L(0.0);
-        marchRay(occupancy, acc, toIndexRay(grid.transform(), origin, dir), tGround, dt, offset,
+        marchRay(occupancy, sampler, toIndexRay(grid.transform(), origin, dir), tGround, dt, offset,
                  spans, [&](double t, double density) {
                      const double sigmaT = ext * density;
                      const double segT = std::exp(-sigmaT * dt);
                      const RenderVec3 p = origin + dir * t;
                      const double tauSun = sunMap.opticalDepth(p);
-                     double sun = 0.0;
-                     for (int i = 0; i < octaves; ++i)
-                         sun += sunPhase[i] * std::exp(-octaveAtten[i] * tauSun);
                      if (useDiffusion) {
-                         // Sun light scattered into the phase function's forward peak goes
-                         // on along the sun's beam (δ-Eddington), a little spread: it
-                         // scatters toward the camera as if scattered twice in a row.
-                         const double peaked =
-                             std::exp(-peakless * tauSun) - std::exp(-tauSun);
-                         RenderVec3 source = sunIrradiance * (sun + peakPhase * peaked);
-                         // The diffuse light of all the lights together, channel by channel.
-                         const RenderDiffusion::Fluence field = diffusion.at(p);
-                         for (int c = 0; c < 3; ++c) {
-                             double phi = 0.0;
-                             RenderVec3 flux(0.0);
-                             for (int l = 0; l < RenderDiffusion::kLights; ++l) {
-                                 phi += diffuseRadiance[l][c] * field.phi[l];
-                                 flux += field.flux[l] * diffuseRadiance[l][c];
-                             }
-                             source[c] += scatteredTowardCamera(phi, flux, dir);
-                         }
+                         // One octave. Sun light scattered into the phase function's forward
+                         // peak goes on along the sun's beam (δ-Eddington), a little spread:
+                         // it scatters toward the camera as if scattered twice in a row.
+                         const double sunT = std::exp(-tauSun);
+                         const double peaked = std::exp(-peakless * tauSun) - sunT;
+                         RenderVec3 source =
+                             sunIrradiance * (sunPhase[0] * sunT + peakPhase * peaked);
+                         const DiffuseLight::Sample field = diffuse.at(p);
+                         for (int c = 0; c < 3; ++c)
+                             source[c] += scatteredTowardCamera(field.phi[c], field.flux[c], dir);
                          L += source * (T * albedo * (1.0 - segT));
                          T *= segT;
                          return T >= minT;
                      }
+                     double sun = 0.0;
+                     for (int i = 0; i < octaves; ++i)
+                         sun += sunPhase[i] * std::exp(-octaveAtten[i] * tauSun);
                      // Sky light from above and bounce light from below, each dimmed by the
                      // optical depth of the cloud above or below the sample.
                      double upT = 1.0, downT = 1.0;
@@ -270,19 +261,19 @@ RenderedImage renderFogVolume(const openvdb::FloatGrid& grid, const RenderSettin
     const auto w = static_cast<std::size_t>(img.width);
     img.rgba.assign(w * static_cast<std::size_t>(img.height) * 4, 0.0f);
     img.background.assign(w * static_cast<std::size_t>(img.height) * 3, 0.0f);
-    tbb::parallel_for(tbb::blocked_range<int>(0, img.height, 1),
-                      [&](const tbb::blocked_range<int>& rows) {
-                          Accessor acc = grid.getConstAccessor();
-                          std::vector<Span> spans;
-                          for (int py = rows.begin(); py != rows.end(); ++py) {
-                              if (cancelled && cancelled()) return;
-                              const auto y = static_cast<std::size_t>(py);
-                              float* row = img.rgba.data() + y * w * 4;
-                              float* behind = img.background.data() + y * w * 3;
-                              for (int px = 0; px < img.width; ++px)
-                                  frame.shade(px, py, acc, spans, row + 4 * px, behind + 3 * px);
-                          }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, img.height, 1), [&](const tbb::blocked_range<int>& rows) {
+            TrilinearDensity sampler(grid, frame.occupancy);
+            std::vector<Span> spans;
+            for (int py = rows.begin(); py != rows.end(); ++py) {
+                if (cancelled && cancelled()) return;
+                const auto y = static_cast<std::size_t>(py);
+                float* row = img.rgba.data() + y * w * 4;
+                float* behind = img.background.data() + y * w * 3;
+                for (int px = 0; px < img.width; ++px)
+                    frame.shade(px, py, sampler, spans, row + 4 * px, behind + 3 * px);
+            }
+        });
     return img;
 }
 
@@ -293,10 +284,10 @@ double fogTransmittance(const openvdb::FloatGrid& grid, const RenderVec3& origin
     require(direction.length() > 0.0, "direction is zero");
     const double dt = stepVoxels * renderVoxelSize(grid);
     const RenderOccupancy occ(grid.tree());
-    Accessor acc = grid.getConstAccessor();
+    TrilinearDensity sampler(grid, occ);
     std::vector<Span> spans;
     double tau = 0.0;
-    marchRay(occ, acc, toIndexRay(grid.transform(), origin, direction.unitSafe()),
+    marchRay(occ, sampler, toIndexRay(grid.transform(), origin, direction.unitSafe()),
              std::numeric_limits<double>::infinity(), dt, 0.5, spans, [&](double, double d) {
                  tau += extinction * d * dt;
                  return true;

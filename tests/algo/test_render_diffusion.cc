@@ -17,6 +17,15 @@ using algo::RenderVec3;
 
 constexpr double kFourPi = 4.0 * 3.14159265358979323846;
 
+/// Light `which` alone, of unit radiance in every channel.
+algo::DiffuseLight alone(const RenderDiffusion& d, RenderDiffusion::Light which)
+{
+    RenderVec3 radiance[RenderDiffusion::kLights] = {RenderVec3(0.0), RenderVec3(0.0),
+                                                     RenderVec3(0.0), RenderVec3(0.0)};
+    radiance[which] = RenderVec3(1.0);
+    return d.coloured(radiance);
+}
+
 struct LitBall {
     openvdb::FloatGrid::Ptr grid = test::makeBall(10.0, 16, 1.0f);
     algo::RenderMedium medium;
@@ -35,23 +44,31 @@ TEST(RenderDiffusion, SkyAndGroundTogetherAreTheUniformSurroundings)
     // The problems are linear in what enters at the surface, and every surface face sees sky
     // and ground in shares that add up to one: a unit radiance of both together is uniform
     // surroundings of fluence 4π, which a conservative cloud holds everywhere unchanged.
+    // Sky in the red channel and ground in the green one add up the same way.
     LitBall ball;
     ball.medium.albedo = 1.0;
     const RenderDiffusion d = ball.solve(true);
     ASSERT_FALSE(d.empty());
+    const algo::DiffuseLight split =
+        d.coloured({RenderVec3(0.0), RenderVec3(1, 0, 0), RenderVec3(0, 1, 0), RenderVec3(0.0)});
     for (const double z : {-120.0, -60.0, 0.0, 60.0, 120.0}) {
-        const RenderDiffusion::Fluence f = d.at(RenderVec3(0.0, 0.0, z));
-        EXPECT_NEAR(f.phi[RenderDiffusion::Sky] + f.phi[RenderDiffusion::Ground], kFourPi,
-                    2e-3 * kFourPi)
-            << "z = " << z;
+        const algo::DiffuseLight::Sample f = split.at(RenderVec3(0.0, 0.0, z));
+        EXPECT_NEAR(f.phi[0] + f.phi[1], kFourPi, 2e-3 * kFourPi) << "z = " << z;
+        EXPECT_NEAR(f.phi[2], 0.0, 1e-6) << "z = " << z;
     }
     // Sky light enters from above and ground light from below.
-    const RenderDiffusion::Fluence top = d.at(RenderVec3(0, 0, 120));
-    const RenderDiffusion::Fluence bottom = d.at(RenderVec3(0, 0, -120));
-    EXPECT_GT(top.phi[RenderDiffusion::Sky], 1.5 * bottom.phi[RenderDiffusion::Sky]);
-    EXPECT_GT(bottom.phi[RenderDiffusion::Ground], 1.5 * top.phi[RenderDiffusion::Ground]);
-    EXPECT_LT(top.flux[RenderDiffusion::Sky].z(), 0.0);  // net flow downward
-    EXPECT_GT(bottom.flux[RenderDiffusion::Ground].z(), 0.0);
+    const algo::DiffuseLight sky = alone(d, RenderDiffusion::Sky);
+    const algo::DiffuseLight ground = alone(d, RenderDiffusion::Ground);
+    const RenderVec3 top(0, 0, 120), bottom(0, 0, -120);
+    EXPECT_GT(sky.at(top).phi[0], 1.5 * sky.at(bottom).phi[0]);
+    EXPECT_GT(ground.at(bottom).phi[0], 1.5 * ground.at(top).phi[0]);
+    EXPECT_LT(sky.at(top).flux[0].z(), 0.0);  // net flow downward
+    EXPECT_GT(ground.at(bottom).flux[0].z(), 0.0);
+    // Outside the lattice: the surroundings' fluence, channel by channel.
+    const algo::DiffuseLight::Sample far = split.at(RenderVec3(0, 0, 5000));
+    EXPECT_DOUBLE_EQ(far.phi[0], 0.5 * kFourPi);
+    EXPECT_DOUBLE_EQ(far.phi[1], 0.5 * kFourPi);
+    EXPECT_EQ(far.flux[0], RenderVec3(0.0));
 }
 
 TEST(RenderDiffusion, TheCloudsShadowDimsTheLitGroundItSees)
@@ -61,11 +78,12 @@ TEST(RenderDiffusion, TheCloudsShadowDimsTheLitGroundItSees)
     LitBall ball;
     ball.medium.albedo = 1.0;
     const RenderDiffusion lit = ball.solve(true);
-    const RenderDiffusion::Fluence f = lit.at(RenderVec3(0, 0, -120));
-    EXPECT_GT(f.phi[RenderDiffusion::LitGround], 0.0);
-    EXPECT_LT(f.phi[RenderDiffusion::LitGround], f.phi[RenderDiffusion::Ground]);
+    const RenderVec3 bottom(0, 0, -120);
+    const double litGround = alone(lit, RenderDiffusion::LitGround).at(bottom).phi[0];
+    EXPECT_GT(litGround, 0.0);
+    EXPECT_LT(litGround, alone(lit, RenderDiffusion::Ground).at(bottom).phi[0]);
     const RenderDiffusion unlit = ball.solve(false);
-    EXPECT_EQ(unlit.at(RenderVec3(0, 0, -120)).phi[RenderDiffusion::LitGround], 0.0);
+    EXPECT_EQ(alone(unlit, RenderDiffusion::LitGround).at(bottom).phi[0], 0.0);
 }
 
 TEST(RenderDiffusion, SunLightScatteredOnceIsCarriedOnAlongTheSun)
@@ -74,12 +92,12 @@ TEST(RenderDiffusion, SunLightScatteredOnceIsCarriedOnAlongTheSun)
     // the net flux at the centre points with the sun's travel (down and away from it).
     LitBall ball;
     ball.medium.albedo = 1.0;
-    const RenderDiffusion d = ball.solve(false);
-    const RenderVec3 flux = d.at(RenderVec3(0, 0, 0)).flux[RenderDiffusion::Sun];
+    const algo::DiffuseLight sun = alone(ball.solve(false), RenderDiffusion::Sun);
+    const RenderVec3 flux = sun.at(RenderVec3(0, 0, 0)).flux[0];
     const RenderVec3 travel = -RenderVec3(0.3, 0.2, 1.0).unitSafe();
     EXPECT_GT(flux.unitSafe().dot(travel), 0.9);
     // Light lit once near the sunny side fills the far side too.
-    EXPECT_GT(d.at(-travel * -120.0).phi[RenderDiffusion::Sun], 0.0);
+    EXPECT_GT(sun.at(-travel * -120.0).phi[0], 0.0);
 }
 
 }  // namespace
