@@ -18,31 +18,36 @@ DiffuseLight::Sample DiffuseLight::at(const RenderVec3& p) const
         i0[a] = static_cast<int>(f[a]);
         f[a] -= i0[a];
     }
-    double phi[3] = {0.0, 0.0, 0.0}, D = 0.0;
-    openvdb::Vec3d grad[3];  // in cell coordinates
-    for (auto& g : grad) g = openvdb::Vec3d(0.0);
-    RenderVec3 drift(0.0);
+    // The trilinear interpolant of every lane and its derivative along each axis, in float
+    // over whole records (which the compiler turns into vector arithmetic).
+    constexpr int kLanes = Cell::kLanes;
+    const float w[3][2] = {{1.0f - float(f[0]), float(f[0])},
+                           {1.0f - float(f[1]), float(f[1])},
+                           {1.0f - float(f[2]), float(f[2])}};
+    constexpr float kSlope[2] = {-1.0f, 1.0f};
+    float value[kLanes] = {}, dx[kLanes] = {}, dy[kLanes] = {}, dz[kLanes] = {};
     for (int corner = 0; corner < 8; ++corner) {
-        const int d[3] = {corner & 1, (corner >> 1) & 1, (corner >> 2) & 1};
-        double w = 1.0, dw[3] = {1.0, 1.0, 1.0};
-        for (int a = 0; a < 3; ++a) {
-            const double wa = d[a] ? f[a] : 1.0 - f[a];
-            w *= wa;
-            for (int b = 0; b < 3; ++b) dw[b] *= (a == b) ? (d[a] ? 1.0 : -1.0) : wa;
-        }
-        const Cell& cell = mCells[index(i0[0] + d[0], i0[1] + d[1], i0[2] + d[2])];
-        D += w * cell.D;
-        for (int a = 0; a < 3; ++a) drift[a] += w * cell.drift[a];
-        for (int c = 0; c < 3; ++c) {
-            phi[c] += w * cell.phi[c];
-            for (int a = 0; a < 3; ++a) grad[c][a] += dw[a] * cell.phi[c];
+        const int a = corner & 1, b = (corner >> 1) & 1, c = (corner >> 2) & 1;
+        const float weight = w[0][a] * w[1][b] * w[2][c];
+        const float gx = kSlope[a] * w[1][b] * w[2][c];
+        const float gy = w[0][a] * kSlope[b] * w[2][c];
+        const float gz = w[0][a] * w[1][b] * kSlope[c];
+        const float* lane = mCells[index(i0[0] + a, i0[1] + b, i0[2] + c)].lane;
+        for (int k = 0; k < kLanes; ++k) {
+            value[k] += weight * lane[k];
+            dx[k] += gx * lane[k];
+            dy[k] += gy * lane[k];
+            dz[k] += gz * lane[k];
         }
     }
     // World gradients: cell coordinates are index coordinates / mVoxels; the transform's
     // inverse Jacobian transpose takes an index-space gradient to world space.
+    const double D = value[Cell::D];
+    const RenderVec3 drift(value[Cell::DriftX], value[Cell::DriftY], value[Cell::DriftZ]);
     for (int c = 0; c < 3; ++c) {
-        out.phi[c] = phi[c];
-        out.flux[c] = (mGradientToWorld * (grad[c] / double(mVoxels))) * -D + drift * mSun[c];
+        out.phi[c] = value[c];
+        const openvdb::Vec3d grad(dx[c], dy[c], dz[c]);
+        out.flux[c] = (mGradientToWorld * (grad / double(mVoxels))) * -D + drift * mSun[c];
     }
     return out;
 }

@@ -33,11 +33,12 @@ public:
 private:
     friend class RenderDiffusion;
 
-    struct Cell {
-        float phi[3];
-        float D;         ///< diffusion coefficient, m
-        float drift[3];  ///< 3 D Q1 per unit sun irradiance: the sun part's own flux
-        float unused;    ///< pads the record to 32 bytes
+    /// One lattice cell: what the lookup interpolates, 8 floats side by side.
+    struct alignas(32) Cell {
+        enum Lane { Red, Green, Blue, D, DriftX, DriftY, DriftZ, kLanes = 8 };
+        /// φ per channel; the diffusion coefficient D (m); 3 D Q1 per unit sun irradiance,
+        /// the sun part's own flux; an unused lane.
+        float lane[kLanes];
     };
 
     std::size_t index(int i, int j, int k) const

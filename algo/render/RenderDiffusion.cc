@@ -17,7 +17,7 @@ namespace {
 
 constexpr std::size_t kMaxCells = std::size_t(1) << 21;
 
-constexpr std::size_t kVoxelBatch = std::size_t(1) << 16;  ///< voxels shared out at a time
+constexpr std::size_t kVoxelBatch = std::size_t(1) << 18;  ///< voxels shared out at a time
 constexpr int kMaxIterations = 400;
 constexpr int kLimiterPasses = 3;  ///< solves of the sun with the flux limiter updated
 constexpr double kMostLimit = 4.0;  ///< the limiter's largest R, per cell width
@@ -74,51 +74,56 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     const PhaseFunction phase = phaseOf(medium);
     const DeltaEddington split = phase.deltaEddington();
     const double peakless = 1.0 - medium.albedo * split.peak;
-    // Voxels in the tree's order, a batch at a time: each one's cell and share (the sun's
-    // transmittance, the costly part) in parallel, then the sums into the cells in that order,
-    // so that they do not depend on the thread count.
+    // Each voxel's share of its cell: its extinction, and the sun light it scatters for the
+    // first time (the sun's transmittance, the costly part). Leaf voxels are shared out in
+    // parallel, leaves a batch at a time, and summed into the cells in leaf order; then the
+    // voxels of tiles. The sums do not depend on the thread count.
     struct Share {
-        openvdb::Coord voxel;
-        float value;
-        std::size_t cell;
-        double scatter;
+        std::size_t cell = 0;
+        double extinction = 0.0;  ///< 0: no share (a voxel <= 0)
+        double scatter = 0.0;
     };
+    const auto shareOf = [&](const openvdb::Coord& v, float value) {
+        Share out;
+        if (!(value > 0.0f)) return out;
+        out.cell = cellOf(v);
+        out.extinction = perVoxel * value;
+        const RenderVec3 world = mXform.indexToWorld(v.asVec3d());
+        out.scatter = perVoxel * value * medium.albedo * (1.0 - split.peak) *
+                      std::exp(-peakless * sunMap.opticalDepth(world));
+        return out;
+    };
+    const auto addShare = [&](const Share& share) {
+        sigmaT[share.cell] += share.extinction;
+        scatterOnce[share.cell] += share.scatter;
+    };
+    std::vector<const openvdb::FloatTree::LeafNodeType*> leaves;
+    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) leaves.push_back(leaf.getLeaf());
     std::vector<Share> batch;
-    batch.reserve(kVoxelBatch);
-    const auto addBatch = [&] {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, batch.size(), 1024),
-                          [&](const tbb::blocked_range<std::size_t>& range) {
-                              for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                                  Share& v = batch[i];
-                                  v.cell = cellOf(v.voxel);
-                                  const RenderVec3 world = mXform.indexToWorld(v.voxel.asVec3d());
-                                  v.scatter = perVoxel * v.value * medium.albedo *
-                                              (1.0 - split.peak) *
-                                              std::exp(-peakless * sunMap.opticalDepth(world));
-                              }
-                          });
-        for (const Share& v : batch) {
-            sigmaT[v.cell] += perVoxel * v.value;
-            scatterOnce[v.cell] += v.scatter;
-        }
-        batch.clear();
-    };
-    const auto add = [&](const openvdb::Coord& v, float value) {
-        batch.push_back({v, value, 0, 0.0});
-        if (batch.size() == kVoxelBatch) addBatch();
-    };
-    for (auto it = grid.tree().cbeginValueOn(); it; ++it) {
-        const float value = *it;
-        if (!(value > 0.0f)) continue;
-        if (it.isVoxelValue()) {
-            add(it.getCoord(), value);
-            continue;
-        }
-        openvdb::CoordBBox box;
-        it.getBoundingBox(box);
-        for (auto v = box.begin(); v; ++v) add(*v, value);
+    std::vector<std::size_t> first;  // per leaf of the batch, its first share
+    for (std::size_t begin = 0; begin < leaves.size();) {
+        first.assign(1, 0);
+        std::size_t end = begin;
+        while (end < leaves.size() &&
+               (end == begin || first.back() + leaves[end]->onVoxelCount() <= kVoxelBatch))
+            first.push_back(first.back() + leaves[end++]->onVoxelCount());
+        batch.assign(first.back(), Share{});
+        tbb::parallel_for(begin, end, [&](std::size_t l) {
+            Share* out = batch.data() + first[l - begin];
+            for (auto v = leaves[l]->cbeginValueOn(); v; ++v) *out++ = shareOf(v.getCoord(), *v);
+        });
+        for (const Share& share : batch)
+            if (share.extinction > 0.0) addShare(share);
+        begin = end;
     }
-    addBatch();
+    auto tile = grid.tree().cbeginValueOn();
+    tile.setMaxDepth(openvdb::FloatTree::ValueOnCIter::LEAF_DEPTH - 1);  // tiles only
+    for (; tile; ++tile) {
+        if (!(*tile > 0.0f)) continue;
+        openvdb::CoordBBox box;
+        tile.getBoundingBox(box);
+        for (auto v = box.begin(); v; ++v) addShare(shareOf(*v, *tile));
+    }
 
     // The cloud's cells and their couplings.
     const double gMean = phase.meanCosine();
@@ -333,15 +338,15 @@ DiffuseLight RenderDiffusion::coloured(const RenderVec3 (&radiance)[kLights]) co
     for (int a = 0; a < 3; ++a) light.mN[a] = mN[a];
     light.mCells.resize(mD.size());
     tbb::parallel_for(std::size_t(0), mD.size(), [&](std::size_t i) {
-        DiffuseLight::Cell& cell = light.mCells[i];
+        float* lane = light.mCells[i].lane;
         for (int c = 0; c < 3; ++c) {
             double phi = 0.0;
             for (int l = 0; l < kLights; ++l) phi += radiance[l][c] * mPhi[l][i];
-            cell.phi[c] = static_cast<float>(phi);
+            lane[c] = static_cast<float>(phi);
         }
-        cell.D = mD[i];
-        for (int a = 0; a < 3; ++a) cell.drift[a] = mDrift[3 * i + a];
-        cell.unused = 0.0f;
+        lane[DiffuseLight::Cell::D] = mD[i];
+        for (int a = 0; a < 3; ++a) lane[DiffuseLight::Cell::DriftX + a] = mDrift[3 * i + a];
+        lane[DiffuseLight::Cell::kLanes - 1] = 0.0f;
     });
     return light;
 }
