@@ -104,9 +104,11 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     for (std::size_t begin = 0; begin < leaves.size();) {
         first.assign(1, 0);
         std::size_t end = begin;
-        while (end < leaves.size() &&
-               (end == begin || first.back() + leaves[end]->onVoxelCount() <= kVoxelBatch))
-            first.push_back(first.back() + leaves[end++]->onVoxelCount());
+        for (; end < leaves.size(); ++end) {
+            const std::size_t next = first.back() + leaves[end]->onVoxelCount();
+            if (end > begin && next > kVoxelBatch) break;
+            first.push_back(next);
+        }
         batch.assign(first.back(), Share{});
         tbb::parallel_for(begin, end, [&](std::size_t l) {
             Share* out = batch.data() + first[l - begin];

@@ -118,8 +118,7 @@ void RenderOccupancy::recordBricks(const openvdb::FloatTree& tree)
                         b[2] >= mN[2])
                         continue;  // outside the blocks, as in the occupancy
                     mBricks[blockIndex(b[0], b[1], b[2])] |=
-                        std::uint64_t(1)
-                        << ((brick[0] & 3) | ((brick[1] & 3) << 2) | ((brick[2] & 3) << 4));
+                        std::uint64_t(1) << bitOfBrick(brick[0], brick[1], brick[2]);
                 }
     };
     for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) {

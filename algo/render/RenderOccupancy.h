@@ -39,19 +39,18 @@ public:
 
     bool empty() const { return mOcc.empty(); }
 
-    /// Whether a trilinear sample whose lower corner is voxel ijk (its floor) can be positive:
-    /// false only where every voxel it reads is <= 0 (or lies outside the blocks).
-    bool mayBePositive(const openvdb::Coord& ijk) const
+    /// The block (in block units) holding voxel ijk.
+    static openvdb::Coord blockOfVoxel(const openvdb::Coord& ijk)
     {
-        const std::uint64_t mask = brickMask(ijk.x() >> 3, ijk.y() >> 3, ijk.z() >> 3);
-        return (mask >> brickBit(ijk)) & 1u;
+        return openvdb::Coord(ijk.x() >> 3, ijk.y() >> 3, ijk.z() >> 3);
     }
 
-    /// The brick mask of block (bi, bj, bk) (in block units), 0 outside the blocks; bit
-    /// brickBit(ijk) stands for the brick of voxel ijk. All ones without brick masks.
-    std::uint64_t brickMask(int bi, int bj, int bk) const
+    /// The brick mask of `block` (in block units), 0 outside the blocks: bit brickBit(ijk) is
+    /// set where a trilinear sample whose floor is voxel ijk can be positive (some voxel it
+    /// reads is > 0). All ones without brick masks.
+    std::uint64_t brickMask(const openvdb::Coord& block) const
     {
-        const int b[3] = {bi - mMin[0], bj - mMin[1], bk - mMin[2]};
+        const int b[3] = {block.x() - mMin[0], block.y() - mMin[1], block.z() - mMin[2]};
         for (int a = 0; a < 3; ++a)
             if (b[a] < 0 || b[a] >= mN[a]) return 0;
         if (mBricks.empty()) return ~std::uint64_t(0);
@@ -60,7 +59,7 @@ public:
 
     static int brickBit(const openvdb::Coord& ijk)
     {
-        return ((ijk.x() >> 1) & 3) | (((ijk.y() >> 1) & 3) << 2) | (((ijk.z() >> 1) & 3) << 4);
+        return bitOfBrick(ijk.x() >> 1, ijk.y() >> 1, ijk.z() >> 1);
     }
 
     /// The largest trilinear sample in block `block` (an index walk() passes); 0 without
@@ -86,6 +85,12 @@ private:
         return (static_cast<std::size_t>(i) * static_cast<std::size_t>(mN[1]) +
                 static_cast<std::size_t>(j)) * static_cast<std::size_t>(mN[2]) +
                static_cast<std::size_t>(k);
+    }
+
+    /// The bit of brick (bx, by, bz) (in brick units) in its block's mask.
+    static int bitOfBrick(int bx, int by, int bz)
+    {
+        return (bx & 3) | ((by & 3) << 2) | ((bz & 3) << 4);
     }
 
     void recordMajorants(const openvdb::FloatTree& tree);

@@ -31,10 +31,10 @@ public:
     {
         const openvdb::Coord ijk(openvdb::math::Floor(xyz.x()), openvdb::math::Floor(xyz.y()),
                                  openvdb::math::Floor(xyz.z()));
-        const openvdb::Coord block(ijk.x() >> 3, ijk.y() >> 3, ijk.z() >> 3);
+        const openvdb::Coord block = RenderOccupancy::blockOfVoxel(ijk);
         if (block != mBlock) {
             mBlock = block;
-            mBricks = mOcc.brickMask(block.x(), block.y(), block.z());
+            mBricks = mOcc.brickMask(block);
         }
         if (!((mBricks >> RenderOccupancy::brickBit(ijk)) & 1u)) return 0.0f;
         const openvdb::Vec3d uvw = xyz - ijk.asVec3d();
