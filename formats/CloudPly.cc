@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "formats/PlyFile.h"
+#include "util/AtomicFile.h"
 
 namespace cg::formats {
 
@@ -29,22 +30,6 @@ std::vector<PlyProperty> cloudProperties(std::size_t count, const float* positio
 [[noreturn]] void failed(const std::filesystem::path& path, int error)
 {
     throw std::runtime_error("cannot write '" + path.string() + "': " + std::strerror(error));
-}
-
-/// Writes all of `bytes` at `offset`, resuming after short writes and interrupts.
-void writeAt(int fd, const std::filesystem::path& path, const unsigned char* bytes, std::size_t size,
-             std::uint64_t offset)
-{
-    while (size > 0) {
-        const ssize_t n = ::pwrite(fd, bytes, size, static_cast<off_t>(offset));
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            failed(path, errno);
-        }
-        bytes += n;
-        size -= static_cast<std::size_t>(n);
-        offset += static_cast<std::uint64_t>(n);
-    }
 }
 
 }  // namespace
@@ -80,7 +65,8 @@ CloudPlyChunkWriter::CloudPlyChunkWriter(std::filesystem::path path,
     }
     mFd = ::open(mPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (mFd < 0) failed(mPath, errno);
-    writeAt(mFd, mPath, reinterpret_cast<const unsigned char*>(header.data()), header.size(), 0);
+    if (const int error = util::writeAllAt(mFd, header.data(), header.size(), 0))
+        failed(mPath, error);
 }
 
 CloudPlyChunkWriter::~CloudPlyChunkWriter()
@@ -101,7 +87,8 @@ void CloudPlyChunkWriter::write(std::uint64_t first, std::uint64_t count, const 
     thread_local std::vector<unsigned char> records;
     records.resize(count * plyRecordBytes(properties));
     packPlyRecords(properties, 0, count, records.data());
-    writeAt(mFd, mPath, records.data(), records.size(), mOffsets[index]);
+    if (const int error = util::writeAllAt(mFd, records.data(), records.size(), mOffsets[index]))
+        failed(mPath, error);
 }
 
 void CloudPlyChunkWriter::close()

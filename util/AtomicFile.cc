@@ -103,22 +103,29 @@ void AtomicOutput::commit()
     syncPath(mTarget.parent_path().empty() ? fs::path(".") : mTarget.parent_path(), O_RDONLY);
 }
 
+int writeAllAt(int fd, const void* bytes, std::size_t size, std::uint64_t offset)
+{
+    const auto* p = static_cast<const unsigned char*>(bytes);
+    while (size > 0) {
+        const ssize_t n = ::pwrite(fd, p, size, static_cast<off_t>(offset));
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) return errno;
+        if (n == 0) return EIO;  // no progress: the device takes no more
+        p += n;
+        size -= static_cast<std::size_t>(n);
+        offset += static_cast<std::uint64_t>(n);
+    }
+    return 0;
+}
+
 void writeFileAtomically(const fs::path& target, std::string_view bytes, const fs::path& tempDir)
 {
     AtomicOutput out(target, tempDir);
     const int fd = ::open(out.tempPath().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     if (fd < 0) fail(target, std::strerror(errno));
-    std::size_t done = 0;
     std::string why;
-    while (done < bytes.size()) {
-        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) {
-            why = std::string("write failed: ") + std::strerror(errno);
-            break;
-        }
-        done += static_cast<std::size_t>(n);
-    }
+    if (const int error = writeAllAt(fd, bytes.data(), bytes.size(), 0))
+        why = std::string("write failed: ") + std::strerror(error);
     if (::close(fd) != 0 && why.empty()) why = std::string("close failed: ") + std::strerror(errno);
     if (!why.empty()) fail(target, why);
     out.commit();

@@ -3,6 +3,7 @@
 /// after writers that were killed. The one atomic writer: outputs and the disk cache use it.
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string_view>
 
@@ -34,6 +35,10 @@ private:
     std::filesystem::path mTemp;
     bool mCommitted = false;
 };
+
+/// Writes all `size` bytes at `offset` of the open file `fd` (pwrite), resuming after short
+/// writes and interrupts. Returns 0, or the errno of the failure.
+int writeAllAt(int fd, const void* bytes, std::size_t size, std::uint64_t offset);
 
 /// Writes `bytes` to `target` atomically. Throws std::runtime_error naming the file.
 void writeFileAtomically(const std::filesystem::path& target, std::string_view bytes,
