@@ -57,8 +57,7 @@ void BM_NeighbourSearch(benchmark::State& state)
             tbb::blocked_range<std::size_t>(0, count, 1024), std::uint64_t{0},
             [&](const tbb::blocked_range<std::size_t>& r, std::uint64_t acc) {
                 for (std::size_t i = r.begin(); i != r.end(); ++i)
-                    grid.forEachNeighbour(x.data(), &x[3 * i], kRadius,
-                                          [&](std::uint32_t) { ++acc; });
+                    grid.forEachNeighbour(&x[3 * i], kRadius, [&](std::uint32_t) { ++acc; });
                 return acc;
             },
             [](std::uint64_t a, std::uint64_t b) { return a + b; });

@@ -13,6 +13,7 @@
 
 #include "core/CoreData.h"
 #include "core/Error.h"
+#include "core/FramePipeline.h"
 #include "core/Hash.h"
 #include "core/WrittenFiles.h"
 #include "util/AtomicFile.h"
@@ -22,6 +23,8 @@ namespace cg {
 namespace {
 
 constexpr int kAnyFrame = INT_MIN;  // memo slot of a node whose output ignores the frame
+/// Frames cooked at once (FramePipeline): one frame's writers overlap the next frame's cooks.
+constexpr int kFramesInFlight = 2;
 
 double secondsSince(std::chrono::steady_clock::time_point t0)
 {
@@ -168,6 +171,14 @@ public:
 
     void addToTotal(std::size_t n) { mTotal += n; }
 
+    /// The nodes of `closure` to cook at `frame`: all but verified writers and what only they
+    /// need (their recorded outputs go into `results`).
+    std::vector<std::size_t> plan(const std::vector<std::size_t>& closure, int frame,
+                                  FrameOutputs& results)
+    {
+        return withoutVerifiedWriters(closure, frame, results);
+    }
+
 private:
     /// Writers whose files from an earlier run verify (WrittenFiles) take their recorded
     /// outputs into `results` and drop out, with every node that only they need. Returns
@@ -209,6 +220,8 @@ private:
         return left;
     }
 
+public:
+    /// Node idx at `frame`, from the caches or cooked; its inputs are in `results`.
     OutputsPtr evaluate(std::size_t idx, int frame, const FrameOutputs& results)
     {
         mEv.mOptions.cancel->throwIfCancelled();
@@ -226,6 +239,7 @@ private:
         return outputs;
     }
 
+private:
     void report(std::size_t idx, int frame, const Key& key, CookStatus status, std::string reason,
                 std::chrono::steady_clock::time_point t0, const OutputMap& outputs)
     {
@@ -442,10 +456,18 @@ void Evaluator::cookFrames(const Graph& graph, int first, int last,
     session.addToTotal(nodes.size() * static_cast<std::size_t>(last - first + 1));
     removeOrphansWhereWritersWrite(graph, nodes, mOptions.outDir);
     try {
-        for (int frame = first; frame <= last; ++frame) {
-            FrameOutputs results = session.cookFrame(nodes, frame);
-            if (onFrame) onFrame(frame, results);
-        }
+        FramePipeline(graph.upstream(), kFramesInFlight)
+            .run(
+                first, last,
+                [&](int frame, FrameOutputs& results) {
+                    return session.plan(nodes, frame, results);
+                },
+                [&](std::size_t idx, int frame, const FrameOutputs& results) {
+                    return session.evaluate(idx, frame, results);
+                },
+                [&](int frame, const FrameOutputs& results) {
+                    if (onFrame) onFrame(frame, results);
+                });
     } catch (...) {
         mHistory.commit();
         throw;

@@ -41,6 +41,15 @@ void SphGrid::build(const double* xyz, std::size_t count)
     std::vector<std::uint32_t> fill(mCellStart.begin(), mCellStart.end() - 1);
     for (std::size_t i = 0; i < count; ++i)
         mSorted[fill[mCellOfPoint[i]]++] = static_cast<std::uint32_t>(i);
+    // The searches read positions in cell order: candidates side by side in memory.
+    mSortedXyz.resize(3 * count);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t k = r.begin(); k != r.end(); ++k)
+                              for (int a = 0; a < 3; ++a)
+                                  mSortedXyz[3 * k + a] =
+                                      xyz[3 * static_cast<std::size_t>(mSorted[k]) + a];
+                      });
 }
 
 }  // namespace cg::algo

@@ -195,7 +195,7 @@ void SphSolver::fillNeighbourRows()
         std::uint32_t* out = &mNbr[mStride * i];
         float* f = &mGradF[mStride * i];
         double sum[3] = {0, 0, 0}, sq = 0.0;
-        mGrid.forEachNeighbour(mX.data(), xi, h, [&](std::uint32_t j) {
+        mGrid.forEachNeighbour(xi, h, [&](std::uint32_t j) {
             if (j == i) return;
             if (c++ >= mStride) return;  // only counted: the row is too narrow
             const std::size_t k = c - 1;

@@ -25,7 +25,10 @@ DiffuseLight::Sample DiffuseLight::at(const RenderVec3& p) const
                            {1.0f - float(f[1]), float(f[1])},
                            {1.0f - float(f[2]), float(f[2])}};
     constexpr float kSlope[2] = {-1.0f, 1.0f};
-    float value[kLanes] = {}, dx[kLanes] = {}, dy[kLanes] = {}, dz[kLanes] = {};
+    // Only the fluences' gradients are needed: 4 lanes (R, G, B and D, unused) in place of 8.
+    constexpr int kGradientLanes = 4;
+    float value[kLanes] = {}, dx[kGradientLanes] = {}, dy[kGradientLanes] = {},
+          dz[kGradientLanes] = {};
     for (int corner = 0; corner < 8; ++corner) {
         const int a = corner & 1, b = (corner >> 1) & 1, c = (corner >> 2) & 1;
         const float weight = w[0][a] * w[1][b] * w[2][c];
@@ -33,8 +36,8 @@ DiffuseLight::Sample DiffuseLight::at(const RenderVec3& p) const
         const float gy = w[0][a] * kSlope[b] * w[2][c];
         const float gz = w[0][a] * w[1][b] * kSlope[c];
         const float* lane = mCells[index(i0[0] + a, i0[1] + b, i0[2] + c)].lane;
-        for (int k = 0; k < kLanes; ++k) {
-            value[k] += weight * lane[k];
+        for (int k = 0; k < kLanes; ++k) value[k] += weight * lane[k];
+        for (int k = 0; k < kGradientLanes; ++k) {
             dx[k] += gx * lane[k];
             dy[k] += gy * lane[k];
             dz[k] += gz * lane[k];

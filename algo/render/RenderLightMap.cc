@@ -160,13 +160,4 @@ double RenderLightMap::lookup(const RenderVec3& p, bool farEnd) const
     return result;
 }
 
-double RenderLightMap::at(int iu, int iv, int iw) const
-{
-    const Column& c =
-        mColumns[static_cast<std::size_t>(iu) * static_cast<std::size_t>(mN[1]) +
-                 static_cast<std::size_t>(iv)];
-    if (iw >= c.hi) return 0.0;  // at or above the light end of the cloud (or no cloud)
-    return mTau[c.offset + static_cast<std::size_t>(std::max(iw, c.lo) - c.lo)];
-}
-
 }  // namespace cg::algo

@@ -9,6 +9,7 @@
 /// field can have texels as fine as its voxels (a coarse map smears τ across the gaps
 /// between thin clouds and darkens their single scattering).
 
+#include <algorithm>
 #include <cstddef>
 #include <functional>
 #include <vector>
@@ -53,7 +54,14 @@ public:
 
 private:
     double lookup(const RenderVec3& p, bool farEnd) const;
-    double at(int iu, int iv, int iw) const;
+    /// τ at lattice node (iu, iv, iw); inline: a lookup reads eight.
+    double at(int iu, int iv, int iw) const
+    {
+        const Column& c = mColumns[static_cast<std::size_t>(iu) * static_cast<std::size_t>(mN[1]) +
+                                   static_cast<std::size_t>(iv)];
+        if (iw >= c.hi) return 0.0;  // at or above the light end of the cloud (or no cloud)
+        return mTau[c.offset + static_cast<std::size_t>(std::max(iw, c.lo) - c.lo)];
+    }
 
     /// The texels a column stores: iw in [lo, hi]; τ = 0 above hi and τ(lo) below lo.
     struct Column {

@@ -37,6 +37,17 @@ public:
             mBricks = mOcc.brickMask(block);
         }
         if (!((mBricks >> RenderOccupancy::brickBit(ijk)) & 1u)) return 0.0f;
+        return interpolate(xyz, ijk);
+    }
+
+private:
+    using Leaf = openvdb::FloatTree::LeafNodeType;
+    static constexpr int kLast = Leaf::DIM - 1;
+
+    /// The trilinear value at xyz, in the cell whose lowest corner is ijk. Out of line: most
+    /// samples stop at the brick test above, which should stay small enough to inline.
+    [[gnu::noinline]] float interpolate(const openvdb::Vec3d& xyz, const openvdb::Coord& ijk)
+    {
         const openvdb::Vec3d uvw = xyz - ijk.asVec3d();
         float data[2][2][2];
         if ((ijk.x() & kLast) != kLast && (ijk.y() & kLast) != kLast &&
@@ -62,10 +73,6 @@ public:
         }
         return openvdb::tools::BoxSampler::trilinearInterpolation(data, uvw);
     }
-
-private:
-    using Leaf = openvdb::FloatTree::LeafNodeType;
-    static constexpr int kLast = Leaf::DIM - 1;
 
     struct Slot {
         openvdb::Coord origin{openvdb::Coord::max()};  ///< no leaf has this origin
