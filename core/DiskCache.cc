@@ -14,8 +14,10 @@
 ///                   str port name, str data type name (str = u64 length + bytes),
 ///                   u64 data length, data bytes (Data::serialize through ByteWriter)
 ///
-/// Entries are written to tmp/ under a unique name, fsynced and renamed into objects/ (by
-/// util::AtomicOutput), so readers (which only look in objects/) see no entry or a whole one. A
+/// Entries are written to tmp/ under a unique name and renamed into objects/ (by
+/// util::AtomicOutput), so readers (which only look in objects/) see no entry or a whole one;
+/// they are not fsynced: an entry torn by an operating-system crash fails its checksums and
+/// reads as a miss. A
 /// temp file left by a killed writer is never read, and removed when the cache is next opened.
 
 #include "core/DiskCache.h"
@@ -378,17 +380,20 @@ bool DiskCache::store(const Key& key, const OutputMap& outputs) const
     bool serializable = false;
     const std::vector<unsigned char> bytes = encodeEntry(key, outputs, serializable);
     if (!serializable) return false;
-    return writeAtomically(entryPath(key), bytes.data(), bytes.size());
+    // Entries carry checksums that load() verifies: one torn by an operating-system crash
+    // reads as a miss, so the write need not wait for the disk.
+    return writeAtomically(entryPath(key), bytes.data(), bytes.size(),
+                           util::AtomicOutput::Flush::None);
 }
 
-bool DiskCache::writeAtomically(const fs::path& target, const void* data,
-                                std::size_t size) const
+bool DiskCache::writeAtomically(const fs::path& target, const void* data, std::size_t size,
+                                util::AtomicOutput::Flush flush) const
 {
     try {
         std::error_code ec;
         fs::create_directories(target.parent_path(), ec);
         util::writeFileAtomically(target, std::string_view(static_cast<const char*>(data), size),
-                            mRoot / "tmp");
+                                  mRoot / "tmp", flush);
         return true;
     } catch (const std::exception& e) {
         spdlog::warn("disk cache: {}", e.what());
@@ -419,7 +424,7 @@ void DiskCache::storeRecord(const std::string& name, const nlohmann::json& recor
     // Replace bad UTF-8 rather than throw: a record is informational.
     const std::string text =
         record.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
-    writeAtomically(path, text.data(), text.size());
+    writeAtomically(path, text.data(), text.size(), util::AtomicOutput::Flush::ToDisk);
 }
 
 }  // namespace cg

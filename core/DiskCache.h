@@ -6,12 +6,13 @@
 ///   records/<name>.json                                small JSON records (why-cooked data)
 ///   tmp/                                               files being written
 ///
-/// An entry is written to tmp/ under a unique name, flushed (fsync), then renamed into
-/// place, so a reader sees either no entry or a whole one; two processes storing the same
-/// key both succeed (the last rename wins, with identical bytes). The entry header holds
-/// the full key, the payload length and checksums; load() verifies all of them and treats
-/// any mismatch (truncation, flipped bytes, foreign file) as a miss: it logs a warning,
-/// removes the entry and the caller recooks.
+/// An entry is written to tmp/ under a unique name, then renamed into place, so a reader
+/// sees either no entry or a whole one. Entries are not fsynced (records are): one torn by
+/// an operating-system crash fails the checksums below and reads as a miss. Two processes
+/// storing the same key both succeed (the last rename wins, with identical bytes). The
+/// entry header holds the full key, the payload length and checksums; load() verifies all
+/// of them and treats any mismatch (truncation, flipped bytes, foreign file) as a miss: it
+/// logs a warning, removes the entry and the caller recooks.
 
 #include <cstdint>
 #include <filesystem>
@@ -22,6 +23,7 @@
 
 #include "core/Hash.h"
 #include "core/Node.h"
+#include "util/AtomicFile.h"
 
 namespace cg {
 
@@ -68,8 +70,8 @@ private:
                                    std::uint64_t checksum, const Registry& registry,
                                    const std::vector<PortDecl>* outputs);
     /// Writes bytes to tmp/ then renames onto `target`.
-    bool writeAtomically(const std::filesystem::path& target, const void* data,
-                         std::size_t size) const;
+    bool writeAtomically(const std::filesystem::path& target, const void* data, std::size_t size,
+                         util::AtomicOutput::Flush flush) const;
     std::filesystem::path mRoot;
 };
 

@@ -89,18 +89,20 @@ AtomicOutput::~AtomicOutput()
     }
 }
 
-void AtomicOutput::commit()
+void AtomicOutput::commit(Flush flush)
 {
     // The data must be on disk before the rename makes it visible: after a crash the
     // target would otherwise hold a whole-looking file with garbage inside.
-    if (!syncPath(mTemp, O_RDONLY)) fail(mTarget, std::string("fsync failed: ") + std::strerror(errno));
+    if (flush == Flush::ToDisk && !syncPath(mTemp, O_RDONLY))
+        fail(mTarget, std::string("fsync failed: ") + std::strerror(errno));
     std::error_code ec;
     fs::rename(mTemp, mTarget, ec);
     if (ec) fail(mTarget, ec.message());
     mCommitted = true;
     // Makes the rename itself durable; the file is already whole, so a failure only costs
     // durability and is not reported.
-    syncPath(mTarget.parent_path().empty() ? fs::path(".") : mTarget.parent_path(), O_RDONLY);
+    if (flush == Flush::ToDisk)
+        syncPath(mTarget.parent_path().empty() ? fs::path(".") : mTarget.parent_path(), O_RDONLY);
 }
 
 int writeAllAt(int fd, const void* bytes, std::size_t size, std::uint64_t offset)
@@ -118,7 +120,8 @@ int writeAllAt(int fd, const void* bytes, std::size_t size, std::uint64_t offset
     return 0;
 }
 
-void writeFileAtomically(const fs::path& target, std::string_view bytes, const fs::path& tempDir)
+void writeFileAtomically(const fs::path& target, std::string_view bytes, const fs::path& tempDir,
+                         AtomicOutput::Flush flush)
 {
     AtomicOutput out(target, tempDir);
     const int fd = ::open(out.tempPath().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
@@ -128,7 +131,7 @@ void writeFileAtomically(const fs::path& target, std::string_view bytes, const f
         why = std::string("write failed: ") + std::strerror(error);
     if (::close(fd) != 0 && why.empty()) why = std::string("close failed: ") + std::strerror(errno);
     if (!why.empty()) fail(target, why);
-    out.commit();
+    out.commit(flush);
 }
 
 std::size_t removeOrphanedTemporaries(const fs::path& dir)

@@ -17,6 +17,16 @@ namespace cg::util {
 /// live writer's file, even in a directory shared by several machines.
 class AtomicOutput {
 public:
+    /// Whether commit() waits for the data to reach the disk.
+    enum class Flush {
+        ToDisk,  ///< fsync the file before the rename and the directory after: durable
+        /// Only the rename: after an operating-system crash the target may hold a whole-looking
+        /// file with garbage inside. For files whose readers verify a checksum of their own
+        /// and drop a bad file (disk cache entries), where waiting for the disk on every
+        /// write would only cost time.
+        None,
+    };
+
     /// `tempDir`: where the temp file goes; the target's directory when empty. It must be on
     /// the target's file system, so the rename cannot cross devices.
     explicit AtomicOutput(std::filesystem::path target, std::filesystem::path tempDir = {});
@@ -28,7 +38,7 @@ public:
     const std::filesystem::path& target() const { return mTarget; }
     /// Flushes the temp file to disk (fsync; a failure throws, as the data may be lost) and
     /// renames it onto the target. Throws std::runtime_error naming the target.
-    void commit();
+    void commit(Flush flush = Flush::ToDisk);
 
 private:
     std::filesystem::path mTarget;
@@ -42,7 +52,8 @@ int writeAllAt(int fd, const void* bytes, std::size_t size, std::uint64_t offset
 
 /// Writes `bytes` to `target` atomically. Throws std::runtime_error naming the file.
 void writeFileAtomically(const std::filesystem::path& target, std::string_view bytes,
-                         const std::filesystem::path& tempDir = {});
+                         const std::filesystem::path& tempDir = {},
+                         AtomicOutput::Flush flush = AtomicOutput::Flush::ToDisk);
 
 /// Removes the temp files in `dir` (not below it) that no live writer owns: those of this
 /// host whose process has ended, and any older than a day (a writer on another host that
