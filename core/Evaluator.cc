@@ -9,7 +9,6 @@
 #include <variant>
 
 #include <spdlog/spdlog.h>
-#include <tbb/parallel_for.h>
 
 #include "core/CoreData.h"
 #include "core/Error.h"
@@ -147,37 +146,26 @@ public:
         return out;
     }
 
-    /// Cooks (or fetches) `nodes` at `frame`, level by level, independent nodes in parallel.
-    FrameOutputs cookFrame(const std::vector<std::size_t>& closure, int frame)
+    /// Cooks (or fetches) `closure` for frames first..last as a pipeline (FramePipeline):
+    /// each frame without the writers that verify; onFrame hears of each frame in order.
+    void cookRange(const std::vector<std::size_t>& closure, int first, int last,
+                   const FrameCallback& onFrame)
     {
-        FrameOutputs results(mGraph.nodes().size());
-        const std::vector<std::size_t> nodes = withoutVerifiedWriters(closure, frame, results);
-        std::vector<int> depth(mGraph.nodes().size(), 0);
-        int maxDepth = 0;
-        for (std::size_t i : nodes) {  // topological order: inputs first
-            for (std::size_t up : mGraph.upstream()[i]) depth[i] = std::max(depth[i], depth[up] + 1);
-            maxDepth = std::max(maxDepth, depth[i]);
-        }
-        for (int level = 0; level <= maxDepth; ++level) {
-            std::vector<std::size_t> batch;
-            for (std::size_t i : nodes)
-                if (depth[i] == level) batch.push_back(i);
-            tbb::parallel_for(std::size_t(0), batch.size(), [&](std::size_t b) {
-                results[batch[b]] = evaluate(batch[b], frame, results);
-            });
-        }
-        return results;
+        FramePipeline(mGraph.upstream(), kFramesInFlight)
+            .run(
+                first, last,
+                [&](int frame, FrameOutputs& results) {
+                    return withoutVerifiedWriters(closure, frame, results);
+                },
+                [&](std::size_t idx, int frame, const FrameOutputs& results) {
+                    return evaluate(idx, frame, results);
+                },
+                [&](int frame, const FrameOutputs& results) {
+                    if (onFrame) onFrame(frame, results);
+                });
     }
 
     void addToTotal(std::size_t n) { mTotal += n; }
-
-    /// The nodes of `closure` to cook at `frame`: all but verified writers and what only they
-    /// need (their recorded outputs go into `results`).
-    std::vector<std::size_t> plan(const std::vector<std::size_t>& closure, int frame,
-                                  FrameOutputs& results)
-    {
-        return withoutVerifiedWriters(closure, frame, results);
-    }
 
 private:
     /// Writers whose files from an earlier run verify (WrittenFiles) take their recorded
@@ -220,7 +208,6 @@ private:
         return left;
     }
 
-public:
     /// Node idx at `frame`, from the caches or cooked; its inputs are in `results`.
     OutputsPtr evaluate(std::size_t idx, int frame, const FrameOutputs& results)
     {
@@ -239,7 +226,6 @@ public:
         return outputs;
     }
 
-private:
     void report(std::size_t idx, int frame, const Key& key, CookStatus status, std::string reason,
                 std::chrono::steady_clock::time_point t0, const OutputMap& outputs)
     {
@@ -384,9 +370,9 @@ private:
         if (state) hold(idx, resume, state);
         // Step forward through the frames no cache holds; each step cooks the node's closure.
         const std::vector<std::size_t> nodes = closure({idx});
-        for (int f = resume + 1; f < frame; ++f) {
-            addToTotal(nodes.size());
-            cookFrame(nodes, f);
+        if (resume + 1 < frame) {
+            addToTotal(nodes.size() * static_cast<std::size_t>(frame - 1 - resume));
+            cookRange(nodes, resume + 1, frame - 1, {});
         }
         std::lock_guard<std::mutex> lock(mHeldMutex[idx]);
         return mHeld[idx].outputs;
@@ -456,18 +442,7 @@ void Evaluator::cookFrames(const Graph& graph, int first, int last,
     session.addToTotal(nodes.size() * static_cast<std::size_t>(last - first + 1));
     removeOrphansWhereWritersWrite(graph, nodes, mOptions.outDir);
     try {
-        FramePipeline(graph.upstream(), kFramesInFlight)
-            .run(
-                first, last,
-                [&](int frame, FrameOutputs& results) {
-                    return session.plan(nodes, frame, results);
-                },
-                [&](std::size_t idx, int frame, const FrameOutputs& results) {
-                    return session.evaluate(idx, frame, results);
-                },
-                [&](int frame, const FrameOutputs& results) {
-                    if (onFrame) onFrame(frame, results);
-                });
+        session.cookRange(nodes, first, last, onFrame);
     } catch (...) {
         mHistory.commit();
         throw;
