@@ -103,18 +103,17 @@ const std::vector<float>& texture()
     return texels;
 }
 
-}  // namespace
-
-float perlinWorleyTexel(float u, float v, float w)
+/// The trilinear sample of the texture `t` (see perlinWorleyTexel); inline, so the fractal
+/// sum's octaves sample it without a call each.
+inline float sampleTexture(const float* t, float u, float v, float w)
 {
-    const std::vector<float>& t = texture();
     const float fu = std::floor(u), fv = std::floor(v), fw = std::floor(w);
     const float tu = u - fu, tv = v - fv, tw = w - fw;
     // Wrapped lattice indices; the casts are exact for |coordinates| < 2^31.
     const int i0 = static_cast<int>(static_cast<std::int64_t>(fu) & kMask), i1 = (i0 + 1) & kMask;
     const int j0 = static_cast<int>(static_cast<std::int64_t>(fv) & kMask), j1 = (j0 + 1) & kMask;
     const int k0 = static_cast<int>(static_cast<std::int64_t>(fw) & kMask), k1 = (k0 + 1) & kMask;
-    const auto at = [&t](int i, int j, int k) {
+    const auto at = [t](int i, int j, int k) {
         return t[(static_cast<std::size_t>(i) * kSize + j) * kSize + k];
     };
     const auto lerp = [](float a, float b, float s) { return a + s * (b - a); };
@@ -125,12 +124,20 @@ float perlinWorleyTexel(float u, float v, float w)
     return lerp(lerp(x00, x01, tv), lerp(x10, x11, tv), tu);
 }
 
+}  // namespace
+
+float perlinWorleyTexel(float u, float v, float w)
+{
+    return sampleTexture(texture().data(), u, v, w);
+}
+
 float perlinWorleyFbm(const double x[3], double frequency, int octaves)
 {
     // Incommensurate shifts (texels), so the octaves' tiles never line up.
     constexpr double kShift[3] = {17.31, 41.07, 5.93};
     double sum = 0.0, norm = 0.0, amplitude = 1.0;
     double texelsPerMetre = frequency * kPerlinWorleyTexelsPerCycle;
+    const float* t = texture().data();
     for (int o = 0; o < octaves; ++o) {
         // Coordinates reduced modulo the tile in double before the float sample: metres far
         // from the origin keep their sub-texel precision.
@@ -139,7 +146,7 @@ float perlinWorleyFbm(const double x[3], double frequency, int octaves)
             const double u = x[a] * texelsPerMetre + o * kShift[a];
             uvw[a] = static_cast<float>(u - kSize * std::floor(u / kSize));
         }
-        sum += amplitude * perlinWorleyTexel(uvw[0], uvw[1], uvw[2]);
+        sum += amplitude * sampleTexture(t, uvw[0], uvw[1], uvw[2]);
         norm += amplitude;
         amplitude *= 0.5;
         texelsPerMetre *= 2.0;

@@ -157,29 +157,40 @@ CopyOriginField::Block CopyOriginField::block(const double lo[3], const double h
     return b;
 }
 
+CopyOriginField::Block::AxisPlace CopyOriginField::Block::place(int axis, double x) const
+{
+    const double u = x / mCellSize - 0.5;
+    const double f = std::floor(u);
+    const int base = static_cast<int>(f) - mLo[axis];
+    // A point outside the block's box has no corners here.
+    if (base < 0 || base + 1 >= mDim[axis]) return {};
+    return {base, u - f};
+}
+
 bool CopyOriginField::Block::origin(const double x[3], double out[3]) const
 {
-    int base[3];
-    double t[3];
-    for (int a = 0; a < 3; ++a) {
-        const double u = x[a] / mCellSize - 0.5;
-        const double f = std::floor(u);
-        base[a] = static_cast<int>(f) - mLo[a];
-        t[a] = u - f;
-        // A point outside the block's box has no corners here.
-        if (base[a] < 0 || base[a] + 1 >= mDim[a]) return false;
-    }
+    const AxisPlace at[3] = {place(0, x[0]), place(1, x[1]), place(2, x[2])};
+    return origin(at, out);
+}
+
+bool CopyOriginField::Block::origin(const AxisPlace (&at)[3], double out[3]) const
+{
+    if (at[0].base < 0 || at[1].base < 0 || at[2].base < 0) return false;
+    const std::size_t strideY = static_cast<std::size_t>(mDim[2]);
+    const std::size_t strideX = static_cast<std::size_t>(mDim[1]) * strideY;
+    const std::size_t first = static_cast<std::size_t>(at[0].base) * strideX +
+                              static_cast<std::size_t>(at[1].base) * strideY +
+                              static_cast<std::size_t>(at[2].base);
     double sum[3] = {0.0, 0.0, 0.0}, count = 0.0;
     for (int corner = 0; corner < 8; ++corner) {
-        double w = 1.0;
-        std::size_t index = 0;
-        for (int a = 0; a < 3; ++a) {
-            const int bit = (corner >> (2 - a)) & 1;
-            w *= bit ? t[a] : 1.0 - t[a];
-            index = index * static_cast<std::size_t>(mDim[a]) + static_cast<std::size_t>(base[a] + bit);
-        }
-        const Cell& c = mCells[index];
+        const int bx = (corner >> 2) & 1, by = (corner >> 1) & 1, bz = corner & 1;
+        const Cell& c = mCells[first + bx * strideX + by * strideY + static_cast<std::size_t>(bz)];
         if (c.count == 0.0) continue;
+        // The weight multiplied in axis order from 1, as the sums have always been made.
+        double w = 1.0;
+        w *= bx ? at[0].t : 1.0 - at[0].t;
+        w *= by ? at[1].t : 1.0 - at[1].t;
+        w *= bz ? at[2].t : 1.0 - at[2].t;
         for (int a = 0; a < 3; ++a) sum[a] += w * c.sum[a];
         count += w * c.count;
     }

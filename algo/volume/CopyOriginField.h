@@ -58,9 +58,20 @@ public:
     /// the box, fetched once instead of eight lookups a point.
     class Block {
     public:
+        /// Where a coordinate on one axis lies among the block's cell centres: the lower
+        /// corner cell and the upper one's weight; base < 0 outside the block's box.
+        struct AxisPlace {
+            int base = -1;
+            double t = 0.0;
+        };
+        AxisPlace place(int axis, double x) const;
+
         /// The interpolated origin at x, inside the block's box; false where no particle's
         /// cell is among the eight corners (x farther than R from every particle).
         bool origin(const double x[3], double out[3]) const;
+        /// The same from x's places on the three axes, which a caller on a lattice (a
+        /// leaf's 8 coordinates per axis) finds once per coordinate instead of per point.
+        bool origin(const AxisPlace (&at)[3], double out[3]) const;
 
     private:
         friend class CopyOriginField;

@@ -67,7 +67,9 @@ void erodeSurface(openvdb::FloatGrid& grid, const CopyOriginField* field,
     const double voxel = grid.voxelSize()[0];
     const auto amplitude = static_cast<float>(s.amplitude);
     openvdb::tree::LeafManager<openvdb::FloatTree> leaves(grid.tree());
-    leaves.foreach([&](LeafT& leaf, std::size_t) {
+    leaves.foreach ([&](LeafT& leaf, std::size_t) {
+        constexpr int kDim = static_cast<int>(LeafT::DIM);
+        const openvdb::Coord corner = leaf.origin();
         std::optional<CopyOriginField::Block> block;
         if (field) {
             const openvdb::CoordBBox box = leaf.getNodeBoundingBox();
@@ -78,23 +80,42 @@ void erodeSurface(openvdb::FloatGrid& grid, const CopyOriginField* field,
             }
             block = field->block(lo, hi);
         }
-        for (auto it = leaf.beginValueOn(); it; ++it) {
-            const float v = *it;
+        // Per axis, the leaf's voxel coordinates in metres and their places among the copy
+        // origin cells: found once per coordinate, not once per voxel.
+        double metres[3][kDim];
+        CopyOriginField::Block::AxisPlace places[3][kDim];
+        for (int a = 0; a < 3; ++a)
+            for (int l = 0; l < kDim; ++l) {
+                metres[a][l] = (corner[a] + l) * voxel;
+                if (block) places[a][l] = block->place(a, metres[a][l]);
+            }
+        float* values = leaf.buffer().data();
+        // Switching the current voxel off does not disturb the iteration, which moves on
+        // from the next bit.
+        for (auto on = leaf.getValueMask().beginOn(); on; ++on) {
+            const openvdb::Index n = on.pos();
+            const float v = values[n];
             if (!(v < 1.0f)) continue;  // the interior keeps its density
-            const openvdb::Coord c = it.getCoord();
-            double x[3] = {c.x() * voxel, c.y() * voxel, c.z() * voxel};
+            const int i = static_cast<int>(n >> (2 * LeafT::LOG2DIM));
+            const int j = static_cast<int>((n >> LeafT::LOG2DIM) & (kDim - 1));
+            const int k = static_cast<int>(n & (kDim - 1));
+            double x[3] = {metres[0][i], metres[1][j], metres[2][k]};
             double origin[3] = {0.0, 0.0, 0.0};
             // Every voxel a splat reached has an origin; a grid changed since (filtered,
             // combined) may have others, which keep world coordinates.
-            if (block && !block->origin(x, origin)) origin[0] = origin[1] = origin[2] = 0.0;
+            if (block) {
+                const CopyOriginField::Block::AxisPlace at[3] = {places[0][i], places[1][j],
+                                                                 places[2][k]};
+                if (!block->origin(at, origin)) origin[0] = origin[1] = origin[2] = 0.0;
+            }
             for (int a = 0; a < 3; ++a) x[a] -= origin[a];
             const float e = amplitude * (1.0f - perlinWorleyFbm(x, s.frequency, s.octaves));
             const float eroded = erode(v, e);
             if (eroded > 0.0f) {
-                it.setValue(eroded);
+                values[n] = eroded;
             } else {
-                it.setValue(0.0f);
-                it.setValueOff();  // the background, inactive: only sparser
+                values[n] = 0.0f;
+                leaf.setValueOff(n);  // the background, inactive: only sparser
             }
         }
     });
