@@ -131,6 +131,18 @@ float perlinWorleyTexel(float u, float v, float w)
     return sampleTexture(texture().data(), u, v, w);
 }
 
+float perlinWorleyUpperBound()
+{
+    static const float bound = [] {
+        const std::vector<float>& t = texture();
+        // A trilinear sample is a convex mix of texels: at most the largest, but for a few
+        // float roundings of the three lerps, and the fractal sum is a weighted mean of
+        // samples; 1e-6 is over ten times those roundings on values below 1.
+        return *std::max_element(t.begin(), t.end()) + 1e-6f;
+    }();
+    return bound;
+}
+
 float perlinWorleyFbm(const double x[3], double frequency, int octaves)
 {
     // Incommensurate shifts (texels), so the octaves' tiles never line up.

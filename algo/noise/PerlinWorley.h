@@ -22,6 +22,11 @@ inline constexpr int kPerlinWorleyTextureSize = 64;
 /// Worley distance to the nearest feature point (one a cell) and P gradient noise.
 float perlinWorleyTexel(float u, float v, float w);
 
+/// An upper bound of perlinWorleyTexel and perlinWorleyFbm: the texture's largest texel plus
+/// a margin for the float rounding of the interpolation, so a caller can tell where no
+/// value of the noise could change its result without evaluating it.
+float perlinWorleyUpperBound();
+
 /// Fractal sum of the texture: sum over octaves o of 0.5^o T(2^o frequency x + shift_o),
 /// divided by the sum of the weights, so the result stays in [0, 1]. x is in metres and
 /// frequency in cycles per metre; shift_o (fixed, ours) decorrelates the octaves' tiles.

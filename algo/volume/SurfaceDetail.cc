@@ -66,6 +66,10 @@ void erodeSurface(openvdb::FloatGrid& grid, const CopyOriginField* field,
     if (s.amplitude == 0.0 || grid.empty()) return;
     const double voxel = grid.voxelSize()[0];
     const auto amplitude = static_cast<float>(s.amplitude);
+    // The least erosion any noise value gives: a voxel at or below it erodes to nothing
+    // whatever the noise is there (v <= e), so its noise is not evaluated. The roundings
+    // are monotone, so the float e of any noise n <= the bound is at least this.
+    const float leastErosion = amplitude * (1.0f - perlinWorleyUpperBound());
     openvdb::tree::LeafManager<openvdb::FloatTree> leaves(grid.tree());
     leaves.foreach ([&](LeafT& leaf, std::size_t) {
         constexpr int kDim = static_cast<int>(LeafT::DIM);
@@ -96,6 +100,11 @@ void erodeSurface(openvdb::FloatGrid& grid, const CopyOriginField* field,
             const openvdb::Index n = on.pos();
             const float v = values[n];
             if (!(v < 1.0f)) continue;  // the interior keeps its density
+            if (v <= leastErosion) {
+                values[n] = 0.0f;
+                leaf.setValueOff(n);
+                continue;
+            }
             const int i = static_cast<int>(n >> (2 * LeafT::LOG2DIM));
             const int j = static_cast<int>((n >> LeafT::LOG2DIM) & (kDim - 1));
             const int k = static_cast<int>(n & (kDim - 1));

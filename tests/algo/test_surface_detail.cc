@@ -101,6 +101,34 @@ TEST(PerlinWorley, FbmIsANormalisedSumOfOctaves)
     EXPECT_NEAR(perlinWorleyFbm(far, frequency, 3), perlinWorleyFbm(x, frequency, 3), 1e-5);
 }
 
+TEST(PerlinWorley, UpperBoundIsTheLargestTexelAndNoSampleExceedsIt)
+{
+    const float bound = perlinWorleyUpperBound();
+    float largestTexel = 0.0f;
+    for (int i = 0; i < kPerlinWorleyTextureSize; ++i)
+        for (int j = 0; j < kPerlinWorleyTextureSize; ++j)
+            for (int k = 0; k < kPerlinWorleyTextureSize; ++k)
+                largestTexel =
+                    std::max(largestTexel, perlinWorleyTexel(float(i), float(j), float(k)));
+    // Tight: the margin is for rounding only, so the skipped voxels are nearly all that can be.
+    EXPECT_GT(largestTexel, 0.5f);
+    EXPECT_LE(bound - largestTexel, 2e-6f);
+    // Never exceeded between texels, where the lerps round, nor by the fractal sums.
+    std::uint64_t state = 12345;
+    const auto uniform = [&state] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return static_cast<double>(state >> 11) * 0x1.0p-53;
+    };
+    for (int n = 0; n < 200000; ++n) {
+        const float u = static_cast<float>(kSize * uniform()),
+                    v = static_cast<float>(kSize * uniform()),
+                    w = static_cast<float>(kSize * uniform());
+        ASSERT_LE(perlinWorleyTexel(u, v, w), bound);
+        const double x[3] = {1e4 * uniform(), 1e4 * uniform(), 1e4 * uniform()};
+        ASSERT_LE(perlinWorleyFbm(x, 1.0 / 107.0, 1 + n % 8), bound);
+    }
+}
+
 TEST(CopyOriginField, InsideOneCopyTheFieldIsItsOriginExactly)
 {
     const double a[3] = {100.0, 200.0, 1500.0}, b[3] = {900.0, 200.0, 1500.0};
@@ -321,6 +349,37 @@ TEST(SurfaceDetail, ErodesOnlyTheShellAndOnlyDownward)
     // Nothing new: every active voxel after erosion was active before.
     auto before = plain->getConstAccessor();
     for (auto it = eroded->tree().cbeginValueOn(); it; ++it) ASSERT_TRUE(before.isValueOn(it.getCoord()));
+}
+
+// Every shell voxel is (v - e) / (1 - e) with e = amplitude (1 - n) from its own noise value,
+// bit for bit, including those eroded to nothing without evaluating the noise (v at or below
+// the least erosion any noise gives).
+TEST(SurfaceDetail, EveryShellVoxelIsTheErosionFormulaOfItsNoise)
+{
+    const MappedCopy copy;
+    const float where[3] = {0.0f, 0.0f, 1000.0f};
+    const CloudParticleArrays cloud = copy.at(3, where);
+    const auto plain = detailed(cloud, false, 0.0);
+    const auto eroded = detailed(cloud, false, 0.8);
+    const double voxel = plain->voxelSize()[0], frequency = 1.5 / 40.0;
+    const float leastErosion = 0.8f * (1.0f - perlinWorleyUpperBound());
+    auto after = eroded->getConstAccessor();
+    std::size_t skippable = 0, shell = 0;
+    for (auto it = plain->tree().cbeginValueOn(); it; ++it) {
+        const float v = *it;
+        if (!(v < 1.0f)) continue;
+        ++shell;
+        skippable += v <= leastErosion;
+        const openvdb::Coord c = it.getCoord();
+        const double x[3] = {c.x() * voxel, c.y() * voxel, c.z() * voxel};
+        const float e = 0.8f * (1.0f - perlinWorleyFbm(x, frequency, 2));
+        const float expected = e >= 1.0f ? 0.0f : std::max(0.0f, (v - e) / (1.0f - e));
+        ASSERT_EQ(after.getValue(c), expected) << c;
+        ASSERT_EQ(after.isValueOn(c), expected > 0.0f) << c;
+    }
+    // Both kinds occur: the test covers the voxels whose noise is skipped.
+    EXPECT_GT(skippable, 0u);
+    EXPECT_GT(shell - skippable, 0u);
 }
 
 TEST(SurfaceDetail, AmplitudeZeroLeavesTheGridBitForBitAndBadSettingsAreRefused)
