@@ -24,33 +24,40 @@ constexpr std::uint64_t kWorleySeed = 0x5713a11d0f3e9c21ull;
 constexpr std::uint64_t kPerlinSeed = 0x2b7e151628aed2a6ull;
 
 /// A wrapping lattice of `cells` cells per axis with one feature point per cell, at a hashed
-/// place inside it: the jitters are hashed once per cell, not once per texel and neighbour.
+/// place inside it. The feature points are kept for the cells -1 .. cells on each axis (the
+/// lattice and one wrapped cell around it), so a point in [0, cells)^3 finds its 27
+/// neighbours without wrapping.
 struct WorleyLattice {
     WorleyLattice(int cellsPerAxis, std::uint64_t seed)
-        : cells(cellsPerAxis), jitters(std::size_t(3) * cells * cells * cells)
+        : cells(cellsPerAxis),
+          padded(cellsPerAxis + 2),
+          features(std::size_t(3) * padded * padded * padded)
     {
-        for (int i = 0; i < cells; ++i)
-            for (int j = 0; j < cells; ++j)
-                for (int k = 0; k < cells; ++k) {
+        for (int i = -1; i <= cells; ++i)
+            for (int j = -1; j <= cells; ++j)
+                for (int k = -1; k <= cells; ++k) {
                     std::uint64_t h = seed;
-                    for (const int c : {i, j, k}) h = mix64(h ^ static_cast<std::uint64_t>(c));
-                    double* jitter = &jitters[3 * ((std::size_t(i) * cells + j) * cells + k)];
+                    for (const int c : {i, j, k})
+                        h = mix64(h ^ static_cast<std::uint64_t>(((c % cells) + cells) % cells));
+                    double* f = &features[3 * index(i, j, k)];
+                    const int c[3] = {i, j, k};
                     for (int a = 0; a < 3; ++a)
-                        jitter[a] = static_cast<double>((h >> (21 * a)) & 0x1fffff) * 0x1.0p-21;
+                        f[a] = c[a] + static_cast<double>((h >> (21 * a)) & 0x1fffff) * 0x1.0p-21;
                 }
     }
-    const double* jitter(const int c[3]) const
+    std::size_t index(int i, int j, int k) const
     {
-        int w[3];
-        for (int a = 0; a < 3; ++a) w[a] = ((c[a] % cells) + cells) % cells;
-        return &jitters[3 * ((std::size_t(w[0]) * cells + w[1]) * cells + w[2])];
+        return (std::size_t(i + 1) * padded + std::size_t(j + 1)) * padded + std::size_t(k + 1);
     }
+    /// The feature point of cell c, each of c's coordinates in -1 .. cells.
+    const double* feature(int i, int j, int k) const { return &features[3 * index(i, j, k)]; }
     int cells;
-    std::vector<double> jitters;
+    int padded;
+    std::vector<double> features;
 };
 
-/// Worley's F1 in cell units at point p (in cells) of the lattice: the distance to the
-/// nearest feature point.
+/// Worley's F1 in cell units at point p (in cells, inside [0, cells)^3) of the lattice: the
+/// distance to the nearest feature point.
 double worleyF1(const double p[3], const WorleyLattice& lattice)
 {
     int base[3];
@@ -59,11 +66,10 @@ double worleyF1(const double p[3], const WorleyLattice& lattice)
     for (int dx = -1; dx <= 1; ++dx)
         for (int dy = -1; dy <= 1; ++dy)
             for (int dz = -1; dz <= 1; ++dz) {
-                const int c[3] = {base[0] + dx, base[1] + dy, base[2] + dz};
-                const double* jitter = lattice.jitter(c);
+                const double* f = lattice.feature(base[0] + dx, base[1] + dy, base[2] + dz);
                 double d2 = 0.0;
                 for (int a = 0; a < 3; ++a) {
-                    const double d = c[a] + jitter[a] - p[a];
+                    const double d = f[a] - p[a];
                     d2 += d * d;
                 }
                 best = std::min(best, d2);

@@ -233,12 +233,16 @@ openvdb::FloatGrid::Ptr GaussianSplatter::finish(const std::function<void()>& ch
     std::vector<std::unique_ptr<LeafT>> leaves(bricks.size() * kLeaves);
     struct Scratch {
         std::vector<float> in, alongZ, alongY, out;
+        std::vector<char> rowUsed,
+            planeUsed;  ///< per (x, y) row and per x plane of `in`: not all 0
     };
     tbb::enumerable_thread_specific<Scratch> scratch([&] {
         return Scratch{std::vector<float>(std::size_t(span) * span * span),
                        std::vector<float>(std::size_t(span) * span * kBrick),
                        std::vector<float>(std::size_t(span) * kBrick * kBrick),
-                       std::vector<float>(std::size_t(kBrick) * kBrick * kBrick)};
+                       std::vector<float>(std::size_t(kBrick) * kBrick * kBrick),
+                       std::vector<char>(std::size_t(span) * span),
+                       std::vector<char>(std::size_t(span))};
     });
     const bool clamp = mSettings.clamp;
     tbb::parallel_for(std::size_t(0), bricks.size(), [&](std::size_t k) {
@@ -276,31 +280,44 @@ openvdb::FloatGrid::Ptr GaussianSplatter::finish(const std::function<void()>& ch
                         }
                 }
         if (!any) return;
+        // Rows and planes that hold only zeros blur to zeros (+0 plus w times +0): they are
+        // filled, not summed. Around sparse particles (vapour) most rows are such.
+        for (int xy = 0; xy < span * span; ++xy) {
+            const float* row = &s.in[std::size_t(xy) * span];
+            s.rowUsed[xy] = std::any_of(row, row + span, [](float v) { return v != 0.0f; });
+        }
         // Along z: alongZ[x][y][z], z in [0, kBrick).
         for (int xy = 0; xy < span * span; ++xy) {
             const float* row = &s.in[std::size_t(xy) * span];
             float* out = &s.alongZ[std::size_t(xy) * kBrick];
             std::fill(out, out + kBrick, 0.0f);
+            if (!s.rowUsed[xy]) continue;
             for (int t = 0; t < width; ++t) {
                 const float w = taps[t];
                 for (int z = 0; z < kBrick; ++z) out[z] += w * row[z + t];
             }
         }
         // Along y: alongY[x][y][z], y in [0, kBrick).
-        for (int x = 0; x < span; ++x)
+        for (int x = 0; x < span; ++x) {
+            const char* used = &s.rowUsed[std::size_t(x) * span];
+            s.planeUsed[x] = std::find(used, used + span, char(1)) != used + span;
             for (int y = 0; y < kBrick; ++y) {
                 float* out = &s.alongY[(std::size_t(x) * kBrick + y) * kBrick];
                 std::fill(out, out + kBrick, 0.0f);
+                if (std::find(used + y, used + y + width, char(1)) == used + y + width) continue;
                 for (int t = 0; t < width; ++t) {
                     const float w = taps[t];
                     const float* row = &s.alongZ[(std::size_t(x) * span + y + t) * kBrick];
                     for (int z = 0; z < kBrick; ++z) out[z] += w * row[z];
                 }
             }
+        }
         // Along x: out[x][y][z], x in [0, kBrick).
         for (int x = 0; x < kBrick; ++x) {
             float* out = &s.out[std::size_t(x) * kBrick * kBrick];
             std::fill(out, out + kBrick * kBrick, 0.0f);
+            const char* used = &s.planeUsed[std::size_t(x)];
+            if (std::find(used, used + width, char(1)) == used + width) continue;
             for (int t = 0; t < width; ++t) {
                 const float w = taps[t];
                 const float* plane = &s.alongY[std::size_t(x + t) * kBrick * kBrick];
