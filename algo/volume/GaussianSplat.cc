@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -233,16 +234,12 @@ openvdb::FloatGrid::Ptr GaussianSplatter::finish(const std::function<void()>& ch
     std::vector<std::unique_ptr<LeafT>> leaves(bricks.size() * kLeaves);
     struct Scratch {
         std::vector<float> in, alongZ, alongY, out;
-        std::vector<char> rowUsed,
-            planeUsed;  ///< per (x, y) row and per x plane of `in`: not all 0
     };
     tbb::enumerable_thread_specific<Scratch> scratch([&] {
         return Scratch{std::vector<float>(std::size_t(span) * span * span),
                        std::vector<float>(std::size_t(span) * span * kBrick),
                        std::vector<float>(std::size_t(span) * kBrick * kBrick),
-                       std::vector<float>(std::size_t(kBrick) * kBrick * kBrick),
-                       std::vector<char>(std::size_t(span) * span),
-                       std::vector<char>(std::size_t(span))};
+                       std::vector<float>(std::size_t(kBrick) * kBrick * kBrick)};
     });
     const bool clamp = mSettings.clamp;
     tbb::parallel_for(std::size_t(0), bricks.size(), [&](std::size_t k) {
@@ -280,57 +277,85 @@ openvdb::FloatGrid::Ptr GaussianSplatter::finish(const std::function<void()>& ch
                         }
                 }
         if (!any) return;
-        // Rows and planes that hold only zeros blur to zeros (+0 plus w times +0): they are
-        // filled, not summed. Around sparse particles (vapour) most rows are such.
-        for (int xy = 0; xy < span * span; ++xy) {
-            const float* row = &s.in[std::size_t(xy) * span];
-            s.rowUsed[xy] = std::any_of(row, row + span, [](float v) { return v != 0.0f; });
-        }
-        // Along z: alongZ[x][y][z], z in [0, kBrick).
-        for (int xy = 0; xy < span * span; ++xy) {
-            const float* row = &s.in[std::size_t(xy) * span];
-            float* out = &s.alongZ[std::size_t(xy) * kBrick];
-            std::fill(out, out + kBrick, 0.0f);
-            if (!s.rowUsed[xy]) continue;
-            for (int t = 0; t < width; ++t) {
-                const float w = taps[t];
-                for (int z = 0; z < kBrick; ++z) out[z] += w * row[z + t];
+        // The box of `in` that holds the nonzero deposit: outside it every term of the blur
+        // is w times +0, which leaves a sum unchanged, so the passes only run over the box
+        // and what it reaches. Around sparse particles (vapour) that is a small part.
+        int inLo[3] = {span, span, span}, inHi[3] = {-1, -1, -1};
+        for (int x = 0; x < span; ++x)
+            for (int y = 0; y < span; ++y) {
+                const float* row = &s.in[(std::size_t(x) * span + y) * span];
+                const auto nonzero = [](float v) { return v != 0.0f; };
+                const float* first = std::find_if(row, row + span, nonzero);
+                if (first == row + span) continue;
+                const float* last = std::find_if(std::make_reverse_iterator(row + span),
+                                                 std::make_reverse_iterator(row), nonzero)
+                                        .base() -
+                                    1;
+                inLo[0] = std::min(inLo[0], x), inHi[0] = std::max(inHi[0], x);
+                inLo[1] = std::min(inLo[1], y), inHi[1] = std::max(inHi[1], y);
+                inLo[2] = std::min(inLo[2], static_cast<int>(first - row));
+                inHi[2] = std::max(inHi[2], static_cast<int>(last - row));
             }
+        if (inHi[0] < 0) return;  // the deposit here rounded to zero
+        // Output voxel o sums in[o .. o + width - 1]: nonzero only for o in [lo - width + 1, hi].
+        int outLo[3], outHi[3];
+        for (int a = 0; a < 3; ++a) {
+            outLo[a] = std::max(0, inLo[a] - (width - 1));
+            outHi[a] = std::min(kBrick - 1, inHi[a]);
         }
-        // Along y: alongY[x][y][z], y in [0, kBrick).
-        for (int x = 0; x < span; ++x) {
-            const char* used = &s.rowUsed[std::size_t(x) * span];
-            s.planeUsed[x] = std::find(used, used + span, char(1)) != used + span;
-            for (int y = 0; y < kBrick; ++y) {
-                float* out = &s.alongY[(std::size_t(x) * kBrick + y) * kBrick];
-                std::fill(out, out + kBrick, 0.0f);
-                if (std::find(used + y, used + y + width, char(1)) == used + y + width) continue;
+        const int zCount = outHi[2] - outLo[2] + 1;
+        // Along z: alongZ[x][y][z] for the box's rows.
+        for (int x = inLo[0]; x <= inHi[0]; ++x)
+            for (int y = inLo[1]; y <= inHi[1]; ++y) {
+                const float* row = &s.in[(std::size_t(x) * span + y) * span];
+                float* out = &s.alongZ[(std::size_t(x) * span + y) * kBrick];
+                std::fill(out + outLo[2], out + outHi[2] + 1, 0.0f);
                 for (int t = 0; t < width; ++t) {
                     const float w = taps[t];
-                    const float* row = &s.alongZ[(std::size_t(x) * span + y + t) * kBrick];
-                    for (int z = 0; z < kBrick; ++z) out[z] += w * row[z];
+                    for (int z = outLo[2]; z <= outHi[2]; ++z) out[z] += w * row[z + t];
                 }
             }
-        }
-        // Along x: out[x][y][z], x in [0, kBrick).
-        for (int x = 0; x < kBrick; ++x) {
-            float* out = &s.out[std::size_t(x) * kBrick * kBrick];
-            std::fill(out, out + kBrick * kBrick, 0.0f);
-            const char* used = &s.planeUsed[std::size_t(x)];
-            if (std::find(used, used + width, char(1)) == used + width) continue;
-            for (int t = 0; t < width; ++t) {
-                const float w = taps[t];
-                const float* plane = &s.alongY[std::size_t(x + t) * kBrick * kBrick];
-                for (int yz = 0; yz < kBrick * kBrick; ++yz) out[yz] += w * plane[yz];
+        // Along y: alongY[x][y][z], the rows outside the box being zeros.
+        for (int x = inLo[0]; x <= inHi[0]; ++x)
+            for (int y = outLo[1]; y <= outHi[1]; ++y) {
+                float* out = &s.alongY[(std::size_t(x) * kBrick + y) * kBrick];
+                std::fill(out + outLo[2], out + outHi[2] + 1, 0.0f);
+                for (int t = std::max(0, inLo[1] - y); t < width && y + t <= inHi[1]; ++t) {
+                    const float w = taps[t];
+                    const float* row = &s.alongZ[(std::size_t(x) * span + y + t) * kBrick];
+                    for (int z = outLo[2]; z <= outHi[2]; ++z) out[z] += w * row[z];
+                }
             }
+        // Along x: out[x][y][z], zero over the leaves the box touches, so that they are whole.
+        int leafLo[3], leafHi[3];
+        for (int a = 0; a < 3; ++a) {
+            leafLo[a] = outLo[a] & ~7;
+            leafHi[a] = outHi[a] | 7;
         }
-        std::unique_ptr<LeafT>* leaf = &leaves[k * kLeaves];
-        for (int x = 0; x < kBrick; x += 8)
-            for (int y = 0; y < kBrick; y += 8)
-                for (int z = 0; z < kBrick; z += 8)
-                    *leaf++ = leafFromDense(&s.out[(std::size_t(x) * kBrick + y) * kBrick + z],
-                                            kBrick * kBrick, kBrick, origin + openvdb::Coord(x, y, z),
-                                            clamp);
+        for (int x = leafLo[0]; x <= leafHi[0]; ++x)
+            for (int y = leafLo[1]; y <= leafHi[1]; ++y) {
+                float* row = &s.out[(std::size_t(x) * kBrick + y) * kBrick];
+                std::fill(row + leafLo[2], row + leafHi[2] + 1, 0.0f);
+            }
+        for (int x = outLo[0]; x <= outHi[0]; ++x)
+            for (int t = std::max(0, inLo[0] - x); t < width && x + t <= inHi[0]; ++t) {
+                const float w = taps[t];
+                for (int y = outLo[1]; y <= outHi[1]; ++y) {
+                    float* out = &s.out[(std::size_t(x) * kBrick + y) * kBrick + outLo[2]];
+                    const float* row =
+                        &s.alongY[(std::size_t(x + t) * kBrick + y) * kBrick + outLo[2]];
+                    for (int z = 0; z < zCount; ++z) out[z] += w * row[z];
+                }
+            }
+        for (int x = leafLo[0]; x <= leafHi[0]; x += 8)
+            for (int y = leafLo[1]; y <= leafHi[1]; y += 8)
+                for (int z = leafLo[2]; z <= leafHi[2]; z += 8)
+                    leaves[k * kLeaves +
+                           static_cast<std::size_t>(
+                               ((x / 8) * (kBrick / 8) + y / 8) * (kBrick / 8) + z / 8)] =
+                        leafFromDense(&s.out[(std::size_t(x) * kBrick + y) * kBrick + z],
+                                      kBrick * kBrick, kBrick, origin + openvdb::Coord(x, y, z),
+                                      clamp);
     });
     for (LocalDeposit& local : d.locals) {
         local.blocks.clear();
