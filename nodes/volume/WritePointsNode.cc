@@ -1,6 +1,7 @@
 // WritePoints: cloud particles as an OpenVDB point data grid (VDB Points) per frame, for
 // Houdini and OpenVDB's point tools; written atomically.
 
+#include <cstddef>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -25,20 +26,27 @@ public:
     void cook(CookContext& ctx) override
     {
         const auto particles = ctx.input<CloudParticlesData>("particles");
-        // A stream becomes the frame's arrays here (CloudParticlesData checks their lengths).
-        const auto& a = particles->arrays([&] { ctx.checkCancelled(); });
-        if (!writesSequenceFrame(ctx, /*empty=*/a.levels.size() == 0)) return;
         const ParamSet& p = ctx.params();
-
         formats::PointsGridSettings s;
         s.voxelSize = p.getFloat("voxelSize");
         s.pointsPerVoxel = static_cast<int>(p.getInt("pointsPerVoxel"));
         s.precision = p.getString("precision") == "float" ? formats::PointPrecision::Float
                                                           : formats::PointPrecision::Fixed16;
+        // A frame streamed from GenerateCloud passes by chunk by chunk, a few times: nothing
+        // frame-sized is made but the grid itself.
+        const formats::ParticleChunks chunks = [&](const auto& consume, bool attributes) {
+            particles->forEachChunk(
+                [&](const algo::CloudChunk& c) {
+                    consume({c.first, static_cast<std::size_t>(c.count), c.positions, c.levels,
+                             c.sources});
+                },
+                CloudChunkFields{attributes, attributes}, [&] { ctx.checkCancelled(); });
+        };
         openvdb::points::PointDataGrid::Ptr grid;
         try {
-            grid = formats::makeParticlePointsGrid(
-                a.positions.data(), a.levels.data(), a.sources.data(), a.levels.size(), s);
+            const formats::ParticlePointsGridBuilder builder(chunks, s);
+            if (!writesSequenceFrame(ctx, /*empty=*/builder.count() == 0)) return;
+            grid = builder.build();
         } catch (const std::invalid_argument& e) {
             throw InputError(ctx.nodeId(), e.what());
         }
@@ -62,7 +70,8 @@ void registerWritePointsNode(Registry& registry)
         "which Houdini, vdb_print and OpenVDB's point tools read. Each point carries int32 "
         "'level' (recursive level) and int64 'source' (id of the source record); metadata: "
         "frame, units ('metres'). #### in the name becomes the frame number; the file is "
-        "written beside the target and renamed, so it appears whole or not at all. Writes "
+        "written beside the target and renamed, so it appears whole or not at all. A frame "
+        "streamed from GenerateCloud is read chunk by chunk, without a frame-sized array. Writes "
         "frames firstFrame, firstFrame + every, ... and, with skipEmpty, only those with a "
         "particle, as WriteVDB does.",
         port("particles", "CloudParticles", "the particles to write"), "points.####.vdb");

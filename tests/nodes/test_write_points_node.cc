@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -19,8 +20,11 @@
 #include <vector>
 
 #include <openvdb/io/File.h>
+#include <openvdb/points/PointConversion.h>
 #include <openvdb/points/PointCount.h>
 #include <openvdb/points/PointDataGrid.h>
+#include <openvdb/tools/PointIndexGrid.h>
+#include <tbb/parallel_for.h>
 
 #include "core/CoreData.h"
 #include "core/Error.h"
@@ -122,6 +126,102 @@ TEST(PointsGrid, KeepsEveryParticleAndItsAttributes)
                                                     c.sources.data(), c.levels.size(), s);
     EXPECT_GT(exact->voxelSize()[0], 0.0);
     expectRoundTrip(c, *exact, 2e-4);
+}
+
+namespace {
+
+/// What OpenVDB's own conversion makes of the particles: createPointIndexGrid,
+/// createPointDataGrid and populateAttribute, the voxel size from computeVoxelSize when 0.
+pts::PointDataGrid::Ptr openVdbConversion(const Cloud& c, const formats::PointsGridSettings& s)
+{
+    std::vector<openvdb::Vec3f> positions;
+    for (std::size_t i = 0; i < c.levels.size(); ++i)
+        positions.emplace_back(c.xyz[3 * i], c.xyz[3 * i + 1], c.xyz[3 * i + 2]);
+    const std::vector<std::int32_t> levels(c.levels.begin(), c.levels.end());
+    const std::vector<std::int64_t> sources(c.sources.begin(), c.sources.end());
+    const pts::PointAttributeVector<openvdb::Vec3f> wrapper(positions);
+    const double size =
+        s.voxelSize > 0.0 ? s.voxelSize : pts::computeVoxelSize(wrapper, s.pointsPerVoxel);
+    const auto xform = openvdb::math::Transform::createLinearTransform(size);
+    const auto index =
+        openvdb::tools::createPointIndexGrid<openvdb::tools::PointIndexGrid>(wrapper, *xform);
+    auto grid =
+        s.precision == formats::PointPrecision::Fixed16
+            ? pts::createPointDataGrid<pts::FixedPointCodec<false>, pts::PointDataGrid>(
+                  *index, wrapper, *xform)
+            : pts::createPointDataGrid<pts::NullCodec, pts::PointDataGrid>(*index, wrapper, *xform);
+    pts::appendAttribute<std::int32_t>(grid->tree(), "level");
+    pts::populateAttribute(grid->tree(), index->tree(), "level",
+                           pts::PointAttributeVector<std::int32_t>(levels));
+    pts::appendAttribute<std::int64_t>(grid->tree(), "source");
+    pts::populateAttribute(grid->tree(), index->tree(), "source",
+                           pts::PointAttributeVector<std::int64_t>(sources));
+    return grid;
+}
+
+/// Same voxel size, leaves, offsets, and per point the same position offset, level and source.
+void expectSameGrid(const pts::PointDataGrid& a, const pts::PointDataGrid& b)
+{
+    ASSERT_EQ(a.voxelSize(), b.voxelSize());
+    ASSERT_EQ(a.tree().leafCount(), b.tree().leafCount());
+    auto lb = b.tree().cbeginLeaf();
+    for (auto la = a.tree().cbeginLeaf(); la; ++la, ++lb) {
+        ASSERT_EQ(la->origin(), lb->origin());
+        ASSERT_EQ(la->getValueMask(), lb->getValueMask()) << la->origin();
+        for (openvdb::Index n = 0; n < la->SIZE; ++n) ASSERT_EQ(la->getValue(n), lb->getValue(n));
+        const pts::AttributeHandle<openvdb::Vec3f> pa(la->constAttributeArray("P")),
+            pb(lb->constAttributeArray("P"));
+        const pts::AttributeHandle<std::int32_t> va(la->constAttributeArray("level")),
+            vb(lb->constAttributeArray("level"));
+        const pts::AttributeHandle<std::int64_t> sa(la->constAttributeArray("source")),
+            sb(lb->constAttributeArray("source"));
+        for (openvdb::Index i = 0; i < la->pointCount(); ++i) {
+            ASSERT_EQ(pa.get(i), pb.get(i)) << la->origin() << " point " << i;
+            ASSERT_EQ(va.get(i), vb.get(i));
+            ASSERT_EQ(sa.get(i), sb.get(i));
+        }
+    }
+}
+
+}  // namespace
+
+// The grid built from chunks (handed over concurrently, in reverse order) is OpenVDB's own
+// conversion of the same particles value for value, with its automatic voxel size too; the
+// particles are clustered so that voxels hold many, whose order is the particles'.
+TEST(PointsGrid, ChunkedBuildEqualsOpenVdbConversionValueForValue)
+{
+    Cloud c = makeCloud();
+    for (std::size_t i = 0; i < c.levels.size(); ++i)  // two copies of each particle, far apart
+        c.xyz.insert(c.xyz.end(), {c.xyz[3 * i] + 0.3f, c.xyz[3 * i + 1], c.xyz[3 * i + 2]});
+    c.levels.insert(c.levels.end(), c.levels.begin(), c.levels.end());
+    for (std::size_t i = 0, n = c.sources.size(); i < n; ++i)
+        c.sources.push_back(c.sources[i] ^ 0x55u);
+    constexpr std::size_t kChunk = 333;
+    const std::size_t count = c.levels.size(), chunkCount = (count + kChunk - 1) / kChunk;
+    const formats::ParticleChunks chunks = [&](const auto& consume, bool attributes) {
+        tbb::parallel_for(std::size_t(0), chunkCount, [&](std::size_t k) {
+            const std::size_t first = (chunkCount - 1 - k) * kChunk;
+            consume({first, std::min(kChunk, count - first), c.xyz.data() + 3 * first,
+                     attributes ? c.levels.data() + first : nullptr,
+                     attributes ? c.sources.data() + first : nullptr});
+        });
+    };
+    for (const double voxelSize : {0.0, 2.0, 25.0})
+        for (const auto precision :
+             {formats::PointPrecision::Fixed16, formats::PointPrecision::Float}) {
+            SCOPED_TRACE(voxelSize);
+            formats::PointsGridSettings s;
+            s.voxelSize = voxelSize;
+            s.precision = precision;
+            const formats::ParticlePointsGridBuilder builder(chunks, s);
+            EXPECT_EQ(builder.count(), count);
+            const auto ours = builder.build();
+            const auto reference = openVdbConversion(c, s);
+            expectSameGrid(*ours, *reference);
+            if (voxelSize == 25.0) {
+                EXPECT_GT(ours->tree().cbeginLeaf()->pointCount(), 50u);
+            }
+        }
 }
 
 TEST(PointsGrid, EmptyAndNonFiniteInput)
