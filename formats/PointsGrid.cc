@@ -71,16 +71,6 @@ float truncated(float size, int decimals)
     return out;
 }
 
-struct LeafOriginHash {
-    std::size_t operator()(const openvdb::Coord& c) const
-    {
-        std::uint64_t h = static_cast<std::uint32_t>(c.x());
-        h = h * 0x9e3779b97f4a7c15ull + static_cast<std::uint32_t>(c.y());
-        h = h * 0x9e3779b97f4a7c15ull + static_cast<std::uint32_t>(c.z());
-        return static_cast<std::size_t>(h ^ (h >> 29));
-    }
-};
-
 /// A leaf being filled: the leaf, and per voxel the next free point index.
 struct FillSlot {
     PointLeaf* leaf = nullptr;
@@ -132,7 +122,7 @@ pts::PointDataGrid::Ptr buildWith(const ParticleChunks& chunks, double voxelSize
     auto grid = pts::PointDataGrid::create();
     grid->setTransform(xform);
     grid->setName("points");
-    std::unordered_map<openvdb::Coord, FillSlot, LeafOriginHash> slots;
+    std::unordered_map<openvdb::Coord, FillSlot> slots;  // OpenVDB hashes a Coord
     std::vector<PointLeaf*> leaves;
     for (auto leaf = counts.cbeginLeaf(); leaf; ++leaf) {
         auto points = std::make_unique<PointLeaf>(leaf->origin());

@@ -324,13 +324,25 @@ TEST(SurfaceDetail, DetailIsAttachedToTheCopyTheMapperTranslates)
     EXPECT_GT(largestDifference(*worldA, *worldB, shift), 0.1f);
 }
 
-TEST(SurfaceDetail, ErodesOnlyTheShellAndOnlyDownward)
+namespace {
+
+/// A mapped copy's splat without detail and with amplitude 0.8.
+struct PlainAndEroded {
+    openvdb::FloatGrid::Ptr plain, eroded;
+};
+PlainAndEroded plainAndEroded(bool copyCoordinates)
 {
     const MappedCopy copy;
     const float where[3] = {0.0f, 0.0f, 1000.0f};
     const CloudParticleArrays cloud = copy.at(3, where);
-    const auto plain = detailed(cloud, true, 0.0);
-    const auto eroded = detailed(cloud, true, 0.8);
+    return {detailed(cloud, copyCoordinates, 0.0), detailed(cloud, copyCoordinates, 0.8)};
+}
+
+}  // namespace
+
+TEST(SurfaceDetail, ErodesOnlyTheShellAndOnlyDownward)
+{
+    const auto [plain, eroded] = plainAndEroded(true);
     auto acc = eroded->getConstAccessor();
     std::size_t interior = 0, shell = 0, changed = 0;
     for (auto it = plain->tree().cbeginValueOn(); it; ++it) {
@@ -356,11 +368,7 @@ TEST(SurfaceDetail, ErodesOnlyTheShellAndOnlyDownward)
 // the least erosion any noise gives).
 TEST(SurfaceDetail, EveryShellVoxelIsTheErosionFormulaOfItsNoise)
 {
-    const MappedCopy copy;
-    const float where[3] = {0.0f, 0.0f, 1000.0f};
-    const CloudParticleArrays cloud = copy.at(3, where);
-    const auto plain = detailed(cloud, false, 0.0);
-    const auto eroded = detailed(cloud, false, 0.8);
+    const auto [plain, eroded] = plainAndEroded(false);
     const double voxel = plain->voxelSize()[0], frequency = 1.5 / 40.0;
     const float leastErosion = 0.8f * (1.0f - perlinWorleyUpperBound());
     auto after = eroded->getConstAccessor();
