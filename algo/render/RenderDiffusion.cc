@@ -21,7 +21,7 @@ constexpr std::size_t kVoxelBatch = std::size_t(1) << 18;  ///< voxels shared ou
 constexpr int kMaxIterations = 400;
 constexpr int kLimiterPasses = 3;  ///< solves of the sun with the flux limiter updated
 constexpr double kMostLimit = 4.0;  ///< the limiter's largest R, per cell width
-constexpr double kTolerance = 1e-4;  ///< relative residual at which the solve stops
+constexpr double kTolerance = 1e-3;  ///< relative residual at which the solve stops
 /// The same for the sun's solves that only update the limiter: R need not be exact.
 constexpr double kLimiterTolerance = 1e-2;
 constexpr double kPi = 3.14159265358979323846;

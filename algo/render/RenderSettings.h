@@ -89,7 +89,7 @@ struct RenderMarch {
     double lightStep = 1.0;       ///< step when filling the light maps, voxels
     bool jitter = true;           ///< offset each pixel's samples by a per-pixel random fraction
     std::uint64_t seed = 0;       ///< seed of that offset and of the path tracer's paths
-    double minTransmittance = 1e-4;  ///< stop a ray once less than this gets through
+    double minTransmittance = 1e-3;  ///< stop a ray once less than this gets through
 };
 
 /// The reference path tracer (renderPathTraced).
