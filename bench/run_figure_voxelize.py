@@ -3,23 +3,27 @@
 gaussian kernel (the default since), and how much the picture moves between the two.
 
 Usage: bench/run_figure_voxelize.py BUILD_DIR [GRAPH ...]   (default: every graphs/figure*.json)
-       FRAMES=N bench/run_figure_voxelize.py ...           (frames a span; default 8)
+       FRAMES=N REPEAT=R bench/run_figure_voxelize.py ...  (frames a span, default 8; runs, default 3)
 
 For each graph, two spans of FRAMES frames (default 8), cooked in one process each: the
 middle of its range and its end (where the clouds are largest). The simulation states are
 cooked once into a cache shared by every graph (`run --simulations-only`); then each span
 is cooked once per kernel (`--set NODE.kernel=...` on every Voxelizer of the graph), and
-after each run the cache is put back as the simulations left it, so every run voxelizes and
-renders (at half the graph's width and height). Voxelize seconds are the Voxelizer nodes' own times from the run reports, summed
-over the frames. The picture: each frame is also written as a linear EXR, and
-build/bench/image_error gives the gaussian kernel's luminance error against the smooth
-kernel's over the cloud pixels (mean and 90th percentile, the measure of
-docs/rendering.md), at the last frame.
+after each run the cache is put back as the simulations left it, so every run voxelizes.
+Voxelize seconds are the Voxelizer nodes' own times from the run reports, summed over the
+frames of a span; each span is run REPEAT times, the kernels taking turns, and its median
+counts. The timing runs leave out the Renderers and what depends on them: on two cores a
+render of one frame beside the voxelization of the next would be timed as the Voxelizer's.
+The picture: the last frame is cooked once more per kernel with the Renderers (at half the
+graph's width and height) and written as a linear EXR, and build/bench/image_error gives
+the gaussian kernel's luminance error against the smooth kernel's over the cloud pixels
+(mean and 90th percentile, the measure of docs/rendering.md).
 """
 import json
 import os
 import re
 import shutil
+import statistics
 import subprocess
 import tempfile
 
@@ -41,8 +45,24 @@ def restore(cache, kept):
         os.remove(path)
 
 
+def downstream_of_renderers(graph):
+    """The Renderer nodes and every node that reads from them, directly or not."""
+    nodes = graph["nodes"]
+    out = {n for n, v in nodes.items() if v["type"] == "Renderer"}
+    grew = True
+    while grew:
+        grew = False
+        for n, v in nodes.items():
+            sources = {str(s).split(".")[0] for s in v.get("inputs", {}).values()}
+            if n not in out and sources & out:
+                out.add(n)
+                grew = True
+    return out
+
+
 def bench_copy(path, work):
-    """The graph with its input files made absolute and an EXR writer on the render."""
+    """The graph with its input files made absolute and an EXR writer on the render, and a
+    copy without the renderers' branch for the timing runs."""
     with open(path) as f:
         graph = json.load(f)
     base = os.path.dirname(os.path.abspath(path))
@@ -55,7 +75,13 @@ def bench_copy(path, work):
     copy = os.path.join(work, os.path.basename(path))
     with open(copy, "w") as f:
         json.dump(graph, f, indent=1)
-    return copy, graph
+    unrendered = {k: v for k, v in graph.items() if k != "nodes"}
+    skipped = downstream_of_renderers(graph)
+    unrendered["nodes"] = {n: v for n, v in graph["nodes"].items() if n not in skipped}
+    timing_copy = os.path.join(work, "timing-" + os.path.basename(path))
+    with open(timing_copy, "w") as f:
+        json.dump(unrendered, f, indent=1)
+    return copy, timing_copy, graph
 
 
 def main():
@@ -71,35 +97,44 @@ def main():
     try:
         for path in graphs:
             name = os.path.splitext(os.path.basename(path))[0]
-            copy, graph = bench_copy(path, work)
+            copy, timing_copy, graph = bench_copy(path, work)
             voxelizers = [n for n, v in graph["nodes"].items() if v["type"] == "Voxelizer"]
             videos = [n for n, v in graph["nodes"].items() if v["type"] == "EncodeVideo"]
-            # Renders at half the width and height: the voxelizer is timed, the picture compared.
+            # Renders at half the width and height: the picture is compared, not timed.
             halves = [f"{n}.{k}={v['params'][k] // 2}" for n, v in graph["nodes"].items()
                       if v["type"] == "Renderer" for k in ("width", "height") if k in v.get("params", {})]
             end = graph["frames"]["end"]
             span = int(os.environ.get("FRAMES", "8"))
+            repeat = int(os.environ.get("REPEAT", "3"))
             spans = [(end // 2 - span + 1, end // 2), (end - span + 1, end)]
             subprocess.run([cli, "run", copy, "--simulations-only", "--cache", cache,
                             "--out", os.path.join(work, "out"), "-q"], check=True)
             kept = files_under(cache)
-            seconds = {k: 0.0 for k in KERNELS}
+
+            def cook(kernel, graph_file, first, last, extra=()):
+                """Voxelize seconds of one run of frames first..last with `kernel`."""
+                report = os.path.join(work, "report.json")
+                sets = [f"{v}.kernel={kernel}" for v in voxelizers] + list(extra)
+                argv = [cli, "run", graph_file, "--frames", f"{first}:{last}", "--cache", cache,
+                        "--out", os.path.join(work, kernel), "--report", report, "-q"]
+                for s in sets:
+                    argv += ["--set", s]
+                subprocess.run(argv, check=True)
+                restore(cache, kept)
+                with open(report) as f:
+                    records = json.load(f)["records"]
+                return sum(r["seconds"] for r in records if r["type"] == "Voxelizer")
+
+            runs = {(k, s): [] for k in KERNELS for s in spans}
+            for _ in range(repeat):
+                for first, last in spans:
+                    for kernel in KERNELS:
+                        runs[(kernel, (first, last))].append(cook(kernel, timing_copy, first, last))
+            seconds = {k: sum(statistics.median(runs[(k, s)]) for s in spans) for k in KERNELS}
             for kernel in KERNELS:
-                for first, frame in spans:
-                    out = os.path.join(work, kernel)
-                    report = os.path.join(work, "report.json")
-                    sets = [f"{v}.kernel={kernel}" for v in voxelizers] + halves
-                    sets += [f"{v}.firstFrame={first}" for v in videos]
-                    sets += [f"{v}.lastFrame={frame}" for v in videos]
-                    argv = [cli, "run", copy, "--frames", f"{first}:{frame}", "--cache", cache,
-                            "--out", out, "--report", report, "-q"]
-                    for s in sets:
-                        argv += ["--set", s]
-                    subprocess.run(argv, check=True)
-                    restore(cache, kept)
-                    with open(report) as f:
-                        records = json.load(f)["records"]
-                    seconds[kernel] += sum(r["seconds"] for r in records if r["type"] == "Voxelizer")
+                cook(kernel, copy, end, end,
+                     halves + [f"{v}.firstFrame={end}" for v in videos] +
+                     [f"{v}.lastFrame={end}" for v in videos])
             last = f"bench/frame.{end:04d}.exr"
             error = subprocess.run([image_error, os.path.join(work, "gaussian", last),
                                     os.path.join(work, "smooth", last)],

@@ -153,19 +153,28 @@ void GaussianSplatter::add(const float* xyz, std::size_t count)
             w[a][1] = f;
         }
         constexpr int kLast = kBlock - 1;  // a corner there has its +1 neighbour in the next block
-        const bool oneBlock = (c[0] & kLast) != kLast && (c[1] & kLast) != kLast && (c[2] & kLast) != kLast;
-        std::int64_t* same = oneBlock ? d.block(local, blockKey(c[0] >> kBlockLog2, c[1] >> kBlockLog2,
-                                                                c[2] >> kBlockLog2))
-                                      : nullptr;
+        if ((c[0] & kLast) != kLast && (c[1] & kLast) != kLast && (c[2] & kLast) != kLast) {
+            // All 8 corners in one block (most particles): straight-line adds from one index.
+            std::int64_t* b = d.block(local, blockKey(c[0] >> kBlockLog2, c[1] >> kBlockLog2,
+                                                      c[2] >> kBlockLog2)) +
+                              blockIndex(c[0] & kLast, c[1] & kLast, c[2] & kLast);
+            for (int dx = 0; dx < 2; ++dx)
+                for (int dy = 0; dy < 2; ++dy) {
+                    const std::int32_t wxy = w[0][dx] * w[1][dy];
+                    std::int64_t* row = b + blockIndex(dx, dy, 0);
+                    row[0] += wxy * w[2][0];
+                    row[1] += wxy * w[2][1];
+                }
+            continue;
+        }
         for (int dx = 0; dx < 2; ++dx)
             for (int dy = 0; dy < 2; ++dy) {
                 const std::int32_t wxy = w[0][dx] * w[1][dy];
                 for (int dz = 0; dz < 2; ++dz) {
                     const int x = c[0] + dx, y = c[1] + dy, z = c[2] + dz;
-                    std::int64_t* b = same ? same
-                                           : d.block(local, blockKey(x >> kBlockLog2, y >> kBlockLog2,
-                                                                     z >> kBlockLog2));
-                    b[blockIndex(x & (kBlock - 1), y & (kBlock - 1), z & (kBlock - 1))] += wxy * w[2][dz];
+                    std::int64_t* b =
+                        d.block(local, blockKey(x >> kBlockLog2, y >> kBlockLog2, z >> kBlockLog2));
+                    b[blockIndex(x & kLast, y & kLast, z & kLast)] += wxy * w[2][dz];
                 }
             }
     }
