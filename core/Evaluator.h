@@ -62,6 +62,9 @@ public:
     Key key(const Graph& graph, const std::string& nodeId, int frame);
 
     RunReport& report() { return mReport; }
+    /// Replaces the token later cooks watch: a token once cancelled stays so, and a caller
+    /// that cooks again (the Python API) gives each cook a fresh one.
+    void setCancelToken(std::shared_ptr<CancelToken> token) { mOptions.cancel = std::move(token); }
     MemoryCache& memoryCache() { return mMemory; }
     const EvaluatorOptions& options() const { return mOptions; }
 

@@ -49,6 +49,10 @@ struct LoadOptions {
     bool allowPathsOutsideOut = false;
     /// Lets a graph set Program parameters (--allow-graph-programs): the user trusts it.
     bool allowGraphPrograms = false;
+    /// Refuses a graph that cannot cook yet: one without nodes, or with a required input not
+    /// connected. The Python API turns it off while a graph is built node by node, and
+    /// checks again before it cooks or saves.
+    bool requireComplete = true;
     /// Where a relative input file (ParamRole::InputFile) is found: loadGraph sets the graph
     /// file's directory, so a graph and the files beside it move together, as a Houdini or
     /// Blender scene's relative paths do. Empty: the working directory.

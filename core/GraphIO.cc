@@ -248,7 +248,8 @@ Graph parseGraph(const std::string& text, const std::string& sourceName, const R
     auto nodes = root.find("nodes");
     if (nodes == root.end()) r.fail("/nodes", "missing \"nodes\": a graph needs at least one node");
     r.object(*nodes, "/nodes", "\"nodes\"");
-    if (nodes->empty()) r.fail("/nodes", "a graph needs at least one node");
+    if (nodes->empty() && options.requireComplete)
+        r.fail("/nodes", "a graph needs at least one node");
     if (nodes->size() > kMaxNodes)
         r.fail("/nodes", std::to_string(nodes->size()) + " nodes, over the limit of " +
                              std::to_string(kMaxNodes));

@@ -11,6 +11,7 @@ packages=(
     libgtest-dev libbenchmark-dev libpng-dev libopenexr-dev
     ccache  # rebuilds and the sanitizer build reuse compiled objects
     ffmpeg  # EncodeVideo runs the ffmpeg program (H.264 via libx264)
+    pybind11-dev python3-dev python3-numpy  # the Python module (docs/python.md)
 )
 # The farm test (ctest -L slurm) runs a real one-node Slurm; where these cannot be installed
 # (no package archive, a locked-down container) the build skips that test and says so.
@@ -19,6 +20,7 @@ if [ "${1:-}" = "--tests" ]; then
     packages+=(
         clang libclang-rt-14-dev  # the sanitizer build and the libFuzzer targets (CI)
         blender  # ctest -L blender follows the user guide's Blender steps (Debian 12: 3.4)
+        python3-pytest  # ctest -L python: the Python module's tests
     )
     optional+=(slurm-wlm munge python3)
 fi

@@ -1,0 +1,14 @@
+"""CloudGraph from Python: load, build and edit graphs, cook any output into NumPy arrays,
+with the same validation, errors and content-keyed caches as the `cloudgraph` CLI.
+See docs/python.md."""
+
+from .errors import Cancelled, CookError, Error, FileError, GraphError, ParameterError
+from .graph import Graph, Node
+from .types import NodeType, node_types
+from ._cloudgraph import CloudParticles, FogVolume, Map2D, Value
+
+__all__ = [
+    "Graph", "Node", "NodeType", "node_types",
+    "CloudParticles", "FogVolume", "Map2D", "Value",
+    "Error", "GraphError", "ParameterError", "FileError", "CookError", "Cancelled",
+]

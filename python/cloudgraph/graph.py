@@ -1,0 +1,253 @@
+"""cloudgraph.Graph: a graph document, edited with the loader's own checks and cooked by the
+engine."""
+
+import json
+import os
+import tempfile
+from collections.abc import MutableMapping
+
+from . import _cloudgraph
+from .errors import FileError, GraphError, ParameterError
+from .types import node_types
+
+
+def _plain(value):
+    """A NumPy value or array as plain Python, for JSON."""
+    return value.tolist() if hasattr(value, "tolist") else value
+
+
+def _with_pyopenvdb(volume):
+    """The volume as a pyopenvdb.FloatGrid where pyopenvdb is installed (read back from a
+    .vdb file: the two modules cannot hand a grid over in memory)."""
+    try:
+        import pyopenvdb
+    except ImportError:
+        return volume
+    with tempfile.TemporaryDirectory(prefix="cloudgraph-") as d:
+        path = os.path.join(d, "volume.vdb")
+        volume.to_vdb(path)
+        return pyopenvdb.read(path, "density")
+
+
+def _as_file_error(error, graph_dict, types):
+    """A ParameterError about a parameter that names a file to read (ReadVDB's file, a
+    sounding) is a FileError: the file, not the value's type or range, is at fault."""
+    where = error.where or ""
+    param = where.partition("/params/")[2].split("/")[0]
+    node_type = graph_dict.get("nodes", {}).get(error.node or "", {}).get("type")
+    declared = types.get(node_type)
+    if not param or declared is None or param not in declared.params:
+        return error
+    if declared.params[param].role != "input_file":
+        return error
+    converted = FileError(str(error))
+    converted.where, converted.node = error.where, error.node
+    return converted
+
+
+def _checked(call, graph_dict, types):
+    """call(), with a ParameterError about an input file raised as a FileError."""
+    try:
+        return call()
+    except ParameterError as error:
+        converted = _as_file_error(error, graph_dict, types)
+        if converted is error:
+            raise
+        raise converted from None
+
+
+def _split(ref, what):
+    node, dot, port = ref.partition(".")
+    if not dot or not node or not port:
+        raise GraphError(f"{what} '{ref}' is not 'node.port'")
+    return node, port
+
+
+class Params(MutableMapping):
+    """A node's parameters: every declared one (its default unless set). Assigning checks
+    type, range and choices as loading does, and raises ParameterError otherwise."""
+
+    def __init__(self, graph, node_id):
+        self._graph = graph
+        self._id = node_id
+
+    def _declared(self):
+        return self._graph._type_of(self._id).params
+
+    def __getitem__(self, name):
+        if name not in self._declared():
+            raise KeyError(name)
+        return self._graph._node_dict(self._id).get("params", {}).get(name, self._declared()[name].default)
+
+    def __setitem__(self, name, value):
+        graph = self._graph
+        _checked(lambda: graph._doc.set_param(self._id, name, json.dumps(_plain(value))),
+                 graph.to_dict(), graph._types)
+
+    def __delitem__(self, name):
+        self[name] = self._declared()[name].default
+
+    def __iter__(self):
+        return iter(self._declared())
+
+    def __len__(self):
+        return len(self._declared())
+
+    def __repr__(self):
+        return repr(dict(self))
+
+
+class Node:
+    """A node of a graph: its id, type, parameters and input wiring."""
+
+    def __init__(self, graph, node_id):
+        self._graph = graph
+        self.id = node_id
+
+    @property
+    def type(self):
+        return self._graph._node_dict(self.id)["type"]
+
+    @property
+    def params(self):
+        return Params(self._graph, self.id)
+
+    @params.setter
+    def params(self, values):
+        for name, value in values.items():
+            self.params[name] = value
+
+    @property
+    def inputs(self):
+        """{input port: "node.port"} for each connected input."""
+        return dict(self._graph._node_dict(self.id).get("inputs", {}))
+
+    def __repr__(self):
+        return f"<cloudgraph.Node {self.id} ({self.type})>"
+
+
+class Graph:
+    """A CloudGraph graph. Load one with Graph.load(path) or Graph.from_dict(d); edit it with
+    add_node, connect, disconnect, remove_node and node parameters; cook any output with
+    cook("node.port", frame)."""
+
+    def __init__(self, document):
+        self._doc = document
+        self._types = node_types()
+
+    @classmethod
+    def load(cls, path):
+        """Loads a graph file, validated as `cloudgraph validate` does. Raises FileError,
+        GraphError or ParameterError naming the file and JSON pointer."""
+        def read_dict():
+            with open(path) as f:
+                return json.load(f)
+        try:
+            return cls(_cloudgraph.Document.load(os.fspath(path)))
+        except ParameterError as error:
+            converted = _as_file_error(error, read_dict(), node_types())
+            if converted is error:
+                raise
+            raise converted from None
+
+    @classmethod
+    def from_dict(cls, d, name="<dict>", base_dir="."):
+        """A graph from a dict in the file format; `name` prefixes error locations and
+        relative input files are found under `base_dir`."""
+        return cls(_checked(lambda: _cloudgraph.Document.parse(json.dumps(d), name, os.fspath(base_dir)),
+                            d, node_types()))
+
+    def to_dict(self):
+        """The graph in the file format (every parameter that differs from its default)."""
+        return json.loads(self._doc.to_json())
+
+    def save(self, path):
+        """Writes the graph to `path` atomically; refuses a graph with an unconnected
+        required input (GraphError)."""
+        self._doc.save(os.fspath(path))
+
+    # Building and editing: each edit is checked by the loader; a refused edit changes
+    # nothing.
+    def add_node(self, node_id, type, params=None):
+        d = self.to_dict()
+        if node_id in d["nodes"]:
+            raise GraphError(f"a node '{node_id}' already exists")
+        d["nodes"][node_id] = {"type": type, "params": {k: _plain(v) for k, v in (params or {}).items()}}
+        self._replace(d)
+        return self[node_id]
+
+    def remove_node(self, node_id):
+        d = self.to_dict()
+        if d["nodes"].pop(node_id, None) is None:
+            raise GraphError(f"no node '{node_id}'")
+        self._replace(d)
+
+    def connect(self, source, target):
+        """Wires output `source` ("node.port") into input `target` ("node.port"); the port
+        types must match."""
+        _split(source, "source")
+        node, port = _split(target, "target")
+        d = self.to_dict()
+        if node not in d["nodes"]:
+            raise GraphError(f"no node '{node}'")
+        d["nodes"][node].setdefault("inputs", {})[port] = source
+        self._replace(d)
+
+    def disconnect(self, target):
+        node, port = _split(target, "target")
+        d = self.to_dict()
+        if d["nodes"].get(node, {}).get("inputs", {}).pop(port, None) is None:
+            raise GraphError(f"input '{target}' is not connected")
+        self._replace(d)
+
+    def __getitem__(self, node_id):
+        if node_id not in self.to_dict()["nodes"]:
+            raise KeyError(node_id)
+        return Node(self, node_id)
+
+    def __contains__(self, node_id):
+        return node_id in self.to_dict()["nodes"]
+
+    @property
+    def nodes(self):
+        return [Node(self, n) for n in self.to_dict()["nodes"]]
+
+    @property
+    def frames(self):
+        """The animation's frames, first and last inclusive."""
+        return range(self._doc.first_frame, self._doc.last_frame + 1)
+
+    # Cooking.
+    def cook(self, output, frame=None, cache=None, out="out"):
+        """Cooks output "node.port" at `frame` (default: the first) and returns its value:
+        a float, int or str; a NumPy array for images (height, width, RGBA) and float arrays;
+        a Map2D or CloudParticles; a fog volume as a pyopenvdb.FloatGrid when pyopenvdb
+        can be imported, else as a FogVolume (to_dense(), to_vdb(path)). `cache` is a disk cache directory shared with the CLI;
+        writer nodes write under `out`. Cooking again reuses every output whose key did not
+        change; last_report() says what cooked and why. The GIL is released while the engine
+        cooks; cancel() from another thread, or Ctrl-C, stops it with nothing partial
+        cached."""
+        node, port = _split(output, "output")
+        if frame is None:
+            frame = self._doc.first_frame
+        value = self._doc.cook(node, port, int(frame), os.fspath(cache) if cache else "", os.fspath(out))
+        return _with_pyopenvdb(value) if isinstance(value, _cloudgraph.FogVolume) else value
+
+    def cancel(self):
+        """Cancels the cook under way (from another thread); it raises Cancelled."""
+        self._doc.cancel()
+
+    def last_report(self):
+        """The last cook's report, as `cloudgraph run --report` writes it: a record per node
+        and frame (status cooked / memory / disk, the reason it cooked, seconds)."""
+        return json.loads(self._doc.last_report())
+
+    # Internal helpers for Node and Params.
+    def _replace(self, d):
+        _checked(lambda: self._doc.replace(json.dumps(d)), d, self._types)
+
+    def _node_dict(self, node_id):
+        return self.to_dict()["nodes"][node_id]
+
+    def _type_of(self, node_id):
+        return self._types[self._node_dict(node_id)["type"]]

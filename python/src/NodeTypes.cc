@@ -1,0 +1,66 @@
+#include "NodeTypes.h"
+
+#include <nlohmann/json.hpp>
+
+namespace cg::python {
+
+namespace {
+
+const char* roleName(ParamRole role)
+{
+    switch (role) {
+        case ParamRole::Plain:
+            return "plain";
+        case ParamRole::OutputPath:
+            return "output_path";
+        case ParamRole::InputFile:
+            return "input_file";
+        case ParamRole::Program:
+            return "program";
+    }
+    return "plain";
+}
+
+nlohmann::json ports(const std::vector<PortDecl>& decls)
+{
+    nlohmann::json out = nlohmann::json::array();
+    for (const PortDecl& p : decls)
+        out.push_back(
+            {{"name", p.name}, {"type", p.type}, {"doc", p.doc}, {"optional", p.optional}});
+    return out;
+}
+
+}  // namespace
+
+std::string nodeTypesJson(const Registry& registry)
+{
+    nlohmann::json out = nlohmann::json::array();
+    for (const NodeDecl* d : registry.nodes()) {
+        nlohmann::json params = nlohmann::json::array();
+        for (const ParamDecl& p : d->params) {
+            nlohmann::json j = {{"name", p.name},
+                                {"type", paramTypeName(p.type)},
+                                {"default", paramToJson(p.defaultValue)},
+                                {"units", p.units},
+                                {"doc", p.doc},
+                                {"role", roleName(p.role)},
+                                {"choices", p.choices}};
+            j["min"] = p.min ? nlohmann::json(*p.min) : nlohmann::json();
+            j["max"] = p.max ? nlohmann::json(*p.max) : nlohmann::json();
+            params.push_back(std::move(j));
+        }
+        out.push_back({{"type", d->type},
+                       {"version", d->version},
+                       {"category", d->category},
+                       {"doc", d->doc},
+                       {"inputs", ports(d->inputs)},
+                       {"outputs", ports(d->outputs)},
+                       {"params", params},
+                       {"frame_dependent", d->frameDependent || d->simulation},
+                       {"simulation", d->simulation},
+                       {"writes_files", d->writesFiles}});
+    }
+    return out.dump();
+}
+
+}  // namespace cg::python
