@@ -18,7 +18,7 @@ class Port:
 @dataclass(frozen=True)
 class Param:
     name: str
-    type: str  # Float, Int, Bool, String, Vector3, FloatList, IntList
+    type: str  # float, int, bool, string, vec3, float list, int list
     default: Any
     min: Optional[float]
     max: Optional[float]
