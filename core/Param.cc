@@ -177,6 +177,21 @@ const char* paramTypeName(ParamType t)
     return "unknown";
 }
 
+const char* paramRoleName(ParamRole role)
+{
+    switch (role) {
+        case ParamRole::Plain:
+            return "plain";
+        case ParamRole::OutputPath:
+            return "output_path";
+        case ParamRole::InputFile:
+            return "input_file";
+        case ParamRole::Program:
+            return "program";
+    }
+    return "unknown";
+}
+
 ParamType paramTypeOf(const ParamValue& v) { return static_cast<ParamType>(v.index()); }
 
 ParamValue paramFromJson(const Json& j, const ParamDecl& decl, const std::string& pointer)

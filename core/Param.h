@@ -33,6 +33,8 @@ enum class ParamRole {
 };
 
 const char* paramTypeName(ParamType t);
+/// "plain", "output_path", "input_file", "program".
+const char* paramRoleName(ParamRole role);
 ParamType paramTypeOf(const ParamValue& v);
 
 struct ParamDecl {

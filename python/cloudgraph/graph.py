@@ -46,11 +46,12 @@ def _as_file_error(error, graph_dict, types):
 
 
 def _checked(call, graph_dict, types):
-    """call(), with a ParameterError about an input file raised as a FileError."""
+    """call(), with a ParameterError about an input file raised as a FileError; graph_dict()
+    gives the graph the error is about (asked for only then)."""
     try:
         return call()
     except ParameterError as error:
-        converted = _as_file_error(error, graph_dict, types)
+        converted = _as_file_error(error, graph_dict(), types)
         if converted is error:
             raise
         raise converted from None
@@ -75,14 +76,16 @@ class Params(MutableMapping):
         return self._graph._type_of(self._id).params
 
     def __getitem__(self, name):
-        if name not in self._declared():
+        node = self._graph._node_dict(self._id)
+        declared = self._graph._types[node["type"]].params
+        if name not in declared:
             raise KeyError(name)
-        return self._graph._node_dict(self._id).get("params", {}).get(name, self._declared()[name].default)
+        return node.get("params", {}).get(name, declared[name].default)
 
     def __setitem__(self, name, value):
         graph = self._graph
         _checked(lambda: graph._doc.set_param(self._id, name, json.dumps(_plain(value))),
-                 graph.to_dict(), graph._types)
+                 graph.to_dict, graph._types)
 
     def __delitem__(self, name):
         self[name] = self._declared()[name].default
@@ -112,11 +115,6 @@ class Node:
     def params(self):
         return Params(self._graph, self.id)
 
-    @params.setter
-    def params(self, values):
-        for name, value in values.items():
-            self.params[name] = value
-
     @property
     def inputs(self):
         """{input port: "node.port"} for each connected input."""
@@ -139,23 +137,17 @@ class Graph:
     def load(cls, path):
         """Loads a graph file, validated as `cloudgraph validate` does. Raises FileError,
         GraphError or ParameterError naming the file and JSON pointer."""
-        def read_dict():
+        def read_dict():  # it parsed, or there would be no parameter error
             with open(path) as f:
                 return json.load(f)
-        try:
-            return cls(_cloudgraph.Document.load(os.fspath(path)))
-        except ParameterError as error:
-            converted = _as_file_error(error, read_dict(), node_types())
-            if converted is error:
-                raise
-            raise converted from None
+        return cls(_checked(lambda: _cloudgraph.Document.load(os.fspath(path)), read_dict, node_types()))
 
     @classmethod
     def from_dict(cls, d, name="<dict>", base_dir="."):
         """A graph from a dict in the file format; `name` prefixes error locations and
         relative input files are found under `base_dir`."""
         return cls(_checked(lambda: _cloudgraph.Document.parse(json.dumps(d), name, os.fspath(base_dir)),
-                            d, node_types()))
+                            lambda: d, node_types()))
 
     def to_dict(self):
         """The graph in the file format (every parameter that differs from its default)."""
@@ -244,7 +236,7 @@ class Graph:
 
     # Internal helpers for Node and Params.
     def _replace(self, d):
-        _checked(lambda: self._doc.replace(json.dumps(d)), d, self._types)
+        _checked(lambda: self._doc.replace(json.dumps(d)), lambda: d, self._types)
 
     def _node_dict(self, node_id):
         return self.to_dict()["nodes"][node_id]

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "Errors.h"
 #include "Values.h"
 #include "core/DiskCache.h"
 #include "core/Error.h"
@@ -24,9 +25,9 @@ namespace {
 /// How often a waiting cook looks for Ctrl-C.
 constexpr std::chrono::milliseconds kSignalPoll{50};
 
-LoadOptions editingOptions(const Graph& like)
+/// A graph being built may lack nodes or wires; cook and save check it whole.
+LoadOptions buildingOptions(LoadOptions o = {})
 {
-    LoadOptions o = like.limits;
     o.requireComplete = false;
     return o;
 }
@@ -48,16 +49,20 @@ Document::Document(Graph graph) : mGraph(std::move(graph)) {}
 
 std::unique_ptr<Document> Document::load(const std::string& path)
 {
-    LoadOptions o;
-    o.requireComplete = false;
-    return std::unique_ptr<Document>(new Document(loadGraph(path, sharedRegistry(), o)));
+    try {
+        return std::unique_ptr<Document>(
+            new Document(loadGraph(path, sharedRegistry(), buildingOptions())));
+    } catch (const InputError& e) {
+        // loadGraph names the file alone, with no place in it, when it cannot read it.
+        if (e.where() == path) throw UnreadableGraphFile(e.where(), e.message());
+        throw;
+    }
 }
 
 std::unique_ptr<Document> Document::parse(const std::string& text, const std::string& name,
                                           const std::string& baseDir)
 {
-    LoadOptions o;
-    o.requireComplete = false;
+    LoadOptions o = buildingOptions();
     o.inputFileBase = baseDir;
     return std::unique_ptr<Document>(new Document(parseGraph(text, name, sharedRegistry(), o)));
 }
@@ -72,7 +77,8 @@ void Document::setParam(const std::string& node, const std::string& param,
 
 void Document::replace(const std::string& text)
 {
-    Graph edited = parseGraph(text, mGraph.sourceName(), sharedRegistry(), editingOptions(mGraph));
+    Graph edited =
+        parseGraph(text, mGraph.sourceName(), sharedRegistry(), buildingOptions(mGraph.limits));
     edited.source = mGraph.source;
     mGraph = std::move(edited);
 }

@@ -4,7 +4,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/Error.h"
 #include "formats/FormatError.h"
 
 namespace py = pybind11;
@@ -33,16 +32,12 @@ std::string nodeOf(const std::string& where)
     return id;
 }
 
-/// Which cloudgraph.errors class an InputError is: a parameter's value, a file that cannot
-/// be read (the graph file or an input file a parameter names), or the graph itself.
+/// Which cloudgraph.errors class an InputError at a place in a graph is: a parameter's
+/// value, or the graph itself. (The package raises a ParameterError about a parameter that
+/// names an input file as a FileError: it knows the parameter's role.)
 const char* classOf(const InputError& e)
 {
-    const std::string& m = e.message();
-    if (m.rfind("cannot read the graph file", 0) == 0 || m.rfind("file is ", 0) == 0 ||
-        m.rfind("input file '", 0) == 0)
-        return "FileError";
-    if (e.where().find("/params/") != std::string::npos) return "ParameterError";
-    return "GraphError";
+    return e.where().find("/params/") != std::string::npos ? "ParameterError" : "GraphError";
 }
 
 void raise(const char* cls, const std::string& message, const std::string& where,
@@ -63,6 +58,8 @@ void registerErrorTranslator()
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);
+        } catch (const UnreadableGraphFile& e) {
+            raise("FileError", e.what(), e.where(), "");
         } catch (const InputError& e) {
             raise(classOf(e), e.what(), e.where(), nodeOf(e.where()));
         } catch (const CookError& e) {

@@ -4,7 +4,16 @@
 
 #include <pybind11/pybind11.h>
 
+#include "core/Error.h"
+
 namespace cg::python {
+
+/// A graph file that cannot be read at all (missing, unreadable, over the size limit), as
+/// opposed to a place in it: raised as cloudgraph.FileError.
+class UnreadableGraphFile : public InputError {
+public:
+    using InputError::InputError;
+};
 
 void registerErrorTranslator();
 

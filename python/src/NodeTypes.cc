@@ -6,21 +6,6 @@ namespace cg::python {
 
 namespace {
 
-const char* roleName(ParamRole role)
-{
-    switch (role) {
-        case ParamRole::Plain:
-            return "plain";
-        case ParamRole::OutputPath:
-            return "output_path";
-        case ParamRole::InputFile:
-            return "input_file";
-        case ParamRole::Program:
-            return "program";
-    }
-    return "plain";
-}
-
 nlohmann::json ports(const std::vector<PortDecl>& decls)
 {
     nlohmann::json out = nlohmann::json::array();
@@ -43,7 +28,7 @@ std::string nodeTypesJson(const Registry& registry)
                                 {"default", paramToJson(p.defaultValue)},
                                 {"units", p.units},
                                 {"doc", p.doc},
-                                {"role", roleName(p.role)},
+                                {"role", paramRoleName(p.role)},
                                 {"choices", p.choices}};
             j["min"] = p.min ? nlohmann::json(*p.min) : nlohmann::json();
             j["max"] = p.max ? nlohmann::json(*p.max) : nlohmann::json();

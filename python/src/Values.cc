@@ -36,6 +36,15 @@ py::array view(const T* data, std::vector<py::ssize_t> shape,
 
 py::ssize_t count(std::size_t n) { return static_cast<py::ssize_t>(n); }
 
+/// A read-only view of one of a frame's particle arrays, `width` values a row (1: a vector).
+template <class T>
+py::array rows(const algo::UninitArray<T>& a, std::size_t width,
+               const std::shared_ptr<const void>& owner)
+{
+    if (width == 1) return view(a.data(), {count(a.size())}, owner);
+    return view(a.data(), {count(a.size() / width), count(width)}, owner);
+}
+
 /// A value of a type without a NumPy form: its port type, for the user to see.
 struct OpaqueValue {
     DataPtr value;
@@ -110,30 +119,20 @@ void bindValues(py::module_& m)
         .def("__len__", [](const ParticlesValue& p) { return p.particles->size(); })
         .def_property_readonly(
             "positions",
-            [](const ParticlesValue& p) {
-                const auto& a = p.particles->positions();
-                return view(a.data(), {count(a.size() / 3), 3}, p.particles);
-            },
+            [](const ParticlesValue& p) { return rows(p.particles->positions(), 3, p.particles); },
             "read-only float32 array (n, 3), metres")
         .def_property_readonly(
             "levels",
-            [](const ParticlesValue& p) {
-                const auto& a = p.particles->levels();
-                return view(a.data(), {count(a.size())}, p.particles);
-            },
+            [](const ParticlesValue& p) { return rows(p.particles->levels(), 1, p.particles); },
             "read-only uint8 array (n,): the recursive level L")
         .def_property_readonly(
             "sources",
-            [](const ParticlesValue& p) {
-                const auto& a = p.particles->sources();
-                return view(a.data(), {count(a.size())}, p.particles);
-            },
+            [](const ParticlesValue& p) { return rows(p.particles->sources(), 1, p.particles); },
             "read-only uint32 array (n,): the source record of each particle")
         .def_property_readonly(
             "copy_origins",
             [](const ParticlesValue& p) {
-                const auto& a = p.particles->copyOrigins();
-                return view(a.data(), {count(a.size() / 3), 3}, p.particles);
+                return rows(p.particles->copyOrigins(), 3, p.particles);
             },
             "read-only float32 array (sources, 3): where each source's copy stands");
 

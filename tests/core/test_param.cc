@@ -48,6 +48,10 @@ TEST(Param, TypeNames)
     EXPECT_STREQ(paramTypeName(ParamType::FloatList), "float list");
     EXPECT_STREQ(paramTypeName(ParamType::IntList), "int list");
     EXPECT_EQ(paramTypeOf(ParamValue(std::int64_t(3))), ParamType::Int);
+    EXPECT_STREQ(paramRoleName(ParamRole::Plain), "plain");
+    EXPECT_STREQ(paramRoleName(ParamRole::OutputPath), "output_path");
+    EXPECT_STREQ(paramRoleName(ParamRole::InputFile), "input_file");
+    EXPECT_STREQ(paramRoleName(ParamRole::Program), "program");
     EXPECT_EQ(paramTypeOf(ParamValue(Vec3{1, 2, 3})), ParamType::Vector3);
     EXPECT_EQ(paramTypeOf(ParamValue(std::vector<std::int64_t>{})), ParamType::IntList);
 }
