@@ -12,6 +12,9 @@
 #include "core/Plugin.h"
 #include "formats/FormatError.h"
 #include "nodes/Builtin.h"
+#ifdef CLOUDGRAPH_WITH_PYTHON
+#include "EmbeddedPython.h"
+#endif
 
 namespace cg::cli {
 
@@ -89,17 +92,32 @@ void configureLogging()
     spdlog::set_level(spdlog::level::info);
 }
 
-void buildRegistry(Registry& registry, const std::vector<std::string>& pluginPaths)
+void declareNodeTypeOptions(OptionParser& opts)
+{
+    opts.valueOption("--plugin");
+    opts.valueOption("--python-nodes");
+}
+
+void buildRegistry(Registry& registry, const OptionParser& opts)
 {
     registerBuiltinNodes(registry);
     loadPluginsFromSearchPath(std::getenv("CLOUDGRAPH_PLUGIN_PATH"), registry);
-    for (const auto& p : pluginPaths) loadPlugin(p, registry);
+    for (const auto& p : opts.values("--plugin")) loadPlugin(p, registry);
+    const std::vector<std::string> pythonFiles = opts.values("--python-nodes");
+    if (pythonFiles.empty()) return;
+#ifdef CLOUDGRAPH_WITH_PYTHON
+    python::loadPythonNodeFiles(pythonFiles, registry);
+#else
+    throw InputError("--python-nodes",
+                     "this cloudgraph was built without Python (pybind11-dev "
+                     "and python3-dev, or the sanitizer build)");
+#endif
 }
 
 void declareGraphOptions(OptionParser& opts)
 {
     opts.valueOption("--set");
-    opts.valueOption("--plugin");
+    declareNodeTypeOptions(opts);
     opts.flag("--allow-outside-out");
     opts.flag("--allow-graph-programs");
 }
@@ -108,7 +126,7 @@ Graph loadGraphFromOptions(const OptionParser& opts, Registry& registry, const c
 {
     if (opts.positionals().size() != 1)
         throw InputError("command line", std::string(command) + " needs exactly one graph file");
-    buildRegistry(registry, opts.values("--plugin"));
+    buildRegistry(registry, opts);
     LoadOptions loadOptions;
     loadOptions.allowPathsOutsideOut = opts.has("--allow-outside-out");
     loadOptions.allowGraphPrograms = opts.has("--allow-graph-programs");

@@ -50,10 +50,14 @@ std::int64_t parseIntegerOption(const std::string& text, const std::string& opti
 /// Sets up spdlog on stderr at info level (OptionParser::parse applies -v/-q).
 void configureLogging();
 
-/// The built-in nodes plus plugins from --plugin paths and CLOUDGRAPH_PLUGIN_PATH.
-void buildRegistry(Registry& registry, const std::vector<std::string>& pluginPaths);
+/// Declares the options that add node types: --plugin and --python-nodes.
+void declareNodeTypeOptions(OptionParser& opts);
+/// The built-in nodes, plugins from CLOUDGRAPH_PLUGIN_PATH and --plugin, and the Python nodes
+/// of --python-nodes files.
+void buildRegistry(Registry& registry, const OptionParser& opts);
 
-/// Declares the options that choose and edit a graph: --set, --plugin, --allow-outside-out.
+/// Declares the options that choose and edit a graph: --set, --allow-outside-out, and the
+/// node type options.
 void declareGraphOptions(OptionParser& opts);
 /// Builds the registry (with --plugin), loads the one positional graph file and applies
 /// every --set. Throws InputError on any bad input.

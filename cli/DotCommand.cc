@@ -12,13 +12,13 @@ namespace cg::cli {
 int dotCommand(const Args& args)
 {
     OptionParser opts(args);
-    opts.valueOption("--plugin");
+    declareNodeTypeOptions(opts);
     return guarded([&] {
         opts.parse();
         if (opts.positionals().size() != 1)
             throw InputError("command line", "dot needs exactly one graph file");
         Registry registry;
-        buildRegistry(registry, opts.values("--plugin"));
+        buildRegistry(registry, opts);
         const Graph graph = loadGraph(opts.positionals()[0], registry);
         std::printf("digraph cloudgraph {\n  rankdir=LR;\n  node [shape=box, fontname=\"Helvetica\"];\n");
         for (std::size_t i : graph.topologicalOrder()) {

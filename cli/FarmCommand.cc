@@ -35,8 +35,9 @@ std::vector<std::string> sharedRunArgs(const OptionParser& opts, const fs::path&
     std::vector<std::string> args = {fs::absolute(opts.positionals()[0]).lexically_normal().string(),
                                      "--cache", cache.string(), "--out", out.string(), "--farm-token", token};
     for (const std::string& s : opts.values("--set")) args.insert(args.end(), {"--set", s});
-    for (const std::string& p : opts.values("--plugin"))
-        args.insert(args.end(), {"--plugin", fs::absolute(p).lexically_normal().string()});
+    for (const char* o : {"--plugin", "--python-nodes"})
+        for (const std::string& p : opts.values(o))
+            args.insert(args.end(), {o, fs::absolute(p).lexically_normal().string()});
     for (const char* o : {"--frames", "--threads", "--cache-memory-mb"})
         if (auto v = opts.value(o)) args.insert(args.end(), {o, *v});
     for (const char* f : {"--allow-outside-out", "--allow-graph-programs"})

@@ -139,11 +139,11 @@ int nodesCommand(const Args& args)
 {
     OptionParser opts(args);
     opts.flag("--markdown");
-    opts.valueOption("--plugin");
+    declareNodeTypeOptions(opts);
     return guarded([&] {
         opts.parse();
         Registry registry;
-        buildRegistry(registry, opts.values("--plugin"));
+        buildRegistry(registry, opts);
         const bool markdown = opts.has("--markdown");
         if (opts.positionals().size() > 1) throw InputError("command line", "nodes takes at most one TYPE");
         if (opts.positionals().size() == 1) {

@@ -1,6 +1,6 @@
 // cloudgraph run GRAPH [--frames A:B] [--chunk N [--task I]] [--simulations-only]
 //                      [--set node.param=value]... [--cache DIR] [--out DIR] [--threads N]
-//                      [--report FILE] [--plugin PATH]... [--farm-token T]
+//                      [--report FILE] [--plugin PATH]... [--python-nodes FILE]... [--farm-token T]
 
 #include <csignal>
 #include <cstdlib>

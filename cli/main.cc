@@ -25,6 +25,7 @@ usage:
       --threads N                    worker threads (default: all cores)
       --report FILE                  JSON report: per node and frame, cooked or cache hit, why, time
       --plugin PATH                  load a plugin library; repeatable
+      --python-nodes FILE            load the Python node classes of a .py file; repeatable
       --allow-outside-out            let output paths leave --out (absolute paths, ..)
       --allow-graph-programs         let the graph name the programs it runs (EncodeVideo's ffmpeg)
       --farm-token T                 (written by `farm`) refuse a --cache that lacks the farm's token
@@ -35,10 +36,11 @@ usage:
       --scheduler slurm              the scheduler (the one supported)
       --sbatch OPTION                an #SBATCH line for both jobs, e.g. --sbatch=--partition=render
       --submit                       queue the jobs with sbatch and print their ids
-      also --frames, --set, --plugin, --threads, --allow-* as for run
-  cloudgraph validate GRAPH [--set ...] [--plugin PATH]   check a graph without cooking
-  cloudgraph nodes [TYPE] [--markdown]                    the node reference
-  cloudgraph dot GRAPH                                    the graph as Graphviz
+      also --frames, --set, --plugin, --python-nodes, --threads, --allow-* as for run
+  cloudgraph validate GRAPH [--set ...] [--plugin PATH] [--python-nodes FILE]
+                                                          check a graph without cooking
+  cloudgraph nodes [TYPE] [--markdown] [--plugin ...] [--python-nodes ...]   the node reference
+  cloudgraph dot GRAPH [--plugin ...] [--python-nodes ...]                  the graph as Graphviz
   cloudgraph info FILE                                    summary of a primitive-set file (.cgp)
   cloudgraph sounding FILE [--plot PNG]                   a sounding's LCL, LFC, EL, CAPE; its skew-T
   cloudgraph --help | --version

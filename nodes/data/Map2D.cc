@@ -14,12 +14,10 @@ namespace {
 constexpr const char* kType = "Map2D";
 constexpr std::uint64_t kMaxSide = std::uint64_t{1} << 30;
 
-DataPtr readMap2D(ByteReader& in)
+}  // namespace
+
+void checkMap2D(std::uint64_t nx, std::uint64_t ny, double cell, const std::vector<float>& values)
 {
-    const std::uint64_t nx = in.u64();
-    const std::uint64_t ny = in.u64();
-    const double cell = in.f64();
-    auto values = in.podVector<float>();
     if (nx == 0 || ny == 0 || nx > kMaxSide || ny > kMaxSide)
         checks::refuse(kType,
                        "size " + std::to_string(nx) + " x " + std::to_string(ny) + " is absurd");
@@ -35,6 +33,17 @@ DataPtr readMap2D(ByteReader& in)
         if (!(values[i] >= 0.0f && values[i] <= 1.0f))
             checks::refuse(kType, "value " + std::to_string(values[i]) + " of cell " +
                                       std::to_string(i) + " is outside [0, 1]");
+}
+
+namespace {
+
+DataPtr readMap2D(ByteReader& in)
+{
+    const std::uint64_t nx = in.u64();
+    const std::uint64_t ny = in.u64();
+    const double cell = in.f64();
+    auto values = in.podVector<float>();
+    checkMap2D(nx, ny, cell, values);
     return std::make_shared<Map2DData>(static_cast<int>(nx), static_cast<int>(ny), cell,
                                        std::move(values));
 }

@@ -30,6 +30,11 @@ public:
     bool serialize(ByteWriter& out) const override;
 };
 
+/// Throws std::runtime_error ("Map2D: ...") unless the size is sane, matches the values, the
+/// cell size is finite and positive and every value lies in [0, 1] (the mapper's fNoise).
+/// Values from outside the engine (the disk cache, Python) pass it before they are used.
+void checkMap2D(std::uint64_t nx, std::uint64_t ny, double cell, const std::vector<float>& values);
+
 void registerMap2DType(Registry& registry);
 
 }  // namespace cg

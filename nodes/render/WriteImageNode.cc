@@ -6,45 +6,19 @@
 #include <memory>
 #include <string>
 
-#include "algo/render/CloudLayer.h"
 #include "algo/render/Display.h"
 #include "core/CoreData.h"
 #include "core/Node.h"
 #include "core/Registry.h"
-#include "formats/ExrFile.h"
-#include "formats/PngFile.h"
 #include "nodes/DeclHelpers.h"
 #include "nodes/data/Image.h"
 #include "nodes/io/WriterSupport.h"
+#include "nodes/render/ImageFile.h"
 #include "nodes/render/RenderNodes.h"
-#include "util/AtomicFile.h"
 
 namespace cg {
 
 namespace {
-
-bool endsWith(const std::string& s, const std::string& tail)
-{
-    return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
-}
-
-bool isExr(const std::string& file) { return endsWith(file, ".exr"); }
-
-/// The beauty as R, G, B, A (what a reader of the default layer sees) and, where the image has
-/// a background, the layers "cloud" (premultiplied, background excluded) and "background".
-void writeExr(const std::string& path, const ImageData& image)
-{
-    if (!image.hasBackground()) {
-        formats::writeExrRgba32(path, image.width, image.height, image.rgba);
-        return;
-    }
-    const std::vector<float> cloud = algo::cloudLayer(image.rgba, image.background);
-    formats::writeExrFloat32(path, image.width, image.height,
-                             {{{"R", "G", "B", "A"}, image.rgba},
-                              {{"cloud.R", "cloud.G", "cloud.B", "cloud.A"}, cloud},
-                              {{"background.R", "background.G", "background.B"},
-                               image.background}});
-}
 
 class WriteImageNode final : public Node {
 public:
@@ -53,21 +27,12 @@ public:
         if (!writesThisFrame(ctx)) return;
         const auto image = ctx.input<ImageData>("image");
         const std::filesystem::path path = ctx.outputPath("file");
-        util::AtomicOutput out(path);
-        if (isExr(path.string())) {
-            writeExr(out.tempPath().string(), *image);
-        } else {
-            algo::DisplaySettings display;
-            display.exposure = ctx.params().getFloat("exposure");
-            display.curve = algo::toneCurveFromName(ctx.params().getString("toneMap"));
-            display.dither = ctx.params().getBool("dither");
-            display.seed = static_cast<std::uint64_t>(ctx.frame());
-            const std::vector<std::uint8_t> rgb =
-                algo::displayRgb8(image->rgba, image->width, image->height, display);
-            ctx.checkCancelled();
-            formats::writePngRgb8(out.tempPath().string(), image->width, image->height, rgb);
-        }
-        out.commit();
+        algo::DisplaySettings display;
+        display.exposure = ctx.params().getFloat("exposure");
+        display.curve = algo::toneCurveFromName(ctx.params().getString("toneMap"));
+        display.dither = ctx.params().getBool("dither");
+        display.seed = static_cast<std::uint64_t>(ctx.frame());
+        writeImageFile(path, *image, display);
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));
     }
 };
@@ -102,7 +67,7 @@ void registerWriteImageNode(Registry& registry)
     d.params.push_back(boolParam("dither", true, "add +-1 code-value triangular dither (no banding)"));
     d.validate = [](const ParamSet& p, const ParamChecker& check) {
         const std::string& file = p.getString("file");
-        if (!endsWith(file, ".png") && !isExr(file))
+        if (!isImageFileName(file))
             check.fail("file", "'" + file + "' must end in .png (8-bit sRGB) or .exr (linear float)");
     };
     d.create = [] { return std::make_unique<WriteImageNode>(); };

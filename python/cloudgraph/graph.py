@@ -131,7 +131,10 @@ class Graph:
 
     def __init__(self, document):
         self._doc = document
-        self._types = node_types()
+
+    @property
+    def _types(self):
+        return node_types()  # cached; includes Python nodes registered since
 
     @classmethod
     def load(cls, path):

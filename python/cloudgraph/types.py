@@ -1,5 +1,6 @@
 """The node types the engine knows, as Python objects made from their C++ declarations."""
 
+import functools
 import json
 from dataclasses import dataclass
 from typing import Any, Dict, List, Optional
@@ -51,6 +52,16 @@ def _node_type(d):
         writes_files=d["writes_files"])
 
 
+@functools.lru_cache(maxsize=None)
+def _declarations():
+    return {d["type"]: _node_type(d) for d in json.loads(_cloudgraph.node_types_json())}
+
+
+def declarations_changed():
+    """A node type was registered (cloudgraph.node): forget the declarations read so far."""
+    _declarations.cache_clear()
+
+
 def node_types() -> Dict[str, NodeType]:
     """Every node type by name, with its ports and parameters (defaults, ranges, units)."""
-    return {d["type"]: _node_type(d) for d in json.loads(_cloudgraph.node_types_json())}
+    return dict(_declarations())

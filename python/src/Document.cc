@@ -34,8 +34,15 @@ LoadOptions buildingOptions(LoadOptions o = {})
 
 }  // namespace
 
+namespace {
+Registry* gRegistryOverride = nullptr;
+}  // namespace
+
+void setSharedRegistry(Registry* registry) { gRegistryOverride = registry; }
+
 Registry& sharedRegistry()
 {
+    if (gRegistryOverride) return *gRegistryOverride;
     static Registry registry = [] {
         Registry r;
         registerBuiltinNodes(r);

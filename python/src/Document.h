@@ -20,8 +20,11 @@
 namespace cg::python {
 
 /// Every node type the module knows: the built-in nodes and the plugins of
-/// CLOUDGRAPH_PLUGIN_PATH, as the CLI has them.
+/// CLOUDGRAPH_PLUGIN_PATH, as the CLI has them, and the Python nodes registered since; or,
+/// inside the CLI, the CLI's registry (setSharedRegistry).
 Registry& sharedRegistry();
+/// Makes `registry` the one sharedRegistry() returns (the CLI's, for --python-nodes).
+void setSharedRegistry(Registry* registry);
 
 class Document {
 public:

@@ -76,4 +76,13 @@ void registerErrorTranslator()
     });
 }
 
+std::string pythonTraceback(py::error_already_set& e)
+{
+    std::string text;
+    for (const py::handle line :
+         py::module_::import("traceback").attr("format_exception")(e.type(), e.value(), e.trace()))
+        text += line.cast<std::string>();
+    return text;
+}
+
 }  // namespace cg::python

@@ -17,4 +17,7 @@ public:
 
 void registerErrorTranslator();
 
+/// The Python exception `e` holds, with its traceback, as Python prints it. Needs the GIL.
+std::string pythonTraceback(pybind11::error_already_set& e);
+
 }  // namespace cg::python

@@ -1,37 +1,7 @@
 // _cloudgraph: the C++ half of the Python package `cloudgraph` (python/cloudgraph/).
 
 #include <pybind11/pybind11.h>
-#include <pybind11/stl.h>
 
-#include "Document.h"
-#include "Errors.h"
-#include "NodeTypes.h"
-#include "Values.h"
+#include "Bindings.h"
 
-namespace py = pybind11;
-
-PYBIND11_MODULE(_cloudgraph, m)
-{
-    using cg::python::Document;
-    m.doc() = "CloudGraph's engine; use the package cloudgraph, not this module.";
-    cg::python::registerErrorTranslator();
-    cg::python::bindValues(m);
-    m.def("node_types_json",
-          [] { return cg::python::nodeTypesJson(cg::python::sharedRegistry()); });
-
-    py::class_<Document>(m, "Document")
-        .def_static("load", &Document::load, py::arg("path"))
-        .def_static("parse", &Document::parse, py::arg("text"), py::arg("name"),
-                    py::arg("base_dir"))
-        .def("to_json", &Document::toJson)
-        .def("set_param", &Document::setParam, py::arg("node"), py::arg("param"),
-             py::arg("value_json"))
-        .def("replace", &Document::replace, py::arg("text"))
-        .def("save", &Document::save, py::arg("path"))
-        .def("cook", &Document::cook, py::arg("node"), py::arg("port"), py::arg("frame"),
-             py::arg("cache"), py::arg("out"))
-        .def("cancel", &Document::cancel)
-        .def("last_report", &Document::lastReport)
-        .def_property_readonly("first_frame", &Document::firstFrame)
-        .def_property_readonly("last_frame", &Document::lastFrame);
-}
+PYBIND11_MODULE(_cloudgraph, m) { cg::python::defineModule(m); }

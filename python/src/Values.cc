@@ -1,6 +1,9 @@
 #include "Values.h"
 
 #include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <pybind11/numpy.h>
@@ -64,6 +67,24 @@ struct VolumeValue {
     std::shared_ptr<const FogVolumeData> volume;
 };
 
+MapValue newMap(const py::array_t<float, py::array::c_style | py::array::forcecast>& values,
+                double cellSize)
+{
+    if (values.ndim() != 2)
+        throw py::value_error("Map2D: values must be a 2D array (ny, nx), not " +
+                              std::to_string(values.ndim()) + "D");
+    const auto ny = static_cast<std::uint64_t>(values.shape(0));
+    const auto nx = static_cast<std::uint64_t>(values.shape(1));
+    std::vector<float> copy(values.data(), values.data() + values.size());
+    try {
+        checkMap2D(nx, ny, cellSize, copy);
+    } catch (const std::runtime_error& e) {
+        throw py::value_error(e.what());
+    }
+    return {std::make_shared<Map2DData>(static_cast<int>(nx), static_cast<int>(ny), cellSize,
+                                        std::move(copy))};
+}
+
 py::array mapValues(const MapValue& m)
 {
     return view(m.map->values.data(), {m.map->ny, m.map->nx}, m.map);
@@ -104,6 +125,8 @@ void bindValues(py::module_& m)
     py::class_<MapValue>(m, "Map2D",
                          "A 2D map over the ground: values[iy, ix] for the cell at "
                          "[ix, ix + 1) x [iy, iy + 1) cell sizes from the origin.")
+        .def(py::init(&newMap), py::arg("values"), py::arg("cell_size"),
+             "a map of values (ny, nx), each in [0, 1], and a cell size in metres (copied)")
         .def_property_readonly("values", &mapValues, "read-only float32 array (ny, nx)")
         .def_property_readonly(
             "cell_size", [](const MapValue& v) { return v.map->cellSize; }, "metres")
@@ -179,6 +202,78 @@ py::object toPython(const DataPtr& value)
     if (auto v = std::dynamic_pointer_cast<const FogVolumeData>(value))
         return py::cast(VolumeValue{v});
     return py::cast(OpaqueValue{value});
+}
+
+namespace {
+
+[[noreturn]] void refuse(const std::string& what, const std::string& type, const std::string& why)
+{
+    throw std::runtime_error(what + " (" + type + "): " + why);
+}
+
+/// The value a wrapper class (Map2D, CloudParticles, FogVolume, Value) holds, or null.
+DataPtr wrapped(const py::handle& value)
+{
+    if (py::isinstance<MapValue>(value)) return value.cast<const MapValue&>().map;
+    if (py::isinstance<ParticlesValue>(value)) return value.cast<const ParticlesValue&>().particles;
+    if (py::isinstance<VolumeValue>(value)) return value.cast<const VolumeValue&>().volume;
+    if (py::isinstance<OpaqueValue>(value)) return value.cast<const OpaqueValue&>().value;
+    return nullptr;
+}
+
+using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+
+DataPtr imageFrom(const py::handle& value, const std::string& what)
+{
+    const FloatArray a = FloatArray::ensure(value);
+    if (!a || a.ndim() != 3 || (a.shape(2) != 3 && a.shape(2) != 4) || a.shape(0) < 1 ||
+        a.shape(1) < 1)
+        refuse(what, "Image", "needs a float array (height, width, 3 or 4)");
+    const auto h = static_cast<std::size_t>(a.shape(0));
+    const auto w = static_cast<std::size_t>(a.shape(1));
+    const auto channels = static_cast<std::size_t>(a.shape(2));
+    std::vector<float> rgba(h * w * 4, 1.0f);  // alpha 1 where only RGB is given
+    const float* in = a.data();
+    for (std::size_t i = 0; i < h * w; ++i)
+        for (std::size_t c = 0; c < channels; ++c) rgba[4 * i + c] = in[channels * i + c];
+    return std::make_shared<ImageData>(static_cast<int>(w), static_cast<int>(h), std::move(rgba));
+}
+
+}  // namespace
+
+DataPtr fromPython(const py::handle& value, const std::string& type, const std::string& what)
+{
+    if (DataPtr held = wrapped(value)) {
+        if (held->typeName() != type) refuse(what, type, "got a " + held->typeName());
+        return held;
+    }
+    if (type == "Float") {
+        if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value) &&
+            !py::hasattr(value, "__float__"))
+            refuse(what, type, "needs a number");
+        const double v = py::float_(py::reinterpret_borrow<py::object>(value));
+        if (!std::isfinite(v)) refuse(what, type, "is not finite");
+        return std::make_shared<FloatData>(v);
+    }
+    if (type == "Int") {
+        if (!py::hasattr(value, "__index__")) refuse(what, type, "needs an integer");
+        return std::make_shared<IntData>(
+            py::int_(py::reinterpret_borrow<py::object>(value)).cast<std::int64_t>());
+    }
+    if (type == "Text") {
+        if (!py::isinstance<py::str>(value)) refuse(what, type, "needs a str");
+        return std::make_shared<TextData>(value.cast<std::string>());
+    }
+    if (type == "FloatArray") {
+        const FloatArray a = FloatArray::ensure(value);
+        if (!a || a.ndim() != 1) refuse(what, type, "needs a 1D float array");
+        return std::make_shared<FloatArrayData>(std::vector<float>(a.data(), a.data() + a.size()));
+    }
+    if (type == "Image") return imageFrom(value, what);
+    refuse(what, type,
+           "got a " + std::string(py::str(value.get_type().attr("__name__"))) +
+               (type == "Map2D" ? "; make one with cloudgraph.Map2D(values, cell_size)"
+                                : "; a Python node can pass on such a value it was given"));
 }
 
 }  // namespace cg::python
