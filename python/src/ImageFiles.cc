@@ -1,9 +1,12 @@
 #include "ImageFiles.h"
 
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 #include <string>
+
+#include <pybind11/stl/filesystem.h>
 
 #include "Values.h"
 #include "algo/render/Display.h"
@@ -18,10 +21,10 @@ void bindImageFiles(py::module_& m)
 {
     m.def(
         "write_image",
-        [](const std::string& path, const py::handle& image, double exposure,
+        [](const std::filesystem::path& path, const py::handle& image, double exposure,
            const std::string& toneMap, bool dither, std::uint64_t seed) {
-            if (!isImageFileName(path))
-                throw py::value_error("'" + path +
+            if (!isImageFileName(path.string()))
+                throw py::value_error("'" + path.string() +
                                       "' must end in .png (8-bit sRGB) or .exr (linear float)");
             if (toneMap != "aces" && toneMap != "hable" && toneMap != "clamp")
                 throw py::value_error("tone_map '" + toneMap + "' is not aces, hable or clamp");
