@@ -20,7 +20,7 @@ if [ "${1:-}" = "--tests" ]; then
     packages+=(
         clang libclang-rt-14-dev  # the sanitizer build and the libFuzzer targets (CI)
         blender  # ctest -L blender follows the user guide's Blender steps (Debian 12: 3.4)
-        python3-pytest  # ctest -L python: the Python module's tests
+        python3-pytest python3-openvdb  # ctest -L python: the Python module's tests, a FogVolume as a pyopenvdb grid
     )
     optional+=(slurm-wlm munge python3)
 fi

@@ -1,6 +1,7 @@
 """Cooking from Python: the same values as the CLI, the same caches, reports, cancelling."""
 
 import subprocess
+import sys
 import threading
 import time
 
@@ -53,11 +54,39 @@ def test_values_come_as_numpy(small_figure6):
     particles = small_figure6.cook("cloud.particles", FRAME)
     assert particles.positions.shape == (len(particles), 3) and len(particles) > 0
     assert set(np.unique(particles.levels)) <= set(range(1, 6))
+
+
+def test_a_fog_volume_without_pyopenvdb(monkeypatch, tmp_path, small_figure6):
+    monkeypatch.setitem(sys.modules, "pyopenvdb", None)  # as if it were not installed
     volume = small_figure6.cook("voxelize.volume", FRAME)
-    if isinstance(volume, cloudgraph.FogVolume):
-        dense, origin = volume.to_dense()
-        assert np.count_nonzero(dense) == volume.active_voxel_count
-        assert dense.max() <= 1.0
+    assert isinstance(volume, cloudgraph.FogVolume)
+    assert volume.voxel_size == small_figure6["voxelize"].params["voxelSize"]
+    dense, origin = volume.to_dense()
+    assert np.count_nonzero(dense) == volume.active_voxel_count > 0
+    assert dense.max() <= 1.0
+    low, high = volume.bbox
+    assert tuple(origin) == tuple(low) and dense.shape == tuple(h - l + 1 for l, h in zip(low, high))
+
+
+def test_a_fog_volume_as_a_pyopenvdb_grid_equals_the_cli_s_vdb(tmp_path, small_figure6, cli):
+    pyopenvdb = pytest.importorskip("pyopenvdb")  # scripts/install-deps.sh --tests installs it
+    small_figure6["vdb"].params["every"] = 1  # every frame, full floats
+    small_figure6["vdb"].params["halfFloat"] = False
+    small_figure6.save(tmp_path / "graph.json")
+    subprocess.run([cli, "run", str(tmp_path / "graph.json"), "--frames", f"{FRAME}:{FRAME}",
+                    "--out", str(tmp_path / "cli"), "-q"], check=True)
+    grid = small_figure6.cook("voxelize.volume", FRAME)
+    assert isinstance(grid, pyopenvdb.FloatGrid) and grid.name == "density"
+    [written] = (tmp_path / "cli").rglob("*.vdb")
+    reference = pyopenvdb.read(str(written), "density")
+    assert grid.activeVoxelCount() == reference.activeVoxelCount() > 0
+    assert grid.evalActiveVoxelBoundingBox() == reference.evalActiveVoxelBoundingBox()
+    low, high = grid.evalActiveVoxelBoundingBox()
+    shape = tuple(h - l + 1 for l, h in zip(low, high))
+    ours, theirs = np.zeros(shape, np.float32), np.zeros(shape, np.float32)
+    grid.copyToArray(ours, ijk=low)
+    reference.copyToArray(theirs, ijk=low)
+    assert np.array_equal(ours, theirs)
 
 
 def test_a_wedge_recooks_only_what_the_parameter_feeds(tmp_path, small_figure6):
