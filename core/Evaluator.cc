@@ -147,7 +147,7 @@ public:
     }
 
     /// Cooks (or fetches) `closure` for frames first..last as a pipeline (FramePipeline):
-    /// each frame without the writers that verify; onFrame hears of each frame in order.
+    /// each frame without what resolves ahead; onFrame hears of each frame in order.
     void cookRange(const std::vector<std::size_t>& closure, int first, int last,
                    const FrameCallback& onFrame)
     {
@@ -155,7 +155,7 @@ public:
             .run(
                 first, last,
                 [&](int frame, FrameOutputs& results) {
-                    return withoutVerifiedWriters(closure, frame, results);
+                    return withoutResolvedAhead(closure, frame, results);
                 },
                 [&](std::size_t idx, int frame, const FrameOutputs& results) {
                     return evaluate(idx, frame, results);
@@ -168,28 +168,21 @@ public:
     void addToTotal(std::size_t n) { mTotal += n; }
 
 private:
-    /// Writers whose files from an earlier run verify (WrittenFiles) take their recorded
-    /// outputs into `results` and drop out, with every node that only they need. Returns
-    /// the nodes of `closure` left to evaluate, in the same order.
-    std::vector<std::size_t> withoutVerifiedWriters(const std::vector<std::size_t>& closure, int frame,
-                                                    FrameOutputs& results)
+    /// Nodes whose outputs are there before the frame cooks take them into `results` and drop
+    /// out, with every node that only they need (resolvedAhead). Returns the nodes of `closure`
+    /// left to evaluate, in the same order.
+    std::vector<std::size_t> withoutResolvedAhead(const std::vector<std::size_t>& closure,
+                                                  int frame, FrameOutputs& results)
     {
         const std::size_t n = mGraph.nodes().size();
-        std::vector<bool> verified(n, false);
-        std::size_t verifiedCount = 0;
+        std::vector<bool> resolved(n, false);
+        std::size_t resolvedCount = 0;
         for (std::size_t idx : closure) {
-            const NodeDecl& decl = *mGraph.nodes()[idx].decl;
-            if (!WrittenFiles::keepsRecords(decl)) continue;
-            const auto t0 = std::chrono::steady_clock::now();
-            const Key key = keyOf(idx, frame);
-            auto recorded = mWritten.verified(key, decl);
-            if (!recorded) continue;
-            results[idx] = std::make_shared<const OutputMap>(std::move(*recorded));
-            report(idx, frame, key, CookStatus::Verified, "", t0, *results[idx]);
-            verified[idx] = true;
-            ++verifiedCount;
+            if (!resolvedAhead(idx, frame, results)) continue;
+            resolved[idx] = true;
+            ++resolvedCount;
         }
-        if (verifiedCount == 0) return closure;
+        if (resolvedCount == 0) return closure;
         // Downstream first: a node is needed when nothing in the closure reads it (a target)
         // or a needed node reads it.
         std::vector<bool> readInClosure(n, false), readByNeeded(n, false), needed(n, false);
@@ -197,15 +190,45 @@ private:
             for (std::size_t up : mGraph.upstream()[idx]) readInClosure[up] = true;
         for (auto it = closure.rbegin(); it != closure.rend(); ++it) {
             const std::size_t idx = *it;
-            if (verified[idx] || (readInClosure[idx] && !readByNeeded[idx])) continue;
+            if (resolved[idx] || (readInClosure[idx] && !readByNeeded[idx])) continue;
             needed[idx] = true;
             for (std::size_t up : mGraph.upstream()[idx]) readByNeeded[up] = true;
         }
         std::vector<std::size_t> left;
         for (std::size_t idx : closure)
             if (needed[idx]) left.push_back(idx);
-        mTotal -= closure.size() - left.size() - verifiedCount;  // verified ones were reported
+        mTotal -= closure.size() - left.size() - resolvedCount;  // resolved ones were reported
         return left;
+    }
+
+    /// Whether node idx's outputs at `frame` were put in `results` (and reported) before the
+    /// frame cooks, sparing what only it reads: a writer whose files from an earlier run verify
+    /// (WrittenFiles), or a cached node that reads a node never stored on disk, which would
+    /// otherwise be remade only to be ignored (the Voxelizer's GenerateCloud stream).
+    bool resolvedAhead(std::size_t idx, int frame, FrameOutputs& results)
+    {
+        const NodeDecl& decl = *mGraph.nodes()[idx].decl;
+        const auto t0 = std::chrono::steady_clock::now();
+        if (WrittenFiles::keepsRecords(decl)) {
+            const Key key = keyOf(idx, frame);
+            auto recorded = mWritten.verified(key, decl);
+            if (!recorded) return false;
+            results[idx] = std::make_shared<const OutputMap>(std::move(*recorded));
+            report(idx, frame, key, CookStatus::Verified, "", t0, *results[idx]);
+            return true;
+        }
+        if (decl.writesFiles || decl.simulation) return false;  // evaluate() handles those
+        const auto& upstream = mGraph.upstream()[idx];
+        if (std::none_of(upstream.begin(), upstream.end(),
+                         [&](std::size_t up) { return !mGraph.nodes()[up].decl->cacheOnDisk; }))
+            return false;
+        const Key key = keyOf(idx, frame);
+        CookStatus status = CookStatus::Cooked;
+        OutputsPtr hit = lookup(key, decl, status);
+        if (!hit) return false;
+        results[idx] = hit;
+        report(idx, frame, key, status, "", t0, *hit);
+        return true;
     }
 
     /// Node idx at `frame`, from the caches or cooked; its inputs are in `results`.

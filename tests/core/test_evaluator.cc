@@ -216,6 +216,34 @@ TEST_F(EvaluatorTest, UncachedNodesCookAgainAndTheirInputsStayCached)
     EXPECT_EQ(cookCount("transient"), 1u);  // not kept: cooked again, the same values
 }
 
+TEST_F(EvaluatorTest, ACachedReaderSparesTheNeverStoredNodeItReads)
+{
+    NodeDecl stream = *registry.findNode("TestAdd");
+    stream.type = "TestAddStream";  // as GenerateCloud: stored nowhere, remade when read
+    stream.cacheOnDisk = false;
+    stream.cacheInMemory = false;
+    registry.addNode(stream);
+    test::TempDir dir;
+    const Graph g = parse(R"({"cloudgraph": 1, "nodes": {
+        "src": {"type": "TestSource"},
+        "stream": {"type": "TestAddStream", "inputs": {"values": "src.values"}},
+        "reader": {"type": "TestAdd", "inputs": {"values": "stream.values"}}}})");
+    EvaluatorOptions options;
+    options.diskCache = std::make_shared<DiskCache>(dir.path());
+    Evaluator first(registry, options);
+    const auto cooked = values(first.pull(g, "reader", 0), "values");
+    resetCookCounts();
+    EXPECT_EQ(values(first.pull(g, "reader", 0), "values"), cooked);  // from memory
+    EXPECT_EQ(cookCount("stream"), 0u);
+    Evaluator second(registry, options);
+    EXPECT_EQ(values(second.pull(g, "reader", 0), "values"), cooked);  // from disk
+    EXPECT_EQ(cookCount("stream"), 0u);
+    EXPECT_EQ(cookCount("src"), 0u);
+    EXPECT_EQ(cookCount("reader"), 0u);
+    ASSERT_EQ(second.report().records().size(), 1u);  // neither the stream nor its input
+    EXPECT_EQ(second.report().records()[0].status, CookStatus::DiskHit);
+}
+
 TEST_F(EvaluatorTest, IntegrateMatchesItsClosedForm)
 {
     Graph g = parse(R"({"cloudgraph": 1, "frames": {"start": 3, "end": 30}, "timeStep": 0.5,
