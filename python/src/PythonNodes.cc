@@ -110,6 +110,8 @@ ParamDecl paramFrom(const json& p, const std::string& where)
     d.role =
         enumFromName(p.at("role").get<std::string>(), {ParamRole::Plain, ParamRole::InputFile},
                      paramRoleName, at, "parameter role (a Python node's are plain or input_file)");
+    if (d.role == ParamRole::InputFile && d.type != ParamType::String)
+        throw InputError(at, "an input_file parameter must be a string (a file name)");
     if (!p.at("min").is_null()) d.min = p.at("min").get<double>();
     if (!p.at("max").is_null()) d.max = p.at("max").get<double>();
     d.units = p.at("units");

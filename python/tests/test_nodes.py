@@ -184,6 +184,27 @@ def test_a_taken_type_name_is_refused_unless_it_is_the_same_node(tmp_path):
                 return {"x": 1.0}
 
 
+def test_a_declaration_the_engine_cannot_take_is_refused():
+    with pytest.raises(cloudgraph.ParameterError, match="must be a string"):
+        @cloudgraph.node
+        class FileNumberH:
+            """An input file that is not a name."""
+            outputs = {"x": cloudgraph.Output("Float", "x")}
+            params = {"file": cloudgraph.Param(float, 1.0, role="input_file", doc="a file")}
+
+            def cook(self, inputs, params, context):
+                return {"x": 1.0}
+    with pytest.raises(cloudgraph.GraphError, match="Imag"):
+        @cloudgraph.node
+        class TypoH:
+            """A port of an unknown type."""
+            outputs = {"x": cloudgraph.Output("Imag", "x")}
+
+            def cook(self, inputs, params, context):
+                return {"x": 1.0}
+    assert "FileNumberH" not in cloudgraph.node_types() and "TypoH" not in cloudgraph.node_types()
+
+
 def test_an_input_file_s_content_keys_the_node(tmp_path):
     @cloudgraph.node
     class ReadNumberG:
