@@ -23,18 +23,12 @@ void bindImageFiles(py::module_& m)
         "write_image",
         [](const std::filesystem::path& path, const py::handle& image, double exposure,
            const std::string& toneMap, bool dither, std::uint64_t seed) {
-            if (!isImageFileName(path.string()))
-                throw py::value_error("'" + path.string() +
-                                      "' must end in .png (8-bit sRGB) or .exr (linear float)");
-            if (toneMap != "aces" && toneMap != "hable" && toneMap != "clamp")
-                throw py::value_error("tone_map '" + toneMap + "' is not aces, hable or clamp");
-            std::shared_ptr<const ImageData> data;
-            try {
-                data =
-                    std::static_pointer_cast<const ImageData>(fromPython(image, "Image", "image"));
-            } catch (const std::runtime_error& e) {
-                throw py::value_error(e.what());
-            }
+            // A bad array, tone curve or file name throws std::invalid_argument: a ValueError.
+            if (!isImageFileName(path.string()))  // before the work, not after it
+                throw std::invalid_argument(
+                    "'" + path.string() + "' must end in .png (8-bit sRGB) or .exr (linear float)");
+            const auto data =
+                std::static_pointer_cast<const ImageData>(fromPython(image, "Image", "image"));
             algo::DisplaySettings display;
             display.exposure = exposure;
             display.curve = algo::toneCurveFromName(toneMap);

@@ -208,7 +208,7 @@ namespace {
 
 [[noreturn]] void refuse(const std::string& what, const std::string& type, const std::string& why)
 {
-    throw std::runtime_error(what + " (" + type + "): " + why);
+    throw std::invalid_argument(what + " (" + type + "): " + why);
 }
 
 /// The value a wrapper class (Map2D, CloudParticles, FogVolume, Value) holds, or null.
@@ -248,9 +248,7 @@ DataPtr fromPython(const py::handle& value, const std::string& type, const std::
         return held;
     }
     if (type == "Float") {
-        if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value) &&
-            !py::hasattr(value, "__float__"))
-            refuse(what, type, "needs a number");
+        if (!py::hasattr(value, "__float__")) refuse(what, type, "needs a number");
         const double v = py::float_(py::reinterpret_borrow<py::object>(value));
         if (!std::isfinite(v)) refuse(what, type, "is not finite");
         return std::make_shared<FloatData>(v);

@@ -16,7 +16,7 @@ void bindValues(pybind11::module_& m);
 pybind11::object toPython(const DataPtr& value);
 /// A Python value as a value of port type `type` (the inverse of toPython for numbers,
 /// text, float arrays, images (height, width, 3 or 4) and cloudgraph.Map2D; other types only
-/// as the wrapper toPython made). Throws std::runtime_error naming `what` and the type.
+/// as the wrapper toPython made). Throws std::invalid_argument naming `what` and the type.
 DataPtr fromPython(const pybind11::handle& value, const std::string& type, const std::string& what);
 
 }  // namespace cg::python

@@ -2,7 +2,6 @@
 what they claim checked."""
 
 import importlib.util
-import os
 import subprocess
 import sys
 
@@ -19,8 +18,7 @@ def run_example(name, cwd, *args):
     """Runs an example script from a folder that has the repository's graphs/, as a user in
     the repository root would."""
     (cwd / "graphs").symlink_to(SOURCE / "graphs")
-    subprocess.run([sys.executable, str(EXAMPLES / name), *map(str, args)], cwd=cwd, check=True,
-                   env=dict(os.environ))
+    subprocess.run([sys.executable, str(EXAMPLES / name), *map(str, args)], cwd=cwd, check=True)
 
 
 def import_example(name):
@@ -41,6 +39,12 @@ def test_write_image_writes_what_write_image_nodes_write(tmp_path):
     g.cook("write.files", out=tmp_path / "node")
     cloudgraph.write_image(tmp_path / "py.png", g.cook("render.image"), seed=0)  # seed: the frame
     assert (tmp_path / "py.png").read_bytes() == (tmp_path / "node" / "cumulus_still.png").read_bytes()
+    image = g.cook("render.image")
+    for bad in (dict(path=tmp_path / "x.png", tone_map="filmic"), dict(path=tmp_path / "x.jpg"),
+                dict(path=tmp_path / "x.png", image=image[..., 0])):
+        with pytest.raises(ValueError):
+            cloudgraph.write_image(**{"image": image, **bad})
+    assert not (tmp_path / "x.png").exists() and not (tmp_path / "x.jpg").exists()
 
 
 def test_the_contact_sheet_holds_the_nine_renders(tmp_path):
