@@ -10,6 +10,7 @@
 
 #include "algo/render/ConjugateGradient.h"
 #include "algo/render/Phase.h"
+#include "algo/render/SurfaceGather.h"
 
 namespace cg::algo {
 
@@ -22,8 +23,15 @@ constexpr int kMaxIterations = 400;
 constexpr int kLimiterPasses = 3;  ///< solves of the sun with the flux limiter updated
 constexpr double kMostLimit = 4.0;  ///< the limiter's largest R, per cell width
 constexpr double kTolerance = 1e-3;  ///< relative residual at which the solve stops
-/// The same for the sun's solves that only update the limiter: R need not be exact.
+/// The same for the solves before the last (the flux limiter's, and the first solve of all
+/// lights, which only feeds the gather): R and the clouds' glow need not be exact.
 constexpr double kLimiterTolerance = 1e-2;
+/// The gather (SurfaceGather.h), our choices: 16 directions and blocks of 2^3 cells gave the
+/// same error against the path tracer as 32 to 96 directions on the cells themselves
+/// (docs/rendering.md) at a fifth of the cost; read one block out along each direction.
+constexpr int kGatherDirections = 16;
+constexpr int kGatherStride = 2;
+constexpr double kGatherClearance = 1.0;
 constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
@@ -172,11 +180,13 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     // high, where the cloud's shadow lies offset by the sun's slant. Its lit fraction is
     // the mean sun transmittance at ground points in cosine-weighted directions below the
     // cell (4 rings of equal weight, 6 azimuths each).
-    const auto litGroundSeen = [&](int ci, int cj, int ck) {
-        const openvdb::Vec3d centre = mFirstVoxel.asVec3d() +
-                                      openvdb::Vec3d(double(ci), double(cj), double(ck)) * c +
-                                      openvdb::Vec3d(0.5 * (c - 1));
-        const RenderVec3 world = mXform.indexToWorld(centre);
+    const auto centreOf = [&](const Cell& at) {
+        return mXform.indexToWorld(mFirstVoxel.asVec3d() +
+                                   openvdb::Vec3d(double(at[0]), double(at[1]), double(at[2])) * c +
+                                   openvdb::Vec3d(0.5 * (c - 1)));
+    };
+    const auto litGroundSeen = [&](const Cell& at) {
+        const RenderVec3 world = centreOf(at);
         const double height = std::max(0.0, world.z());
         double sum = 0.0;
         for (int ring = 0; ring < 4; ++ring) {
@@ -192,10 +202,55 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
         return sum / 24.0;
     };
 
-    // Every pass assembles the system with the current limiter and solves the sun; the last
-    // solves every light.
+    // The cloud's surface faces, row by row, and the fluence each lets in per unit light:
+    // first the open view, (1 ± n_z) / 2 of sky and ground; once the lights are solved, what
+    // the face sees through the clear air (SurfaceGather.h).
     const std::size_t n = cells.size();
-    std::vector<double> litBelow(n, -1.0);  // found on a row's first face that sees the ground
+    std::vector<std::size_t> firstFace(n + 1, 0);
+    std::vector<GatherFace> faces;
+    for (std::size_t row = 0; row < n; ++row) {
+        firstFace[row] = faces.size();
+        const Cell at = cellAt(cells[row]);
+        for (int f = 0; f < 6; ++f) {
+            Cell nb = at;
+            nb[f / 2] += f % 2 ? 1 : -1;
+            if (id[index(nb[0], nb[1], nb[2])] < 0) faces.push_back({nb, f});
+        }
+    }
+    firstFace[n] = faces.size();
+    RenderVec3 faceNormal[6];
+    for (int f = 0; f < 6; ++f) faceNormal[f] = normal[f / 2] * (f % 2 ? 1.0 : -1.0);
+    std::vector<double> litBelow(n, 0.0);
+    if (shadowedGround)
+        tbb::parallel_for(std::size_t(0), n, [&](std::size_t row) {
+            for (std::size_t f = firstFace[row]; f < firstFace[row + 1]; ++f)
+                if (faceNormal[faces[f].kind].z() < 1.0) {
+                    litBelow[row] = litGroundSeen(cellAt(cells[row]));
+                    break;
+                }
+        });
+    std::vector<std::array<double, kLights>> incoming(faces.size());
+    const auto letIn = [&](const std::vector<GatheredView>& views) {
+        tbb::parallel_for(std::size_t(0), n, [&](std::size_t row) {
+            for (std::size_t f = firstFace[row]; f < firstFace[row + 1]; ++f) {
+                const double up = 0.5 * (1.0 + faceNormal[faces[f].kind].z());
+                std::array<double, kLights>& in = incoming[f];
+                if (views.empty()) {
+                    in = {0.0, up, 1.0 - up, (1.0 - up) * litBelow[row]};
+                } else {
+                    const GatheredView& v = views[f];
+                    for (int l = 0; l < kLights; ++l)
+                        in[l] = up * v.emitted[0][l] + (1.0 - up) * v.emitted[1][l];
+                    in[Sky] += up * v.transmittance[0];
+                    in[Ground] += (1.0 - up) * v.transmittance[1];
+                    in[LitGround] += (1.0 - up) * v.transmittance[1] * litBelow[row];
+                }
+                for (double& x : in) x *= 4.0 * kPi;
+            }
+        });
+    };
+    letIn({});
+
     const auto assemble = [&](SparseSystem& A, std::vector<double> (&rhs)[kLights]) {
         A.diag.assign(n, 0.0);
         A.neighbour.resize(6 * n);
@@ -208,6 +263,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
             for (int f = 0; f < 6; ++f) A.neighbour[6 * row + f] = static_cast<std::int32_t>(row);
             double diag = sigmaT[cell] * (1.0 - medium.albedo);
             double drift = 0.0;  // outflow of 3 D Q1 through the cell's faces, per volume
+            std::size_t face = firstFace[row];
             for (int f = 0; f < 6; ++f) {
                 const int axis = f / 2, step = f % 2 ? 1 : -1;
                 Cell nb = at;
@@ -228,16 +284,11 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
                 const double k = 2.0 * Di / (ha * (ha + 4.0 * Di));
                 diag += k;
                 drift += 3.0 * Di * firstMoment(cell, axis) * step / (ha + 4.0 * Di);
-                const double up = 0.5 * (1.0 + step * normal[axis].z());
-                rhs[Sky][row] += k * 4.0 * kPi * up;
-                rhs[Ground][row] += k * 4.0 * kPi * (1.0 - up);
-                if (shadowedGround && up < 1.0) {
-                    if (litBelow[row] < 0.0) litBelow[row] = litGroundSeen(at[0], at[1], at[2]);
-                    rhs[LitGround][row] += k * 4.0 * kPi * (1.0 - up) * litBelow[row];
-                }
+                for (int l = 0; l < kLights; ++l) rhs[l][row] += k * incoming[face][l];
+                ++face;
             }
             A.diag[row] = diag;
-            rhs[Sun][row] = scatterOnce[cell] - drift;
+            rhs[Sun][row] += scatterOnce[cell] - drift;
         });
     };
     // Wilson's limiter from the sun's fluence, R = |∇φ| / φ by central differences (one-sided
@@ -269,21 +320,45 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     const double start[kLights] = {0.0, 2.0 * kPi, 2.0 * kPi, 0.0};
     std::vector<double> solved[kLights];
     for (int l = 0; l < kLights; ++l) solved[l].assign(n, start[l]);
-    for (int pass = 0; pass < kLimiterPasses; ++pass) {
-        const bool last = pass + 1 == kLimiterPasses;
+    // Solves the sun alone (`all` false) or every light with the current limiter and view.
+    const auto solve = [&](bool all, double tolerance) {
         SparseSystem A;
         std::vector<double> rhs[kLights];
         assemble(A, rhs);
         std::vector<SolveColumn> columns;
         for (int l = 0; l < kLights; ++l) {
-            if ((l == LitGround && !shadowedGround) || (!last && l != Sun)) continue;
+            if ((l == LitGround && !shadowedGround) || (!all && l != Sun)) continue;
             columns.push_back({&rhs[l], &solved[l]});
         }
         mIterations = std::max(
-            mIterations, solveConjugateGradient(A, columns, last ? kTolerance : kLimiterTolerance,
-                                                kMaxIterations, cancelled));
+            mIterations, solveConjugateGradient(A, columns, tolerance, kMaxIterations, cancelled));
+    };
+    for (int pass = 0; pass < kLimiterPasses; ++pass) {
+        const bool last = pass + 1 == kLimiterPasses;
+        solve(last, kLimiterTolerance);
         if (!last) limitFlux(solved[Sun]);
     }
+    // Then each face lets in what it sees through the clear air, the clouds' scattered light
+    // of this solve included (their source radiance J = ω φ / 4π), and every light is solved
+    // again, from where it stands.
+    GatherLattice lattice;
+    for (int a = 0; a < 3; ++a) lattice.n[a] = mN[a];
+    for (int f = 0; f < 6; ++f) lattice.normal[f] = faceNormal[f];
+    const RenderVec3 origin = mXform.worldToIndex(RenderVec3(0.0));
+    for (int a = 0; a < 3; ++a) {
+        RenderVec3 e(0.0);
+        e[a] = 1.0;
+        lattice.cellsPerMetre.setCol(a, (mXform.worldToIndex(e) - origin) / double(c));
+    }
+    lattice.extinction = sigmaT;
+    lattice.source.assign(dense, {0.0f, 0.0f, 0.0f, 0.0f});
+    for (std::size_t row = 0; row < n; ++row)
+        for (int l = 0; l < kLights; ++l)
+            lattice.source[cells[row]][l] =
+                static_cast<float>(medium.albedo * solved[l][row] / (4.0 * kPi));
+    letIn(gatherSurfaceLight(lattice, faces, kGatherDirections, kGatherClearance, kGatherStride,
+                             cancelled));
+    solve(true, kTolerance);
 
     // Dense fields; an empty cell next to the cloud takes the mean of its cloud neighbours,
     // so lookups at the cloud's soft edge are not pulled toward the outside's values.
