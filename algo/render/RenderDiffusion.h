@@ -13,7 +13,10 @@
 ///   - Sky, Ground, LitGround: no source; what enters through the cloud's surface by
 ///     Marshak's boundary condition from a unit radiance of the sky (over the upper
 ///     hemisphere), of the ground, and of the sun-lit ground in the cloud's own shadow. A
-///     surface face takes the sky and the ground in proportion to its view of each.
+///     surface face takes the sky and the ground in proportion to its view of each: first
+///     the open view, then, once every light is solved, what it sees through the clear air,
+///     the other clouds' scattered light of every light included (SurfaceGather.h), and
+///     every light is solved again.
 /// The renderer scatters the fluences and fluxes of all the lights together toward the camera
 /// (see RenderVolume.cc).
 ///
