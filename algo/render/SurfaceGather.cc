@@ -81,7 +81,7 @@ public:
                 out[0] += w;
                 continue;
             }
-            const float* cell = &mField[kLanes * index(at[0], at[1], at[2])];
+            const float* cell = &mField[kLanes * L.cell(at[0], at[1], at[2])];
             for (int l = 0; l < kLanes; ++l) out[l] += w * cell[l];
         }
     }
@@ -92,11 +92,6 @@ private:
     bool inside(int i, int j, int k) const
     {
         return i >= 0 && j >= 0 && k >= 0 && i < L.n[0] && j < L.n[1] && k < L.n[2];
-    }
-    std::size_t index(int i, int j, int k) const
-    {
-        return static_cast<std::size_t>(i) * mStride[0] + static_cast<std::size_t>(j) * mStride[1] +
-               static_cast<std::size_t>(k);
     }
     /// (i, j, k) along the sweep's axes (a, b, c).
     std::size_t swept(int i, int j, int k) const
@@ -162,9 +157,8 @@ GatherLattice coarsened(const GatherLattice& fine, int stride)
     for (int a = 0; a < 3; ++a) out.n[a] = (fine.n[a] + stride - 1) / stride;
     out.cellsPerMetre = fine.cellsPerMetre * (1.0 / stride);
     for (int f = 0; f < 6; ++f) out.normal[f] = fine.normal[f];
-    const std::size_t cells = static_cast<std::size_t>(out.n[0]) * out.n[1] * out.n[2];
-    out.extinction.assign(cells, 0.0);
-    out.source.assign(cells, {0.0f, 0.0f, 0.0f, 0.0f});
+    out.extinction.assign(out.cells(), 0.0);
+    out.source.assign(out.cells(), {0.0f, 0.0f, 0.0f, 0.0f});
     const double perCell = 1.0 / (double(stride) * stride * stride);
     tbb::parallel_for(0, out.n[0], [&](int I) {
         for (int J = 0; J < out.n[1]; ++J)
@@ -173,13 +167,12 @@ GatherLattice coarsened(const GatherLattice& fine, int stride)
                 for (int i = I * stride; i < std::min(fine.n[0], (I + 1) * stride); ++i)
                     for (int j = J * stride; j < std::min(fine.n[1], (J + 1) * stride); ++j)
                         for (int k = K * stride; k < std::min(fine.n[2], (K + 1) * stride); ++k) {
-                            const std::size_t c =
-                                (static_cast<std::size_t>(i) * fine.n[1] + j) * fine.n[2] + k;
+                            const std::size_t c = fine.cell(i, j, k);
                             sigma += fine.extinction[c];
                             for (int l = 0; l < kUnits; ++l)
                                 glow[l] += fine.extinction[c] * fine.source[c][l];
                         }
-                const std::size_t c = (static_cast<std::size_t>(I) * out.n[1] + J) * out.n[2] + K;
+                const std::size_t c = out.cell(I, J, K);
                 out.extinction[c] = sigma * perCell;
                 if (sigma > 0.0)
                     for (int l = 0; l < kUnits; ++l)
@@ -195,9 +188,7 @@ std::vector<GatheredView> gatherOn(const GatherLattice& lattice,
                                    double clearance, int stride,
                                    const std::function<bool()>& cancelled)
 {
-    const std::size_t cells = static_cast<std::size_t>(lattice.n[0]) *
-                              static_cast<std::size_t>(lattice.n[1]) *
-                              static_cast<std::size_t>(lattice.n[2]);
+    const std::size_t cells = lattice.cells();
     if (lattice.extinction.size() != cells || lattice.source.size() != cells)
         throw std::invalid_argument("gather lattice: fields do not match its size");
     const std::vector<RenderVec3> dirs = fibonacciSphere(std::max(2, directions));

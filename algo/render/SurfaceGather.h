@@ -35,6 +35,15 @@ struct GatherLattice {
     /// World direction (per metre) to cells: a displacement d (m) moves cellsPerMetre * d.
     openvdb::Mat3d cellsPerMetre = openvdb::Mat3d::identity();
     RenderVec3 normal[6];  ///< world unit outward normal of face kind f = 2 axis + (side > 0)
+
+    std::size_t cell(int i, int j, int k) const
+    {
+        return (static_cast<std::size_t>(i) * static_cast<std::size_t>(n[1]) +
+                static_cast<std::size_t>(j)) *
+                   static_cast<std::size_t>(n[2]) +
+               static_cast<std::size_t>(k);
+    }
+    std::size_t cells() const { return cell(n[0], 0, 0); }
 };
 
 /// A surface face: the clear-air cell it opens onto and its kind (2 axis + (side > 0)).

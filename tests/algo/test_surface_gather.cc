@@ -18,20 +18,14 @@ GatherLattice clearLattice(int n)
 {
     GatherLattice L;
     for (int a = 0; a < 3; ++a) L.n[a] = n;
-    const std::size_t cells = std::size_t(n) * n * n;
-    L.extinction.assign(cells, 0.0);
-    L.source.assign(cells, {0.0f, 0.0f, 0.0f, 0.0f});
+    L.extinction.assign(L.cells(), 0.0);
+    L.source.assign(L.cells(), {0.0f, 0.0f, 0.0f, 0.0f});
     L.cellsPerMetre = openvdb::Mat3d::identity() * 0.1;
     for (int f = 0; f < 6; ++f) {
         L.normal[f] = algo::RenderVec3(0.0);
         L.normal[f][f / 2] = f % 2 ? 1.0 : -1.0;
     }
     return L;
-}
-
-std::size_t at(const GatherLattice& L, int i, int j, int k)
-{
-    return (std::size_t(i) * L.n[1] + j) * L.n[2] + k;
 }
 
 TEST(SurfaceGather, ClearAirSeesTheOpenSkyAndNoCloudLight)
@@ -77,7 +71,7 @@ TEST(SurfaceGather, ASlabOverheadShadesTheSkyByItsOpticalDepth)
     GatherLattice L = clearLattice(40);
     for (int i = 0; i < 40; ++i)
         for (int j = 0; j < 40; ++j)
-            for (int k = 30; k < 32; ++k) L.extinction[at(L, i, j, k)] = 0.05;
+            for (int k = 30; k < 32; ++k) L.extinction[L.cell(i, j, k)] = 0.05;
     const std::vector<GatherFace> faces = {{{20, 20, 27}, 5}, {{20, 20, 27}, 1}};
     const std::vector<GatheredView> v = algo::gatherSurfaceLight(L, faces, 64, 1.0, 1);
     // Looking up: the cosine-weighted mean of exp(−1/μ) over a hemisphere is 2 E_3(1) = 0.219
