@@ -1,6 +1,26 @@
 #include "algo/render/DiffuseLight.h"
 
+#include <algorithm>
+
 namespace cg::algo {
+
+namespace {
+
+constexpr double kMaxFluxRatio = 0.95;  ///< |F| / φ kept below 1, a fully collimated beam
+
+}  // namespace
+
+double diffuseScattered(double phi, const RenderVec3& flux, const RenderVec3& toward,
+                        const DeltaEddington& split)
+{
+    if (!(phi > 0.0)) return 0.0;
+    const double f = flux.length();
+    if (!(f > 0.0)) return phi * kInvFourPi;
+    const double k = std::min(f / phi, kMaxFluxRatio);
+    const double cosine = flux.dot(toward) / f;
+    return phi * (split.peak * henyeyGreenstein(cosine, k) +
+                  (1.0 - split.peak) * henyeyGreenstein(cosine, split.g * k));
+}
 
 DiffuseLight::Sample DiffuseLight::at(const RenderVec3& p) const
 {
@@ -53,6 +73,16 @@ DiffuseLight::Sample DiffuseLight::at(const RenderVec3& p) const
         out.flux[c] = (mGradientToWorld * (grad / double(mVoxels))) * -D + drift * mSun[c];
     }
     return out;
+}
+
+RenderVec3 DiffuseLight::groundAmbient(const RenderVec3& p, const RenderVec3& open) const
+{
+    std::size_t at[4];
+    double weight[4];
+    if (mGroundRadiance.empty() || !mGround.corners(p, at, weight)) return open;
+    RenderVec3 sum(0.0);
+    for (int c = 0; c < 4; ++c) sum += mGroundRadiance[at[c]] * weight[c];
+    return sum;
 }
 
 }  // namespace cg::algo

@@ -10,9 +10,23 @@
 
 #include <openvdb/openvdb.h>
 
+#include "algo/render/GroundGrid.h"
+#include "algo/render/Phase.h"
 #include "algo/render/RenderSettings.h"
 
 namespace cg::algo {
+
+/// Radiance that diffuse light of fluence φ and net flux F scatters toward `toward` (a unit
+/// vector), per unit scattering. The radiance is taken as a Henyey-Greenstein lobe about F
+/// with F's mean cosine k = |F| / φ: it has the fluence and flux the diffusion gives, and is
+/// never negative (the P1 radiance (φ + 3 F·ω) / 4π is, wherever |F| > φ / 3). It scatters
+/// through the phase function's δ-Eddington split, as the diffusion does: the peak f passes
+/// it on in its own direction, HG(k), and the rest, HG(g'), turns it into HG(g' k) (HG lobes
+/// convolve by multiplying their asymmetries). A sharp lobe narrowed by k instead would stay
+/// so peaked (Mie's g = 0.995) that F's direction, which differs per colour channel, would
+/// decide everything.
+double diffuseScattered(double phi, const RenderVec3& flux, const RenderVec3& toward,
+                        const DeltaEddington& split);
 
 class DiffuseLight {
 public:
@@ -29,6 +43,11 @@ public:
     /// gradient, −D ∇φ, plus the sun's forward drift); outside the lattice, the fluence
     /// around the cloud and no flux.
     Sample at(const RenderVec3& p) const;
+
+    /// The ground's radiance at p (on z = 0) from all but the direct sun: its sky light,
+    /// dimmed by the clouds above it, and the light they scatter down to it, bilinear on
+    /// the diffusion's map of the ground; `open` beyond it (or without one).
+    RenderVec3 groundAmbient(const RenderVec3& p, const RenderVec3& open) const;
 
 private:
     friend class RenderDiffusion;
@@ -57,6 +76,8 @@ private:
     int mVoxels = 1;             ///< cell edge, voxels
     int mN[3] = {0, 0, 0};
     std::vector<Cell> mCells;  ///< dense
+    GroundGrid mGround;
+    std::vector<RenderVec3> mGroundRadiance;  ///< per point of mGround
 };
 
 }  // namespace cg::algo

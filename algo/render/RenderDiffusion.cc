@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -33,11 +34,31 @@ constexpr int kGatherDirections = 16;
 constexpr int kGatherStride = 2;
 constexpr double kGatherClearance = 1.0;
 constexpr double kPi = 3.14159265358979323846;
+/// The ground's map (our choice): at most this many points a side, no closer than the
+/// gather's blocks.
+constexpr int kGroundPoints = 256;
+
+/// The map of the ground under the world box `lo`..`hi`: its footprint widened on each side
+/// by the box's top height, as far as its clouds' shade and glow reach the ground at 45°.
+GroundGrid groundMapUnder(const RenderVec3& lo, const RenderVec3& hi, double spacing)
+{
+    const double margin = std::max(0.0, hi.z());
+    GroundGrid map;
+    double extent = 0.0;
+    for (int a = 0; a < 2; ++a) {
+        map.min[a] = lo[a] - margin;
+        extent = std::max(extent, hi[a] + margin - map.min[a]);
+    }
+    map.spacing = std::max(spacing, extent / (kGroundPoints - 1));
+    for (int a = 0; a < 2; ++a)
+        map.n[a] = 2 + static_cast<int>(std::ceil((hi[a] + margin - map.min[a]) / map.spacing));
+    return map;
+}
 
 }  // namespace
 
 RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLightMap& sunMap,
-                                 const RenderMedium& medium, int cellVoxels, bool shadowedGround,
+                                 const RenderMedium& medium, int cellVoxels, GroundPlane ground,
                                  const std::function<bool()>& cancelled)
     : mXform(grid.transform())
 {
@@ -194,9 +215,9 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
             const double reach = height * std::sqrt(sin2 / (1.0 - sin2));
             for (int k = 0; k < 6; ++k) {
                 const double phi = (k + 0.5 * (ring % 2)) * (kPi / 3.0);
-                const RenderVec3 ground(world.x() + reach * std::cos(phi),
-                                        world.y() + reach * std::sin(phi), 0.0);
-                sum += std::exp(-sunMap.opticalDepth(ground));
+                const RenderVec3 point(world.x() + reach * std::cos(phi),
+                                       world.y() + reach * std::sin(phi), 0.0);
+                sum += std::exp(-peakless * sunMap.opticalDepth(point));
             }
         }
         return sum / 24.0;
@@ -221,7 +242,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     RenderVec3 faceNormal[6];
     for (int f = 0; f < 6; ++f) faceNormal[f] = normal[f / 2] * (f % 2 ? 1.0 : -1.0);
     std::vector<double> litBelow(n, 0.0);
-    if (shadowedGround)
+    if (ground.sunlit)
         tbb::parallel_for(std::size_t(0), n, [&](std::size_t row) {
             for (std::size_t f = firstFace[row]; f < firstFace[row + 1]; ++f)
                 if (faceNormal[faces[f].kind].z() < 1.0) {
@@ -231,19 +252,30 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
         });
     std::vector<std::array<double, kLights>> incoming(faces.size());
     const auto letIn = [&](const std::vector<GatheredView>& views) {
+        static_assert(kGathered == GatherLattice::kUnits);
         tbb::parallel_for(std::size_t(0), n, [&](std::size_t row) {
             for (std::size_t f = firstFace[row]; f < firstFace[row + 1]; ++f) {
                 const double up = 0.5 * (1.0 + faceNormal[faces[f].kind].z());
                 std::array<double, kLights>& in = incoming[f];
+                in.fill(0.0);
                 if (views.empty()) {
-                    in = {0.0, up, 1.0 - up, (1.0 - up) * litBelow[row]};
+                    in[Sky] = up;
+                    in[Ground] = 1.0 - up;
+                    in[LitGround] = (1.0 - up) * litBelow[row];
                 } else {
                     const GatheredView& v = views[f];
-                    for (int l = 0; l < kLights; ++l)
+                    for (int l = 0; l < kGathered; ++l)
                         in[l] = up * v.emitted[0][l] + (1.0 - up) * v.emitted[1][l];
                     in[Sky] += up * v.transmittance[0];
-                    in[Ground] += (1.0 - up) * v.transmittance[1];
-                    in[LitGround] += (1.0 - up) * v.transmittance[1] * litBelow[row];
+                    if (ground.present) {
+                        const double* g = v.ground;
+                        in[Ground] += (1.0 - up) * g[GatheredView::SkyLit];
+                        in[LitGround] += (1.0 - up) * g[GatheredView::SunLit];
+                        in[SunGlowGround] += (1.0 - up) * g[GatheredView::Glow + Sun];
+                        in[SkyGlowGround] += (1.0 - up) * g[GatheredView::Glow + Sky];
+                    } else {
+                        in[Ground] += (1.0 - up) * v.transmittance[1];
+                    }
                 }
                 for (double& x : in) x *= 4.0 * kPi;
             }
@@ -293,41 +325,46 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     };
     // Wilson's limiter from the sun's fluence, R = |∇φ| / φ by central differences (one-sided
     // at the cloud's edge), at most 4 per cell width so that no cell is cut off.
+    // ∇φ (world, 1/m) by central differences, one-sided at the cloud's edge.
+    const auto gradientOf = [&](const std::vector<double>& phi, std::size_t row) {
+        const Cell at = cellAt(cells[row]);
+        openvdb::Vec3d perCell(0.0);
+        for (int axis = 0; axis < 3; ++axis) {
+            double value[2] = {phi[row], phi[row]};
+            int span = 0;
+            for (int side = 0; side < 2; ++side) {
+                Cell nb = at;
+                nb[axis] += side ? 1 : -1;
+                const std::int32_t other = id[index(nb[0], nb[1], nb[2])];
+                if (other < 0) continue;
+                value[side] = phi[static_cast<std::size_t>(other)];
+                ++span;
+            }
+            perCell[axis] = span ? (value[1] - value[0]) / span : 0.0;
+        }
+        return mGradientToWorld * (perCell / double(c));
+    };
     const auto limitFlux = [&](const std::vector<double>& phi) {
         tbb::parallel_for(std::size_t(0), n, [&](std::size_t row) {
-            const Cell at = cellAt(cells[row]);
-            double grad2 = 0.0;
-            for (int axis = 0; axis < 3; ++axis) {
-                double value[2] = {phi[row], phi[row]};
-                int span = 0;
-                for (int side = 0; side < 2; ++side) {
-                    Cell nb = at;
-                    nb[axis] += side ? 1 : -1;
-                    const std::int32_t other = id[index(nb[0], nb[1], nb[2])];
-                    if (other < 0) continue;
-                    value[side] = phi[static_cast<std::size_t>(other)];
-                    ++span;
-                }
-                const double g = span ? (value[1] - value[0]) / (span * h[axis]) : 0.0;
-                grad2 += g * g;
-            }
             const double most = kMostLimit / mH;
-            limiter[row] = phi[row] > 0.0 ? std::min(std::sqrt(grad2) / phi[row], most) : most;
+            const double grad = gradientOf(phi, row).length();
+            limiter[row] = phi[row] > 0.0 ? std::min(grad / phi[row], most) : most;
         });
     };
     // Start from what a cell would hold alone in its surroundings: 2π per unit radiance of
     // the sky or the ground.
-    const double start[kLights] = {0.0, 2.0 * kPi, 2.0 * kPi, 0.0};
+    const double start[kLights] = {0.0, 2.0 * kPi, 2.0 * kPi, 0.0, 0.0, 0.0};
     std::vector<double> solved[kLights];
     for (int l = 0; l < kLights; ++l) solved[l].assign(n, start[l]);
-    // Solves the sun alone (`all` false) or every light with the current limiter and view.
-    const auto solve = [&](bool all, double tolerance) {
+    // Solves the first `lights` lights with the current limiter and view (those there are).
+    const auto solve = [&](int lights, double tolerance) {
         SparseSystem A;
         std::vector<double> rhs[kLights];
         assemble(A, rhs);
         std::vector<SolveColumn> columns;
-        for (int l = 0; l < kLights; ++l) {
-            if ((l == LitGround && !shadowedGround) || (!all && l != Sun)) continue;
+        for (int l = 0; l < lights; ++l) {
+            if (l == LitGround && !ground.sunlit) continue;
+            if ((l == SunGlowGround || l == SkyGlowGround) && !ground.present) continue;
             columns.push_back({&rhs[l], &solved[l]});
         }
         mIterations = std::max(
@@ -335,7 +372,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     };
     for (int pass = 0; pass < kLimiterPasses; ++pass) {
         const bool last = pass + 1 == kLimiterPasses;
-        solve(last, kLimiterTolerance);
+        solve(last ? kGathered : 1, kLimiterTolerance);
         if (!last) limitFlux(solved[Sun]);
     }
     // Then each face lets in what it sees through the clear air, the clouds' scattered light
@@ -345,20 +382,61 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     for (int a = 0; a < 3; ++a) lattice.n[a] = mN[a];
     for (int f = 0; f < 6; ++f) lattice.normal[f] = faceNormal[f];
     const RenderVec3 origin = mXform.worldToIndex(RenderVec3(0.0));
+    lattice.origin = centreOf({0, 0, 0});
     for (int a = 0; a < 3; ++a) {
         RenderVec3 e(0.0);
         e[a] = 1.0;
         lattice.cellsPerMetre.setCol(a, (mXform.worldToIndex(e) - origin) / double(c));
     }
-    lattice.extinction = sigmaT;
-    lattice.source.assign(dense, {0.0f, 0.0f, 0.0f, 0.0f});
-    for (std::size_t row = 0; row < n; ++row)
-        for (int l = 0; l < kLights; ++l)
-            lattice.source[cells[row]][l] =
-                static_cast<float>(medium.albedo * solved[l][row] / (4.0 * kPi));
-    letIn(gatherSurfaceLight(lattice, faces, kGatherDirections, kGatherClearance, kGatherStride,
-                             cancelled));
-    solve(true, kTolerance);
+    lattice.albedo = medium.albedo;
+    lattice.split = split;
+    lattice.travel = travel;
+    lattice.clouds.resize(n);
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t row) {
+        const std::size_t cell = cells[row];
+        GatherLattice::Cloud& cloud = lattice.clouds[row];
+        cloud.cell = cell;
+        cloud.extinction = static_cast<float>(sigmaT[cell]);
+        cloud.beam = static_cast<float>(scatterOnce[cell] / sigmaT[cell]);
+        const double D = diffusion(cell);
+        for (int l = 0; l < kGathered; ++l) {
+            cloud.phi[l] = static_cast<float>(solved[l][row]);
+            RenderVec3 flux = gradientOf(solved[l], row) * -D;
+            if (l == Sun)
+                for (int a = 0; a < 3; ++a) flux[a] += 3.0 * D * firstMoment(cell, a);
+            for (int a = 0; a < 3; ++a) cloud.flux[l][a] = static_cast<float>(flux[a]);
+        }
+    });
+    GatherGround seen;
+    seen.present = ground.present;
+    if (ground.present) {
+        RenderVec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+        for (int corner = 0; corner < 8; ++corner) {
+            const RenderVec3 p = centreOf({corner & 1 ? mN[0] - 1 : 0, corner & 2 ? mN[1] - 1 : 0,
+                                           corner & 4 ? mN[2] - 1 : 0});
+            lo = openvdb::math::minComponent(lo, p);
+            hi = openvdb::math::maxComponent(hi, p);
+        }
+        seen.map = groundMapUnder(lo, hi, mH * kGatherStride);
+        if (ground.sunlit)
+            seen.sunlit = [&](const RenderVec3& p) {
+                return std::exp(-peakless * sunMap.opticalDepth(p));
+            };
+    }
+    const Gathered gathered = gatherSurfaceLight(lattice, faces, seen, kGatherDirections,
+                                                 kGatherClearance, kGatherStride, cancelled);
+    letIn(gathered.faces);
+    solve(kLights, kTolerance);
+    if (ground.present) {
+        mGround = seen.map;
+        mGroundLight.assign(gathered.ground.size(), {});
+        for (std::size_t p = 0; p < gathered.ground.size(); ++p) {
+            const GroundView& v = gathered.ground[p];
+            mGroundLight[p][Ground] = static_cast<float>(v.sky);
+            mGroundLight[p][SunGlowGround] = static_cast<float>(v.emitted[Sun]);
+            mGroundLight[p][SkyGlowGround] = static_cast<float>(v.emitted[Sky]);
+        }
+    }
 
     // Dense fields; an empty cell next to the cloud takes the mean of its cloud neighbours,
     // so lookups at the cloud's soft edge are not pulled toward the outside's values.
@@ -377,7 +455,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
             for (int k = 0; k < mN[2]; ++k) {
                 const std::size_t cell = index(i, j, k);
                 if (id[cell] >= 0) continue;
-                double sum[kLights] = {0.0, 0.0, 0.0, 0.0}, d = 0.0;
+                double sum[kLights] = {}, d = 0.0;
                 int count = 0;
                 for (int f = 0; f < 6; ++f) {
                     int nb[3] = {i, j, k};
@@ -425,6 +503,11 @@ DiffuseLight RenderDiffusion::coloured(const RenderVec3 (&radiance)[kLights]) co
         for (int a = 0; a < 3; ++a) lane[DiffuseLight::Cell::DriftX + a] = mDrift[3 * i + a];
         lane[DiffuseLight::Cell::kLanes - 1] = 0.0f;
     });
+    light.mGround = mGround;
+    light.mGroundRadiance.assign(mGroundLight.size(), RenderVec3(0.0));
+    for (std::size_t p = 0; p < mGroundLight.size(); ++p)
+        for (int l = 0; l < kLights; ++l)
+            light.mGroundRadiance[p] += radiance[l] * double(mGroundLight[p][l]);
     return light;
 }
 

@@ -16,7 +16,12 @@
 ///     surface face takes the sky and the ground in proportion to its view of each: first
 ///     the open view, then, once every light is solved, what it sees through the clear air,
 ///     the other clouds' scattered light of every light included (SurfaceGather.h), and
-///     every light is solved again.
+///     every light is solved again;
+///   - SunGlowGround, SkyGlowGround (with a ground, in that second solve only): the ground
+///     lit by the clouds' scattered sun and sky light, which the ground's albedo colours.
+///     With them, the ground a face sees is shaded from the sky by the clouds above it and
+///     lit by them, point by point; the same map of the ground lights the ground the camera
+///     sees (groundAmbient).
 /// The renderer scatters the fluences and fluxes of all the lights together toward the camera
 /// (see RenderVolume.cc).
 ///
@@ -27,6 +32,7 @@
 /// preconditioner; its sums are taken in fixed blocks, so the result does not depend on the
 /// thread count. See docs/rendering.md.
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <vector>
@@ -34,6 +40,7 @@
 #include <openvdb/openvdb.h>
 
 #include "algo/render/DiffuseLight.h"
+#include "algo/render/GroundGrid.h"
 #include "algo/render/RenderLightMap.h"
 #include "algo/render/RenderSettings.h"
 
@@ -42,22 +49,34 @@ namespace cg::algo {
 class RenderDiffusion {
 public:
     /// The lights solved for, each per unit: sun irradiance; radiance of the sky, of the
-    /// ground, and of the sun-lit ground (which the cloud's shadow dims).
-    enum Light { Sun, Sky, Ground, LitGround, kLights };
+    /// ground under the open sky (or of the horizon, without a ground), of the sun-lit ground
+    /// (which the cloud's shadow dims); radiance of the clouds' sun and sky light scattered
+    /// back to the ground, which the ground's albedo colours. The first kGathered are those
+    /// whose scattered light the gather carries.
+    enum Light { Sun, Sky, Ground, LitGround, SunGlowGround, SkyGlowGround, kLights };
+    static constexpr int kGathered = LitGround + 1;
+
+    /// The ground plane z = 0: whether there is one (the lower hemisphere is otherwise of
+    /// uniform radiance, the Ground light), and whether the sun lights it.
+    struct GroundPlane {
+        bool present = false;
+        bool sunlit = false;
+    };
 
     /// No cloud: what lies around it everywhere.
     RenderDiffusion() = default;
 
-    /// Solves every light for `grid` (linear transform) lit along sunMap's direction; the
-    /// ground lies at z = 0 and `shadowedGround` says whether the sun lights it (LitGround
-    /// stays 0 otherwise). Stops early once `cancelled` returns true.
+    /// Solves every light for `grid` (linear transform) lit along sunMap's direction (LitGround
+    /// stays 0 where the sun does not light the ground, and the glow lights without one).
+    /// Stops early once `cancelled` returns true.
     RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLightMap& sunMap,
-                    const RenderMedium& medium, int cellVoxels, bool shadowedGround,
+                    const RenderMedium& medium, int cellVoxels, GroundPlane ground,
                     const std::function<bool()>& cancelled = {});
 
     /// Fluence per unit light, outside the cloud: no scattered sun light, and half the
-    /// sphere's 4π for each of the sky and the ground.
-    static constexpr double kOutside[kLights] = {0.0, 6.283185307179586, 6.283185307179586, 0.0};
+    /// sphere's 4π for each of the sky and the ground (the open ground's).
+    static constexpr double kOutside[kLights] = {
+        0.0, 6.283185307179586, 6.283185307179586, 0.0, 0.0, 0.0};
 
     /// The lights together, light l of colour radiance[l] (the sun's in irradiance).
     DiffuseLight coloured(const RenderVec3 (&radiance)[kLights]) const;
@@ -85,6 +104,10 @@ private:
     std::vector<float> mPhi[kLights];  ///< per light, per cell, dense
     std::vector<float> mD;          ///< diffusion coefficient per cell, m
     std::vector<float> mDrift;      ///< 3 D Q1 per cell (x, y, z): the sun part's flux source
+    /// With a ground: the map of its points, and per point and light the ground's radiance
+    /// per unit of that light (its sky light and the clouds' glow; no direct sun).
+    GroundGrid mGround;
+    std::vector<std::array<float, kLights>> mGroundLight;
     int mIterations = 0;
 };
 

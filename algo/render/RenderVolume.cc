@@ -24,7 +24,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxOctaves = 16;
-constexpr double kMaxFluxRatio = 0.95;  ///< |F| / φ kept below 1, a fully collimated beam
 
 using Span = RenderOccupancy::Span;
 
@@ -126,13 +125,18 @@ struct Frame {
         if (useDiffusion) {
             phaseTwice.emplace(phase);
             // What each light's unit stands for: the sun's irradiance; the radiance of the
-            // sky's mean above, of the ground (or the horizon without one), of the sun-lit
-            // ground's sun part.
+            // sky's mean above, of the open ground (or the horizon without one), of the
+            // sun-lit ground's sun part; the ground's albedo, which colours the clouds' glow
+            // of the sun and of the sky on it.
             const RenderVec3 radiance[RenderDiffusion::kLights] = {
-                sunIrradiance, skyUp, s.ground.enabled ? groundSky : below,
-                litGround ? s.ground.albedo * sunIrradiance * (groundSun / kPi) : RenderVec3(0.0)};
-            diffuse = RenderDiffusion(g, sunMap, s.medium, s.multiScatter.cellVoxels, litGround,
-                                      cancelled)
+                sunIrradiance,
+                skyUp,
+                s.ground.enabled ? groundSky : below,
+                litGround ? s.ground.albedo * sunIrradiance * (groundSun / kPi) : RenderVec3(0.0),
+                s.ground.albedo * sunIrradiance,
+                s.ground.albedo * skyUp};
+            diffuse = RenderDiffusion(g, sunMap, s.medium, s.multiScatter.cellVoxels,
+                                      {s.ground.enabled, litGround}, cancelled)
                           .coloured(radiance);
         }
         if (needSky)
@@ -141,34 +145,19 @@ struct Frame {
                                     std::size_t(4) << 20, cancelled);
     }
 
-    /// Diffuse light of fluence φ and net flux F scattered toward the camera (ω_o = −dir), per
-    /// unit scattering. The radiance is taken as a Henyey-Greenstein lobe about F with F's
-    /// mean cosine k = |F| / φ: it has the fluence and flux the diffusion gives, and is never
-    /// negative (the P1 radiance (φ + 3 F·ω) / 4π is, wherever |F| > φ / 3). It scatters
-    /// through the phase function's δ-Eddington split, as the diffusion does: the peak f
-    /// passes it on in its own direction, HG(k), and the rest, HG(g'), turns it into
-    /// HG(g' k) (HG lobes convolve by multiplying their asymmetries). A sharp lobe narrowed by
-    /// k instead would stay so peaked (Mie's g = 0.995) that F's direction, which differs per
-    /// colour channel, would decide everything.
-    double scatteredTowardCamera(double phi, const RenderVec3& flux, const RenderVec3& dir) const
-    {
-        if (!(phi > 0.0)) return 0.0;
-        const double f = flux.length();
-        if (!(f > 0.0)) return phi * kInvFourPi;
-        const double k = std::min(f / phi, kMaxFluxRatio);
-        const double cosToCamera = -flux.dot(dir) / f;
-        return phi * (split.peak * henyeyGreenstein(cosToCamera, k) +
-                      (1.0 - split.peak) * henyeyGreenstein(cosToCamera, split.g * k));
-    }
-
     /// Radiance behind the volume: the lit, shadowed, hazed ground, or the sky.
     RenderVec3 background(const RenderVec3& dir, double tGround) const
     {
         if (!std::isfinite(tGround)) return skyRadiance(s.sky, dir);
         const RenderVec3 p = s.camera.position + dir * tGround;
-        const double sunT = std::exp(-sunMap.opticalDepth(p));
-        return hazedGround(
-            s, s.ground.albedo * sunIrradiance * (groundSun * sunT / kPi) + groundSky, tGround);
+        // The sun light scattered into the phase function's forward peak on the way reaches
+        // the ground as if unscattered (δ-Eddington): a cloud's shadow is lighter at its thin
+        // edges than its optical depth alone says.
+        const double sunT = std::exp(-peakless * sunMap.opticalDepth(p));
+        return hazedGround(s,
+                           s.ground.albedo * sunIrradiance * (groundSun * sunT / kPi) +
+                               diffuse.groundAmbient(p, groundSky),
+                           tGround);
     }
 
     void shade(int px, int py, TrilinearDensity& sampler, std::vector<Span>& spans, float* out,
@@ -213,7 +202,8 @@ struct Frame {
                              sunIrradiance * (sunPhase[0] * sunT + peakPhase * peaked);
                          const DiffuseLight::Sample field = diffuse.at(p);
                          for (int c = 0; c < 3; ++c)
-                             source[c] += scatteredTowardCamera(field.phi[c], field.flux[c], dir);
+                             source[c] +=
+                                 diffuseScattered(field.phi[c], field.flux[c], -dir, split);
                          L += source * (T * albedo * (1.0 - segT));
                          T *= segT;
                          return T >= minT;

@@ -1,10 +1,14 @@
 #include "algo/render/SurfaceGather.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <tbb/parallel_for.h>
+
+#include "algo/render/DiffuseLight.h"
 
 namespace cg::algo {
 
@@ -28,9 +32,32 @@ std::vector<RenderVec3> fibonacciSphere(int count)
     return out;
 }
 
+/// The lattice the sweeps run on, in blocks of stride^3 cells of the gather's lattice:
+/// dense, each block with the extinction-weighted means of its cloud cells.
+struct Blocks {
+    static constexpr int kMoments = kUnits * 4;  ///< per unit: φ, then F (x, y, z)
+    int n[3] = {0, 0, 0};
+    openvdb::Mat3d cellsPerMetre = openvdb::Mat3d::identity();
+    RenderVec3 origin{0.0};
+    std::vector<double> extinction;  ///< mean σ_t, 1/m (0: clear air)
+    std::vector<float> beam;
+    std::vector<std::array<float, kMoments>> moments;
+    /// J per unit light toward the current sweep's −v, radiance.
+    std::vector<std::array<float, kUnits>> source;
+
+    std::size_t cell(int i, int j, int k) const
+    {
+        return (static_cast<std::size_t>(i) * static_cast<std::size_t>(n[1]) +
+                static_cast<std::size_t>(j)) *
+                   static_cast<std::size_t>(n[2]) +
+               static_cast<std::size_t>(k);
+    }
+    std::size_t cells() const { return cell(n[0], 0, 0); }
+};
+
 class Sweep {
 public:
-    Sweep(const GatherLattice& lattice, std::vector<float>& field) : L(lattice), mField(field)
+    Sweep(const Blocks& lattice, std::vector<float>& field) : L(lattice), mField(field)
     {
         mStride[0] = static_cast<std::size_t>(L.n[1]) * static_cast<std::size_t>(L.n[2]);
         mStride[1] = static_cast<std::size_t>(L.n[2]);
@@ -142,7 +169,7 @@ private:
         }
     }
 
-    const GatherLattice& L;
+    const Blocks& L;
     std::vector<float>& mField;
     std::size_t mStride[3];
     int mA = 0, mB = 1, mC = 2;
@@ -150,81 +177,194 @@ private:
     double mShift[2] = {0.0, 0.0};  ///< cells moved across (b, c) from one slice to the next
 };
 
-/// The lattice in blocks of stride^3 cells: mean extinction, extinction-weighted source.
-GatherLattice coarsened(const GatherLattice& fine, int stride)
+/// The lattice's clouds in blocks of stride^3 cells: mean extinction, extinction-weighted
+/// light.
+Blocks blocksOf(const GatherLattice& fine, int stride)
 {
-    GatherLattice out;
+    Blocks out;
     for (int a = 0; a < 3; ++a) out.n[a] = (fine.n[a] + stride - 1) / stride;
     out.cellsPerMetre = fine.cellsPerMetre * (1.0 / stride);
-    for (int f = 0; f < 6; ++f) out.normal[f] = fine.normal[f];
-    out.extinction.assign(out.cells(), 0.0);
-    out.source.assign(out.cells(), {0.0f, 0.0f, 0.0f, 0.0f});
+    out.origin = fine.origin + fine.cellsPerMetre.inverse() * RenderVec3(0.5 * (stride - 1));
+    const std::size_t cells = out.cells();
+    out.extinction.assign(cells, 0.0);
+    out.beam.assign(cells, 0.0f);
+    out.moments.assign(cells, {});
+    out.source.assign(cells, {0.0f, 0.0f, 0.0f, 0.0f});
+    std::vector<std::array<double, 1 + Blocks::kMoments>> sum(cells);  // beam, then moments
+    for (auto& s : sum) s.fill(0.0);
+    const std::size_t planeStride = static_cast<std::size_t>(fine.n[1]) * fine.n[2];
+    for (const GatherLattice::Cloud& c : fine.clouds) {
+        if (c.cell >= fine.cells())
+            throw std::invalid_argument("gather lattice: a cloud cell outside the lattice");
+        const int i = static_cast<int>(c.cell / planeStride);
+        const int j = static_cast<int>((c.cell / fine.n[2]) % fine.n[1]);
+        const int k = static_cast<int>(c.cell % fine.n[2]);
+        const std::size_t block = out.cell(i / stride, j / stride, k / stride);
+        const double w = c.extinction;
+        out.extinction[block] += w;
+        std::array<double, 1 + Blocks::kMoments>& s = sum[block];
+        s[0] += w * c.beam;
+        for (int l = 0; l < kUnits; ++l) {
+            s[1 + 4 * l] += w * c.phi[l];
+            for (int a = 0; a < 3; ++a) s[2 + 4 * l + a] += w * c.flux[l][a];
+        }
+    }
     const double perCell = 1.0 / (double(stride) * stride * stride);
-    tbb::parallel_for(0, out.n[0], [&](int I) {
-        for (int J = 0; J < out.n[1]; ++J)
-            for (int K = 0; K < out.n[2]; ++K) {
-                double sigma = 0.0, glow[kUnits] = {0.0, 0.0, 0.0, 0.0};
-                for (int i = I * stride; i < std::min(fine.n[0], (I + 1) * stride); ++i)
-                    for (int j = J * stride; j < std::min(fine.n[1], (J + 1) * stride); ++j)
-                        for (int k = K * stride; k < std::min(fine.n[2], (K + 1) * stride); ++k) {
-                            const std::size_t c = fine.cell(i, j, k);
-                            sigma += fine.extinction[c];
-                            for (int l = 0; l < kUnits; ++l)
-                                glow[l] += fine.extinction[c] * fine.source[c][l];
-                        }
-                const std::size_t c = out.cell(I, J, K);
-                out.extinction[c] = sigma * perCell;
-                if (sigma > 0.0)
-                    for (int l = 0; l < kUnits; ++l)
-                        out.source[c][l] = static_cast<float>(glow[l] / sigma);
-            }
-    });
+    for (std::size_t b = 0; b < cells; ++b) {
+        const double sigma = out.extinction[b];
+        if (!(sigma > 0.0)) continue;
+        out.beam[b] = static_cast<float>(sum[b][0] / sigma);
+        for (int m = 0; m < Blocks::kMoments; ++m)
+            out.moments[b][m] = static_cast<float>(sum[b][1 + m] / sigma);
+        out.extinction[b] = sigma * perCell;
+    }
     return out;
 }
 
-/// The gather on `lattice`, whose cells are `stride` cells of the faces' lattice.
-std::vector<GatheredView> gatherOn(const GatherLattice& lattice,
-                                   const std::vector<GatherFace>& faces, int directions,
-                                   double clearance, int stride,
-                                   const std::function<bool()>& cancelled)
+/// Each block's source radiance toward −v (v the direction looked along), per unit light.
+void sourcesToward(const GatherLattice& lattice, Blocks& blocks, const RenderVec3& v)
 {
-    const std::size_t cells = lattice.cells();
-    if (lattice.extinction.size() != cells || lattice.source.size() != cells)
-        throw std::invalid_argument("gather lattice: fields do not match its size");
+    const RenderVec3 toward = -v;
+    const double beamLobe = henyeyGreenstein(lattice.travel.dot(toward), lattice.split.g);
+    tbb::parallel_for(std::size_t(0), blocks.cells(), [&](std::size_t b) {
+        if (!(blocks.extinction[b] > 0.0)) return;
+        const std::array<float, Blocks::kMoments>& m = blocks.moments[b];
+        for (int l = 0; l < kUnits; ++l) {
+            const float* f = &m[4 * l];
+            const RenderVec3 flux(f[1], f[2], f[3]);
+            blocks.source[b][l] = static_cast<float>(
+                lattice.albedo * diffuseScattered(f[0], flux, toward, lattice.split));
+        }
+        blocks.source[b][0] += static_cast<float>(blocks.beam[b] * beamLobe);
+    });
+}
+
+/// What the ground sends back at point p (on z = 0) per ground unit: its map point's view of
+/// the sky and the clouds' glow (bilinear; the open sky beyond the map) and its sun light.
+void groundSends(const GatherGround& ground, const std::vector<GroundView>& map,
+                 const RenderVec3& p, double (&out)[GatheredView::kGroundUnits])
+{
+    std::fill(out, out + GatheredView::kGroundUnits, 0.0);
+    out[GatheredView::SkyLit] = 1.0;
+    std::size_t at[4];
+    double weight[4];
+    if (ground.map.corners(p, at, weight)) {
+        out[GatheredView::SkyLit] = 0.0;
+        for (int c = 0; c < 4; ++c) {
+            const GroundView& v = map[at[c]];
+            out[GatheredView::SkyLit] += weight[c] * v.sky;
+            for (int l = 0; l < kUnits; ++l)
+                out[GatheredView::Glow + l] += weight[c] * v.emitted[l];
+        }
+    }
+    if (ground.sunlit) out[GatheredView::SunLit] = ground.sunlit(p);
+}
+
+/// The parameter t at which the ray q + t u (cell coordinates) enters the lattice's box of
+/// cells, or a negative number if it misses it (0 if q is inside).
+double entering(const Blocks& lattice, const RenderVec3& q, const RenderVec3& u)
+{
+    double near = 0.0, far = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        const double lo = -0.5, hi = lattice.n[a] - 0.5;
+        if (u[a] == 0.0) {
+            if (q[a] < lo || q[a] > hi) return -1.0;
+            continue;
+        }
+        double t0 = (lo - q[a]) / u[a], t1 = (hi - q[a]) / u[a];
+        if (t0 > t1) std::swap(t0, t1);
+        near = std::max(near, t0);
+        far = std::min(far, t1);
+    }
+    return near <= far ? near : -1.0;
+}
+
+/// The gather on the lattice's blocks of `stride` cells.
+Gathered gatherOn(const GatherLattice& fine, Blocks& lattice, const std::vector<GatherFace>& faces,
+                  const GatherGround& ground, int directions, double clearance, int stride,
+                  const std::function<bool()>& cancelled)
+{
+    // Directions above the horizon first: the ground's map is complete before a face looks
+    // down at it.
     const std::vector<RenderVec3> dirs = fibonacciSphere(std::max(2, directions));
     // Each face kind's cosine weights over the directions on each side of the horizon.
     double weight[6][2] = {};
     for (int kind = 0; kind < 6; ++kind)
         for (const RenderVec3& d : dirs) {
-            const double c = d.dot(lattice.normal[kind]);
+            const double c = d.dot(fine.normal[kind]);
             if (c > 0.0) weight[kind][d.z() > 0.0 ? 0 : 1] += c;
         }
+    double groundWeight = 0.0;
+    for (const RenderVec3& d : dirs) groundWeight += std::max(0.0, d.z());
 
-    std::vector<GatheredView> views(faces.size());
-    for (GatheredView& v : views) v.transmittance[0] = v.transmittance[1] = 0.0;
-    std::vector<float> field(kLanes * cells);
+    Gathered out;
+    out.faces.resize(faces.size());
+    for (GatheredView& v : out.faces) v.transmittance[0] = v.transmittance[1] = 0.0;
+    if (ground.present)
+        out.ground.assign(ground.map.points(), GroundView{0.0, {0.0, 0.0, 0.0, 0.0}});
+    const openvdb::Mat3d metresPerCell = lattice.cellsPerMetre.inverse();
+    const auto cellOf = [&](const RenderVec3& world) {
+        return lattice.cellsPerMetre * (world - lattice.origin);
+    };
+    std::vector<float> field(kLanes * lattice.cells());
     Sweep sweep(lattice, field);
+    bool mapDone = false;
     for (const RenderVec3& d : dirs) {
         if (cancelled && cancelled()) break;
-        const RenderVec3 u = lattice.cellsPerMetre * d;
-        sweep.run(u);
-        const double reach = clearance / std::abs(u[sweep.dominantAxis()]);
         const int side = d.z() > 0.0 ? 0 : 1;
+        if (side == 1 && !mapDone) {
+            for (GroundView& g : out.ground) {
+                g.sky /= groundWeight;
+                for (double& e : g.emitted) e /= groundWeight;
+            }
+            mapDone = true;
+        }
+        const RenderVec3 u = lattice.cellsPerMetre * d;
+        sourcesToward(fine, lattice, d);
+        sweep.run(u);
+        if (side == 0)  // each ground point looks up along d, into the lattice where it meets it
+            tbb::parallel_for(std::size_t(0), out.ground.size(), [&](std::size_t at) {
+                const RenderVec3 q = cellOf(ground.map.point(at));
+                const double t = entering(lattice, q, u);
+                GroundView& g = out.ground[at];
+                if (t < 0.0) {
+                    g.sky += d.z();
+                    return;
+                }
+                RenderVec3 in = q + u * t;
+                for (int a = 0; a < 3; ++a) in[a] = std::clamp(in[a], 0.0, lattice.n[a] - 1.0);
+                double seen[kLanes];
+                sweep.lookup(in, seen);
+                g.sky += d.z() * seen[0];
+                for (int l = 0; l < kUnits; ++l) g.emitted[l] += d.z() * seen[1 + l];
+            });
+        const double reach = clearance / std::abs(u[sweep.dominantAxis()]);
         tbb::parallel_for(std::size_t(0), faces.size(), [&](std::size_t f) {
             const GatherFace& face = faces[f];
-            const double c = d.dot(lattice.normal[face.kind]);
+            const double c = d.dot(fine.normal[face.kind]);
             if (!(c > 0.0)) return;
             double seen[kLanes];
-            const RenderVec3 air(face.air[0], face.air[1], face.air[2]);
-            sweep.lookup((air + RenderVec3(0.5)) / double(stride) - RenderVec3(0.5) + u * reach,
-                         seen);
-            GatheredView& v = views[f];
+            const RenderVec3 air =
+                (RenderVec3(face.air[0], face.air[1], face.air[2]) + RenderVec3(0.5)) /
+                    double(stride) -
+                RenderVec3(0.5);
+            sweep.lookup(air + u * reach, seen);
+            GatheredView& v = out.faces[f];
             v.transmittance[side] += c * seen[0];
             for (int l = 0; l < kUnits; ++l) v.emitted[side][l] += c * seen[1 + l];
+            if (side == 0 || !ground.present) return;
+            // The ground point this direction reaches, and what it sends back.
+            const RenderVec3 from = lattice.origin + metresPerCell * air;
+            const double down = std::max(0.0, from.z()) / -d.z();
+            double sends[GatheredView::kGroundUnits];
+            groundSends(ground, out.ground,
+                        RenderVec3(from.x() + d.x() * down, from.y() + d.y() * down, 0.0), sends);
+            for (int g = 0; g < GatheredView::kGroundUnits; ++g)
+                v.ground[g] += c * seen[0] * sends[g];
         });
     }
     tbb::parallel_for(std::size_t(0), faces.size(), [&](std::size_t f) {
-        GatheredView& v = views[f];
+        GatheredView& v = out.faces[f];
         for (int side = 0; side < 2; ++side) {
             const double w = weight[faces[f].kind][side];
             if (!(w > 0.0)) {
@@ -233,22 +373,22 @@ std::vector<GatheredView> gatherOn(const GatherLattice& lattice,
             }
             v.transmittance[side] /= w;
             for (int l = 0; l < kUnits; ++l) v.emitted[side][l] /= w;
+            if (side == 1)
+                for (double& g : v.ground) g /= w;
         }
     });
-    return views;
+    return out;
 }
 
 }  // namespace
 
-std::vector<GatheredView> gatherSurfaceLight(const GatherLattice& lattice,
-                                             const std::vector<GatherFace>& faces, int directions,
-                                             double clearance, int stride,
-                                             const std::function<bool()>& cancelled)
+Gathered gatherSurfaceLight(const GatherLattice& lattice, const std::vector<GatherFace>& faces,
+                            const GatherGround& ground, int directions, double clearance,
+                            int stride, const std::function<bool()>& cancelled)
 {
-    if (stride > 1)
-        return gatherOn(coarsened(lattice, stride), faces, directions, clearance, stride,
-                        cancelled);
-    return gatherOn(lattice, faces, directions, clearance, 1, cancelled);
+    stride = std::max(1, stride);
+    Blocks blocks = blocksOf(lattice, stride);
+    return gatherOn(lattice, blocks, faces, ground, directions, clearance, stride, cancelled);
 }
 
 }  // namespace cg::algo

@@ -8,12 +8,20 @@
 /// Along a direction v the lattice is swept slice by slice from the far side (a discrete-
 /// ordinates sweep, the upstream value interpolated bilinearly in the slice before): the
 /// transmittance T toward v and, per unit light, the radiance E the clouds scatter back
-/// along −v, E = ∫ σ_t J exp(−τ) ds with J the cell's source radiance (its scattered light,
-/// taken as isotropic). Directions are points of a Fibonacci sphere (about equal solid
+/// along −v, E = ∫ σ_t J exp(−τ) ds with J the cell's source radiance toward −v (its
+/// scattered light, a lobe about its net flux as the renderer takes it, and the sun light it
+/// scatters out of the beam). Directions are points of a Fibonacci sphere (about equal solid
 /// angles); a face takes the cosine-weighted means of T and E over the directions in its
 /// outward hemisphere, above and below the horizon apart. The directions are swept one after
 /// another and each slice's cells in parallel, so the result does not depend on the thread
 /// count.
+///
+/// Where there is a ground (the plane z = 0), it is lit by more than the open sky and the
+/// sun: a map of ground points gathers what each sees above it, the sky through the clouds
+/// and their glow, over the directions above the horizon; then a face looking down reads,
+/// per direction, the ground point its ray reaches, dimmed by the clouds on the way. So the
+/// ground under a cloud is shaded from the sky and lit by the cloud, and a cloud's base
+/// sees the sun-lit ground where it lies, not a mean of it.
 
 #include <array>
 #include <cstddef>
@@ -22,18 +30,37 @@
 
 #include <openvdb/openvdb.h>
 
+#include "algo/render/GroundGrid.h"
+#include "algo/render/Phase.h"
 #include "algo/render/RenderSettings.h"
 
 namespace cg::algo {
 
-/// The lattice a gather runs on: a dense box of cells, index (i n1 + j) n2 + k.
+/// The lattice a gather runs on: a box of cells, index (i n1 + j) n2 + k, and its cells of
+/// cloud.
 struct GatherLattice {
     static constexpr int kUnits = 4;  ///< the lights whose scattered light is gathered
+    /// A cell of cloud and the light it scatters. Per unit light, the fluence φ and net flux F
+    /// of the light in it: it scatters albedo × diffuseScattered(φ, F) toward each direction
+    /// (DiffuseLight.h), as the renderer has it. Per unit sun irradiance, `beam`: the light it
+    /// scatters out of the sun's beam for the first time, per unit extinction, which goes out
+    /// in the phase function's remainder lobe HG(g') about the sun's travel.
+    struct Cloud {
+        std::size_t cell = 0;
+        float extinction = 0.0f;  ///< σ_t, 1/m
+        float beam = 0.0f;
+        float phi[kUnits] = {0.0f, 0.0f, 0.0f, 0.0f};
+        float flux[kUnits][3] = {};  ///< world x, y, z
+    };
+
     int n[3] = {0, 0, 0};
-    std::vector<double> extinction;                 ///< σ_t per cell, 1/m (0: clear air)
-    std::vector<std::array<float, kUnits>> source;  ///< J per cell and unit light (radiance)
+    std::vector<Cloud> clouds;
+    double albedo = 1.0;                ///< single-scattering albedo
+    DeltaEddington split;               ///< of the phase function
+    RenderVec3 travel{0.0, 0.0, -1.0};  ///< the sun's direction of travel
     /// World direction (per metre) to cells: a displacement d (m) moves cellsPerMetre * d.
     openvdb::Mat3d cellsPerMetre = openvdb::Mat3d::identity();
+    RenderVec3 origin{0.0};  ///< world position (m) of the centre of cell (0, 0, 0)
     RenderVec3 normal[6];  ///< world unit outward normal of face kind f = 2 axis + (side > 0)
 
     std::size_t cell(int i, int j, int k) const
@@ -52,20 +79,47 @@ struct GatherFace {
     int kind = 0;
 };
 
+/// The ground plane z = 0, if there is one, and the map of its points that gather their
+/// view of the sky. Beyond the map the ground sees the open sky.
+struct GatherGround {
+    bool present = false;
+    GroundGrid map;
+    /// The sun's transmittance down to a ground point; none where the sun does not light
+    /// the ground (then SunLit is 0).
+    std::function<double(const RenderVec3&)> sunlit;
+};
+
+/// What a ground point sees above it, cosine-weighted over the upper hemisphere: the sky's
+/// transmittance and the clouds' glow per unit light.
+struct GroundView {
+    double sky = 1.0;
+    double emitted[GatherLattice::kUnits] = {0.0, 0.0, 0.0, 0.0};
+};
+
 /// What a face sees, cosine-weighted means over its outward hemisphere; [0] above the
 /// horizon, [1] below (1 and 0 where a face has no direction on that side).
 struct GatheredView {
+    /// The ground's light per its units: sky light (1 from open ground), sun light (the sun's
+    /// transmittance to the ground), and the clouds' glow it sends back, per unit light.
+    enum GroundUnit { SkyLit, SunLit, Glow, kGroundUnits = Glow + GatherLattice::kUnits };
     double transmittance[2] = {1.0, 1.0};
     double emitted[2][GatherLattice::kUnits] = {{0.0, 0.0, 0.0, 0.0}, {0.0, 0.0, 0.0, 0.0}};
+    /// With a ground: below the horizon, the mean of T times what the ground point the
+    /// direction reaches sends back, per ground unit (all 0 where a face does not look down).
+    double ground[kGroundUnits] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 };
 
-/// The view of every face over `directions` directions, swept on blocks of stride^3 cells.
-/// `clearance` (swept cells) is how far out along each direction from the air cell's centre
-/// the sweep is read, so that a face does not read its own cloud from the interpolation's
-/// neighbouring cells.
-std::vector<GatheredView> gatherSurfaceLight(const GatherLattice& lattice,
-                                             const std::vector<GatherFace>& faces, int directions,
-                                             double clearance, int stride,
-                                             const std::function<bool()>& cancelled = {});
+struct Gathered {
+    std::vector<GatheredView> faces;
+    std::vector<GroundView> ground;  ///< per point of the ground's map (row by row, x first)
+};
+
+/// The view of every face and ground point over `directions` directions, swept on blocks of
+/// stride^3 cells. `clearance` (swept cells) is how far out along each direction from the
+/// air cell's centre the sweep is read, so that a face does not read its own cloud from the
+/// interpolation's neighbouring cells.
+Gathered gatherSurfaceLight(const GatherLattice& lattice, const std::vector<GatherFace>& faces,
+                            const GatherGround& ground, int directions, double clearance,
+                            int stride, const std::function<bool()>& cancelled = {});
 
 }  // namespace cg::algo

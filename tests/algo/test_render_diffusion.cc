@@ -20,8 +20,8 @@ constexpr double kFourPi = 4.0 * 3.14159265358979323846;
 /// Light `which` alone, of unit radiance in every channel.
 algo::DiffuseLight alone(const RenderDiffusion& d, RenderDiffusion::Light which)
 {
-    RenderVec3 radiance[RenderDiffusion::kLights] = {RenderVec3(0.0), RenderVec3(0.0),
-                                                     RenderVec3(0.0), RenderVec3(0.0)};
+    RenderVec3 radiance[RenderDiffusion::kLights];
+    for (RenderVec3& r : radiance) r = RenderVec3(0.0);
     radiance[which] = RenderVec3(1.0);
     return d.coloured(radiance);
 }
@@ -32,10 +32,10 @@ struct LitBall {
     algo::RenderOccupancy occupancy{grid->tree()};
     algo::RenderLightMap sunMap{*grid, occupancy, RenderVec3(0.3, 0.2, 1.0), 0.05, 1.0, 0.5};
 
-    RenderDiffusion solve(bool shadowedGround)
+    RenderDiffusion solve(RenderDiffusion::GroundPlane ground)
     {
         medium.extinction = 0.05;
-        return RenderDiffusion(*grid, sunMap, medium, 2, shadowedGround);
+        return RenderDiffusion(*grid, sunMap, medium, 2, ground);
     }
 };
 
@@ -47,10 +47,11 @@ TEST(RenderDiffusion, SkyAndGroundTogetherAreTheUniformSurroundings)
     // Sky in the red channel and ground in the green one add up the same way.
     LitBall ball;
     ball.medium.albedo = 1.0;
-    const RenderDiffusion d = ball.solve(true);
+    const RenderDiffusion d = ball.solve({false, false});
     ASSERT_FALSE(d.empty());
     const algo::DiffuseLight split =
-        d.coloured({RenderVec3(0.0), RenderVec3(1, 0, 0), RenderVec3(0, 1, 0), RenderVec3(0.0)});
+        d.coloured({RenderVec3(0.0), RenderVec3(1, 0, 0), RenderVec3(0, 1, 0), RenderVec3(0.0),
+                    RenderVec3(0.0), RenderVec3(0.0)});
     for (const double z : {-120.0, -60.0, 0.0, 60.0, 120.0}) {
         const algo::DiffuseLight::Sample f = split.at(RenderVec3(0.0, 0.0, z));
         EXPECT_NEAR(f.phi[0] + f.phi[1], kFourPi, 2e-3 * kFourPi) << "z = " << z;
@@ -74,15 +75,16 @@ TEST(RenderDiffusion, SkyAndGroundTogetherAreTheUniformSurroundings)
 TEST(RenderDiffusion, TheCloudsShadowDimsTheLitGroundItSees)
 {
     // The sun-lit ground's light reaches the cloud only from ground outside its shadow: less
-    // than the whole ground's, and nothing at all when no ground is lit.
+    // than a whole open ground's, and nothing at all when no ground is lit.
     LitBall ball;
     ball.medium.albedo = 1.0;
-    const RenderDiffusion lit = ball.solve(true);
+    const RenderDiffusion lit = ball.solve({true, true});
     const RenderVec3 bottom(0, 0, -120);
     const double litGround = alone(lit, RenderDiffusion::LitGround).at(bottom).phi[0];
     EXPECT_GT(litGround, 0.0);
-    EXPECT_LT(litGround, alone(lit, RenderDiffusion::Ground).at(bottom).phi[0]);
-    const RenderDiffusion unlit = ball.solve(false);
+    const RenderDiffusion open = ball.solve({false, false});
+    EXPECT_LT(litGround, alone(open, RenderDiffusion::Ground).at(bottom).phi[0]);
+    const RenderDiffusion unlit = ball.solve({true, false});
     EXPECT_EQ(alone(unlit, RenderDiffusion::LitGround).at(bottom).phi[0], 0.0);
 }
 
@@ -92,7 +94,7 @@ TEST(RenderDiffusion, SunLightScatteredOnceIsCarriedOnAlongTheSun)
     // the net flux at the centre points with the sun's travel (down and away from it).
     LitBall ball;
     ball.medium.albedo = 1.0;
-    const algo::DiffuseLight sun = alone(ball.solve(false), RenderDiffusion::Sun);
+    const algo::DiffuseLight sun = alone(ball.solve({false, false}), RenderDiffusion::Sun);
     const RenderVec3 flux = sun.at(RenderVec3(0, 0, 0)).flux[0];
     const RenderVec3 travel = -RenderVec3(0.3, 0.2, 1.0).unitSafe();
     EXPECT_GT(flux.unitSafe().dot(travel), 0.9);

@@ -1,4 +1,4 @@
-// What surface faces see through the clear air (algo/render/SurfaceGather.h).
+// What surface faces and the ground see through the clear air (algo/render/SurfaceGather.h).
 
 #include <cmath>
 
@@ -11,56 +11,107 @@ namespace {
 
 using algo::GatheredView;
 using algo::GatherFace;
+using algo::GatherGround;
 using algo::GatherLattice;
+using algo::RenderVec3;
 
-/// A cube of n^3 cells of 10 m, clear air everywhere, axis-aligned with the world.
+constexpr double kFourPi = 4.0 * 3.14159265358979323846;
+constexpr int kUnits = GatherLattice::kUnits;
+
+/// A cube of n^3 cells of 10 m, clear air everywhere, axis-aligned with the world, its
+/// lowest cells' centres 100 m above the ground.
 GatherLattice clearLattice(int n)
 {
     GatherLattice L;
     for (int a = 0; a < 3; ++a) L.n[a] = n;
-    L.extinction.assign(L.cells(), 0.0);
-    L.source.assign(L.cells(), {0.0f, 0.0f, 0.0f, 0.0f});
     L.cellsPerMetre = openvdb::Mat3d::identity() * 0.1;
+    L.origin = RenderVec3(0.0, 0.0, 100.0);
     for (int f = 0; f < 6; ++f) {
-        L.normal[f] = algo::RenderVec3(0.0);
+        L.normal[f] = RenderVec3(0.0);
         L.normal[f][f / 2] = f % 2 ? 1.0 : -1.0;
     }
     return L;
+}
+
+/// A cell of cloud of extinction `sigma` whose scattered light of unit `unit` is an
+/// isotropic radiance `J` (albedo 1: a fluence 4π J and no net flux).
+GatherLattice::Cloud glowing(const GatherLattice& L, int i, int j, int k, double sigma, int unit,
+                             double J)
+{
+    GatherLattice::Cloud c;
+    c.cell = L.cell(i, j, k);
+    c.extinction = static_cast<float>(sigma);
+    c.phi[unit] = static_cast<float>(kFourPi * J);
+    return c;
+}
+
+/// A ground under the whole lattice and 200 m beyond it, its points 10 m apart.
+GatherGround groundUnder(const GatherLattice& L)
+{
+    GatherGround g;
+    g.present = true;
+    g.map.min[0] = g.map.min[1] = -200.0;
+    g.map.spacing = 10.0;
+    g.map.n[0] = g.map.n[1] = 10 * L.n[0] / 10 + 41;
+    return g;
 }
 
 TEST(SurfaceGather, ClearAirSeesTheOpenSkyAndNoCloudLight)
 {
     const GatherLattice L = clearLattice(8);
     const std::vector<GatherFace> faces = {{{4, 4, 4}, 5}, {{4, 4, 4}, 0}, {{0, 0, 0}, 4}};
-    for (int stride : {1, 2})
-        for (const GatheredView& v : algo::gatherSurfaceLight(L, faces, 16, 1.0, stride)) {
+    GatherGround ground = groundUnder(L);
+    ground.sunlit = [](const RenderVec3&) { return 0.25; };
+    for (int stride : {1, 2}) {
+        const algo::Gathered g = algo::gatherSurfaceLight(L, faces, ground, 16, 1.0, stride);
+        for (std::size_t f = 0; f < faces.size(); ++f) {
+            const GatheredView& v = g.faces[f];
             for (int side = 0; side < 2; ++side) {
                 EXPECT_NEAR(v.transmittance[side], 1.0, 1e-6);
-                for (int l = 0; l < GatherLattice::kUnits; ++l) EXPECT_EQ(v.emitted[side][l], 0.0);
+                for (int l = 0; l < kUnits; ++l) EXPECT_EQ(v.emitted[side][l], 0.0);
             }
+            if (faces[f].kind == 5) continue;  // an upper face does not look down
+            // Looking down, the open ground: its whole sky light, the sun's share.
+            EXPECT_NEAR(v.ground[GatheredView::SkyLit], 1.0, 1e-6);
+            EXPECT_NEAR(v.ground[GatheredView::SunLit], 0.25, 1e-6);
+            for (int l = 0; l < kUnits; ++l) EXPECT_EQ(v.ground[GatheredView::Glow + l], 0.0);
         }
+        ASSERT_EQ(g.ground.size(), ground.map.points());
+        for (const algo::GroundView& p : g.ground) EXPECT_NEAR(p.sky, 1.0, 1e-6);
+    }
 }
 
 TEST(SurfaceGather, AUniformGlowKeepsTheWhiteFurnace)
 {
     // Every cell glows with J = 1 (unit 1) and attenuates: along every direction what the
-    // clouds send plus what they let through is 1, so T + E = 1 wherever a face looks.
+    // clouds send plus what they let through is 1, so T + E = 1 wherever a face looks, and
+    // wherever the ground looks up.
     GatherLattice L = clearLattice(12);
-    for (std::size_t c = 0; c < L.extinction.size(); ++c) {
-        L.extinction[c] = 0.004 + 0.002 * double(c % 7);  // 1/m, uneven
-        L.source[c] = {0.0f, 1.0f, 0.0f, 0.0f};
-    }
-    const std::vector<GatherFace> faces = {{{6, 6, 6}, 5}, {{3, 8, 2}, 1}, {{6, 6, 10}, 4}};
-    for (const GatheredView& v : algo::gatherSurfaceLight(L, faces, 32, 1.0, 1)) {
+    for (int i = 0; i < 12; ++i)
+        for (int j = 0; j < 12; ++j)
+            for (int k = 0; k < 12; ++k) {
+                const double sigma = 0.004 + 0.002 * double(L.cell(i, j, k) % 7);  // uneven
+                if (k != 6) L.clouds.push_back(glowing(L, i, j, k, sigma, 1, 1.0));
+            }
+    const std::vector<GatherFace> faces = {{{6, 6, 6}, 5}, {{3, 8, 6}, 1}, {{6, 6, 6}, 4}};
+    const algo::Gathered g = algo::gatherSurfaceLight(L, faces, groundUnder(L), 32, 1.0, 1);
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        const GatheredView& v = g.faces[f];
         for (int side = 0; side < 2; ++side)
             EXPECT_NEAR(v.transmittance[side] + v.emitted[side][1], 1.0, 1e-5);
+        // Below the horizon the ground, itself in the furnace, sends back 1 per unit of what
+        // the face lets through to it: sky it sees plus the cloud's glow.
+        if (faces[f].kind != 5) {
+            EXPECT_NEAR(v.ground[GatheredView::SkyLit] + v.ground[GatheredView::Glow + 1],
+                        v.transmittance[1], 1e-5);
+        }
     }
-    // The medium is in the way wherever a face looks: above the first two, below the last.
-    const std::vector<GatheredView> v = algo::gatherSurfaceLight(L, faces, 32, 1.0, 1);
-    EXPECT_LT(v[0].transmittance[0], 0.95);
-    EXPECT_LT(v[1].transmittance[0], 0.95);
-    EXPECT_LT(v[1].transmittance[1], 0.95);
-    EXPECT_LT(v[2].transmittance[1], 0.95);
+    for (const algo::GroundView& p : g.ground) EXPECT_NEAR(p.sky + p.emitted[1], 1.0, 1e-5);
+    // The medium is in the way wherever a face looks, and above the ground under it.
+    EXPECT_LT(g.faces[0].transmittance[0], 0.95);
+    EXPECT_LT(g.faces[1].transmittance[1], 0.95);
+    EXPECT_LT(g.faces[2].transmittance[1], 0.95);
+    EXPECT_LT(g.ground[groundUnder(L).map.n[0] * 26 + 26].sky, 0.95);
 }
 
 TEST(SurfaceGather, ASlabOverheadShadesTheSkyByItsOpticalDepth)
@@ -71,9 +122,10 @@ TEST(SurfaceGather, ASlabOverheadShadesTheSkyByItsOpticalDepth)
     GatherLattice L = clearLattice(40);
     for (int i = 0; i < 40; ++i)
         for (int j = 0; j < 40; ++j)
-            for (int k = 30; k < 32; ++k) L.extinction[L.cell(i, j, k)] = 0.05;
+            for (int k = 30; k < 32; ++k) L.clouds.push_back(glowing(L, i, j, k, 0.05, 0, 0.0));
     const std::vector<GatherFace> faces = {{{20, 20, 27}, 5}, {{20, 20, 27}, 1}};
-    const std::vector<GatheredView> v = algo::gatherSurfaceLight(L, faces, 64, 1.0, 1);
+    const std::vector<GatheredView> v =
+        algo::gatherSurfaceLight(L, faces, GatherGround{}, 64, 1.0, 1).faces;
     // Looking up: the cosine-weighted mean of exp(−1/μ) over a hemisphere is 2 E_3(1) = 0.219
     // for an infinite slab; this one reaches 20 cells to each side, so only directions more
     // than 81° from the zenith pass beside it (about 2% of the cosine weight).
@@ -83,6 +135,63 @@ TEST(SurfaceGather, ASlabOverheadShadesTheSkyByItsOpticalDepth)
     EXPECT_GT(v[1].transmittance[0], v[0].transmittance[0]);
     EXPECT_LT(v[1].transmittance[0], 1.0);
     EXPECT_NEAR(v[1].transmittance[1], 1.0, 1e-6);
+}
+
+TEST(SurfaceGather, LightFlowingDownShinesBrighterBelowThanAbove)
+{
+    // A thin slab whose light flows down (net flux F = −φ/2 ẑ, as out of a cloud's base lit
+    // from above) and whose sun beam travels down: seen from below it is brighter than from
+    // above, by the lobe's forward shape; with no flux and no beam, the same both ways.
+    GatherLattice L = clearLattice(20);
+    L.split = algo::DeltaEddington{0.5, 0.6};
+    for (const bool flowing : {false, true}) {
+        L.clouds.clear();
+        for (int i = 0; i < 20; ++i)
+            for (int j = 0; j < 20; ++j) {
+                GatherLattice::Cloud c = glowing(L, i, j, 10, 0.01, 0, 1.0);
+                if (flowing) {
+                    c.flux[0][2] = -0.5f * c.phi[0];
+                    c.beam = 0.5f;
+                }
+                L.clouds.push_back(c);
+            }
+        const std::vector<GatherFace> faces = {{{10, 10, 5}, 5}, {{10, 10, 15}, 4}};
+        const std::vector<GatheredView> v =
+            algo::gatherSurfaceLight(L, faces, GatherGround{}, 64, 1.0, 1).faces;
+        const double below = v[0].emitted[0][0], above = v[1].emitted[1][0];
+        EXPECT_GT(below, 0.0);
+        if (flowing)
+            EXPECT_GT(below, 1.5 * above);
+        else  // the same but for the sweep's interpolation
+            EXPECT_NEAR(below, above, 0.05 * above);
+    }
+}
+
+TEST(SurfaceGather, TheGroundUnderACloudSeesLessSkyAndItsGlow)
+{
+    // A glowing layer 160 m wide, 115 m above the ground: the ground right under it sees
+    // less of the sky than the ground far from it, and the layer's light; a face of the layer
+    // looking down sees that shaded ground.
+    GatherLattice L = clearLattice(16);
+    for (int i = 0; i < 16; ++i)
+        for (int j = 0; j < 16; ++j)
+            for (int k = 2; k < 6; ++k) L.clouds.push_back(glowing(L, i, j, k, 0.05, 2, 0.5));
+    const GatherGround ground = groundUnder(L);
+    const std::vector<GatherFace> faces = {{{8, 8, 1}, 4}};
+    const algo::Gathered g = algo::gatherSurfaceLight(L, faces, ground, 64, 1.0, 1);
+    std::size_t at[4];
+    double w[4];
+    ASSERT_TRUE(ground.map.corners(RenderVec3(75.0, 75.0, 0.0), at, w));
+    const algo::GroundView& under = g.ground[at[0]];
+    ASSERT_TRUE(ground.map.corners(RenderVec3(-190.0, -190.0, 0.0), at, w));
+    const algo::GroundView& far = g.ground[at[0]];
+    EXPECT_LT(under.sky, 0.8 * far.sky);
+    EXPECT_GT(under.emitted[2], 2.0 * far.emitted[2]);
+    // What the layer lets through plus twice its glow (J = 1/2) is 1 along every direction.
+    EXPECT_NEAR(under.sky + 2.0 * under.emitted[2], 1.0, 1e-4);
+    const GatheredView& base = g.faces[0];
+    EXPECT_LT(base.ground[GatheredView::SkyLit], 0.9);
+    EXPECT_GT(base.ground[GatheredView::Glow + 2], 0.0);
 }
 
 }  // namespace
