@@ -34,9 +34,8 @@ std::vector<RenderVec3> fibonacciSphere(int count)
 
 /// The lattice the sweeps run on, in blocks of stride^3 cells of the gather's lattice:
 /// dense, each block with the extinction-weighted means of its cloud cells.
-struct Blocks {
+struct Blocks : CellBox {
     static constexpr int kMoments = kUnits * 4;  ///< per unit: φ, then F (x, y, z)
-    int n[3] = {0, 0, 0};
     openvdb::Mat3d cellsPerMetre = openvdb::Mat3d::identity();
     RenderVec3 origin{0.0};
     std::vector<double> extinction;  ///< mean σ_t, 1/m (0: clear air)
@@ -44,15 +43,6 @@ struct Blocks {
     std::vector<std::array<float, kMoments>> moments;
     /// J per unit light toward the current sweep's −v, radiance.
     std::vector<std::array<float, kUnits>> source;
-
-    std::size_t cell(int i, int j, int k) const
-    {
-        return (static_cast<std::size_t>(i) * static_cast<std::size_t>(n[1]) +
-                static_cast<std::size_t>(j)) *
-                   static_cast<std::size_t>(n[2]) +
-               static_cast<std::size_t>(k);
-    }
-    std::size_t cells() const { return cell(n[0], 0, 0); }
 };
 
 class Sweep {

@@ -36,9 +36,22 @@
 
 namespace cg::algo {
 
-/// The lattice a gather runs on: a box of cells, index (i n1 + j) n2 + k, and its cells of
-/// cloud.
-struct GatherLattice {
+/// A dense box of cells, index (i n1 + j) n2 + k.
+struct CellBox {
+    int n[3] = {0, 0, 0};
+
+    std::size_t cell(int i, int j, int k) const
+    {
+        return (static_cast<std::size_t>(i) * static_cast<std::size_t>(n[1]) +
+                static_cast<std::size_t>(j)) *
+                   static_cast<std::size_t>(n[2]) +
+               static_cast<std::size_t>(k);
+    }
+    std::size_t cells() const { return cell(n[0], 0, 0); }
+};
+
+/// The lattice a gather runs on: a box of cells and its cells of cloud.
+struct GatherLattice : CellBox {
     static constexpr int kUnits = 4;  ///< the lights whose scattered light is gathered
     /// A cell of cloud and the light it scatters. Per unit light, the fluence φ and net flux F
     /// of the light in it: it scatters albedo × diffuseScattered(φ, F) toward each direction
@@ -53,7 +66,6 @@ struct GatherLattice {
         float flux[kUnits][3] = {};  ///< world x, y, z
     };
 
-    int n[3] = {0, 0, 0};
     std::vector<Cloud> clouds;
     double albedo = 1.0;                ///< single-scattering albedo
     DeltaEddington split;               ///< of the phase function
@@ -61,16 +73,7 @@ struct GatherLattice {
     /// World direction (per metre) to cells: a displacement d (m) moves cellsPerMetre * d.
     openvdb::Mat3d cellsPerMetre = openvdb::Mat3d::identity();
     RenderVec3 origin{0.0};  ///< world position (m) of the centre of cell (0, 0, 0)
-    RenderVec3 normal[6];  ///< world unit outward normal of face kind f = 2 axis + (side > 0)
-
-    std::size_t cell(int i, int j, int k) const
-    {
-        return (static_cast<std::size_t>(i) * static_cast<std::size_t>(n[1]) +
-                static_cast<std::size_t>(j)) *
-                   static_cast<std::size_t>(n[2]) +
-               static_cast<std::size_t>(k);
-    }
-    std::size_t cells() const { return cell(n[0], 0, 0); }
+    RenderVec3 normal[6];    ///< world unit outward normal of face kind f = 2 axis + (side > 0)
 };
 
 /// A surface face: the clear-air cell it opens onto and its kind (2 axis + (side > 0)).
