@@ -323,8 +323,6 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
             rhs[Sun][row] += scatterOnce[cell] - drift;
         });
     };
-    // Wilson's limiter from the sun's fluence, R = |∇φ| / φ by central differences (one-sided
-    // at the cloud's edge), at most 4 per cell width so that no cell is cut off.
     // ∇φ (world, 1/m) by central differences, one-sided at the cloud's edge.
     const auto gradientOf = [&](const std::vector<double>& phi, std::size_t row) {
         const Cell at = cellAt(cells[row]);
@@ -344,6 +342,8 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
         }
         return mGradientToWorld * (perCell / double(c));
     };
+    // Wilson's limiter from the sun's fluence, R = |∇φ| / φ, at most 4 per cell width so that
+    // no cell is cut off.
     const auto limitFlux = [&](const std::vector<double>& phi) {
         tbb::parallel_for(std::size_t(0), n, [&](std::size_t row) {
             const double most = kMostLimit / mH;
