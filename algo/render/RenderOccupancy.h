@@ -18,6 +18,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include "algo/render/RenderRays.h"
 #include "algo/render/RenderSettings.h"
 
 namespace cg::algo {
@@ -110,21 +111,12 @@ void RenderOccupancy::walk(const RenderVec3& origin, const RenderVec3& dir, doub
     if (mOcc.empty() || !(tMin < tMax)) return;
     constexpr double kInf = std::numeric_limits<double>::infinity();
     double lo[3], hi[3];
-    double t0 = tMin, t1 = tMax;
     for (int a = 0; a < 3; ++a) {
         lo[a] = double(mMin[a]) * kBlock;
         hi[a] = double(mMin[a] + mN[a]) * kBlock;
-        if (dir[a] == 0.0) {
-            if (origin[a] < lo[a] || origin[a] >= hi[a]) return;
-            continue;
-        }
-        double ta = (lo[a] - origin[a]) / dir[a];
-        double tb = (hi[a] - origin[a]) / dir[a];
-        if (ta > tb) std::swap(ta, tb);
-        t0 = std::max(t0, ta);
-        t1 = std::min(t1, tb);
     }
-    if (!(t0 < t1)) return;
+    double t0 = tMin, t1 = tMax;
+    if (!clipToBox(origin, dir, lo, hi, t0, t1) || !(t0 < t1)) return;
 
     int cell[3], step[3];
     double tNext[3], tDelta[3];

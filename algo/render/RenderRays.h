@@ -37,6 +37,26 @@ struct IndexRay {
 IndexRay toIndexRay(const openvdb::math::Transform& xform, const RenderVec3& origin,
                     const RenderVec3& direction);
 
+/// Narrows [t0, t1] to where the ray origin + t dir lies in the box [lo, hi) (slab by slab);
+/// false where it misses it (t0 > t1 then). Along an axis the ray does not move, it is in the
+/// box where its origin is.
+inline bool clipToBox(const RenderVec3& origin, const RenderVec3& dir, const double (&lo)[3],
+                      const double (&hi)[3], double& t0, double& t1)
+{
+    for (int a = 0; a < 3; ++a) {
+        if (dir[a] == 0.0) {
+            if (origin[a] < lo[a] || origin[a] >= hi[a]) return false;
+            continue;
+        }
+        double ta = (lo[a] - origin[a]) / dir[a];
+        double tb = (hi[a] - origin[a]) / dir[a];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+    }
+    return t0 <= t1;
+}
+
 /// The smallest voxel edge of `grid`, m. Throws std::invalid_argument for a non-linear
 /// transform, which neither renderer can march.
 double renderVoxelSize(const openvdb::FloatGrid& grid);

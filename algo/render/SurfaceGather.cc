@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "algo/render/DiffuseLight.h"
+#include "algo/render/RenderRays.h"
 
 namespace cg::algo {
 
@@ -254,19 +255,10 @@ void groundSends(const GatherGround& ground, const std::vector<GroundView>& map,
 /// cells, or a negative number if it misses it (0 if q is inside).
 double entering(const Blocks& lattice, const RenderVec3& q, const RenderVec3& u)
 {
+    const double lo[3] = {-0.5, -0.5, -0.5};
+    const double hi[3] = {lattice.n[0] - 0.5, lattice.n[1] - 0.5, lattice.n[2] - 0.5};
     double near = 0.0, far = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 3; ++a) {
-        const double lo = -0.5, hi = lattice.n[a] - 0.5;
-        if (u[a] == 0.0) {
-            if (q[a] < lo || q[a] > hi) return -1.0;
-            continue;
-        }
-        double t0 = (lo - q[a]) / u[a], t1 = (hi - q[a]) / u[a];
-        if (t0 > t1) std::swap(t0, t1);
-        near = std::max(near, t0);
-        far = std::min(far, t1);
-    }
-    return near <= far ? near : -1.0;
+    return clipToBox(q, u, lo, hi, near, far) ? near : -1.0;
 }
 
 /// The gather on the lattice's blocks of `stride` cells.

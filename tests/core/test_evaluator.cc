@@ -28,6 +28,16 @@ protected:
 
     Graph parse(const std::string& text) { return parseGraph(text, "test.json", registry); }
 
+    /// Registers TestAdd again as `type`, stored where the flags say.
+    void addTestAddCopy(const std::string& type, bool cacheOnDisk, bool cacheInMemory)
+    {
+        NodeDecl copy = *registry.findNode("TestAdd");
+        copy.type = type;
+        copy.cacheOnDisk = cacheOnDisk;
+        copy.cacheInMemory = cacheInMemory;
+        registry.addNode(copy);
+    }
+
     std::vector<float> values(const OutputsPtr& out, const std::string& port)
     {
         return std::dynamic_pointer_cast<const FloatArrayData>(out->at(port))->values;
@@ -179,10 +189,7 @@ TEST_F(EvaluatorTest, SimulationResumesFromTheDiskCacheAcrossEvaluators)
 
 TEST_F(EvaluatorTest, MemoryOnlyNodesNeverReachTheDiskCache)
 {
-    NodeDecl memoryOnly = *registry.findNode("TestAdd");
-    memoryOnly.type = "TestAddMemoryOnly";
-    memoryOnly.cacheOnDisk = false;
-    registry.addNode(memoryOnly);
+    addTestAddCopy("TestAddMemoryOnly", false, true);
     test::TempDir dir;
     const Graph g = parse(R"({"cloudgraph": 1, "nodes": {
         "src": {"type": "TestSource"},
@@ -200,10 +207,7 @@ TEST_F(EvaluatorTest, MemoryOnlyNodesNeverReachTheDiskCache)
 
 TEST_F(EvaluatorTest, UncachedNodesCookAgainAndTheirInputsStayCached)
 {
-    NodeDecl transient = *registry.findNode("TestAdd");
-    transient.type = "TestAddTransient";
-    transient.cacheInMemory = false;
-    registry.addNode(transient);
+    addTestAddCopy("TestAddTransient", true, false);
     const Graph g = parse(R"({"cloudgraph": 1, "nodes": {
         "src": {"type": "TestSource"},
         "kept": {"type": "TestAdd", "inputs": {"values": "src.values"}},
@@ -218,11 +222,7 @@ TEST_F(EvaluatorTest, UncachedNodesCookAgainAndTheirInputsStayCached)
 
 TEST_F(EvaluatorTest, ACachedReaderSparesTheNeverStoredNodeItReads)
 {
-    NodeDecl stream = *registry.findNode("TestAdd");
-    stream.type = "TestAddStream";  // as GenerateCloud: stored nowhere, remade when read
-    stream.cacheOnDisk = false;
-    stream.cacheInMemory = false;
-    registry.addNode(stream);
+    addTestAddCopy("TestAddStream", false, false);  // as GenerateCloud: remade when read
     test::TempDir dir;
     const Graph g = parse(R"({"cloudgraph": 1, "nodes": {
         "src": {"type": "TestSource"},
