@@ -37,6 +37,10 @@ constexpr double kPi = 3.14159265358979323846;
 /// The ground's map (our choice): at most this many points a side, no closer than the
 /// gather's blocks.
 constexpr int kGroundPoints = 256;
+/// The ground map's blur radius per metre of height of the lattice's bottom (our choice: the
+/// 8 upper directions are about 0.9 rad apart, so a cloud's copies lie about its height
+/// apart; a radius of half of it merges them).
+constexpr double kGroundSmoothing = 0.5;
 
 /// The map of the ground under the world box `lo`..`hi`: its footprint widened on each side
 /// by the box's top height, as far as its clouds' shade and glow reach the ground at 45°.
@@ -418,6 +422,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
             hi = openvdb::math::maxComponent(hi, p);
         }
         seen.map = groundMapUnder(lo, hi, mH * kGatherStride);
+        seen.smoothing = kGroundSmoothing * std::max(0.0, lo.z());
         if (ground.sunlit)
             seen.sunlit = [&](const RenderVec3& p) {
                 return std::exp(-peakless * sunMap.opticalDepth(p));

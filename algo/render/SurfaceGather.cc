@@ -251,6 +251,39 @@ void groundSends(const GatherGround& ground, const std::vector<GroundView>& map,
     if (ground.sunlit) out[GatheredView::SunLit] = ground.sunlit(p);
 }
 
+/// Box-blurs the map's views `radius` points each way, along x then y, twice (about a
+/// Gaussian); near the map's edge over the points there are.
+void smooth(const GroundGrid& map, int radius, std::vector<GroundView>& views)
+{
+    if (radius < 1 || views.empty()) return;
+    const auto pass = [&](int axis) {
+        const int along = map.n[axis], across = map.n[1 - axis];
+        const std::size_t step = axis == 0 ? 1 : static_cast<std::size_t>(map.n[0]);
+        const std::size_t rowStep = axis == 0 ? static_cast<std::size_t>(map.n[0]) : 1;
+        std::vector<GroundView> in = views;
+        tbb::parallel_for(0, across, [&](int row) {
+            const std::size_t first = static_cast<std::size_t>(row) * rowStep;
+            for (int i = 0; i < along; ++i) {
+                GroundView sum{0.0, {0.0, 0.0, 0.0, 0.0}};
+                const int lo = std::max(0, i - radius), hi = std::min(along - 1, i + radius);
+                for (int k = lo; k <= hi; ++k) {
+                    const GroundView& v = in[first + static_cast<std::size_t>(k) * step];
+                    sum.sky += v.sky;
+                    for (int l = 0; l < kUnits; ++l) sum.emitted[l] += v.emitted[l];
+                }
+                const double w = 1.0 / (hi - lo + 1);
+                GroundView& out = views[first + static_cast<std::size_t>(i) * step];
+                out.sky = sum.sky * w;
+                for (int l = 0; l < kUnits; ++l) out.emitted[l] = sum.emitted[l] * w;
+            }
+        });
+    };
+    for (int repeat = 0; repeat < 2; ++repeat) {
+        pass(0);
+        pass(1);
+    }
+}
+
 /// The parameter t at which the ray q + t u (cell coordinates) enters the lattice's box of
 /// cells, or a negative number if it misses it (0 if q is inside).
 double entering(const Blocks& lattice, const RenderVec3& q, const RenderVec3& u)
@@ -299,6 +332,7 @@ Gathered gatherOn(const GatherLattice& fine, Blocks& lattice, const std::vector<
                 g.sky /= groundWeight;
                 for (double& e : g.emitted) e /= groundWeight;
             }
+            smooth(ground.map, static_cast<int>(ground.smoothing / ground.map.spacing), out.ground);
             mapDone = true;
         }
         const RenderVec3 u = lattice.cellsPerMetre * d;

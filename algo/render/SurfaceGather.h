@@ -90,6 +90,12 @@ struct GatherGround {
     /// The sun's transmittance down to a ground point; none where the sun does not light
     /// the ground (then SunLit is 0).
     std::function<double(const RenderVec3&)> sunlit;
+    /// m: the radius of the box blur (two passes each way) the map gets once complete. With
+    /// few directions a ground point sees a cloud along some and the sky along the rest, so
+    /// the map holds a displaced copy of the cloud per direction (ray effects); a blur about
+    /// as wide as the clouds are high, the scale on which a hemisphere's view changes, merges
+    /// them. 0: none.
+    double smoothing = 0.0;
 };
 
 /// What a ground point sees above it, cosine-weighted over the upper hemisphere: the sky's

@@ -100,7 +100,7 @@ void registerRendererNode(Registry& registry)
     const auto v3 = [](const algo::RenderVec3& v) { return Vec3{v.x(), v.y(), v.z()}; };
     NodeDecl d;
     d.type = "Renderer";
-    d.version = 11;  // 2: the image carries its background; 3: the diffusion sees sky and ground
+    d.version = 12;  // 2: the image carries its background; 3: the diffusion sees sky and ground
                      // apart; 4: δ-Eddington sun, flux-limited diffusion, one radiance lobe;
                      // 5: sparse sun light map, one voxel a texel in large sparse fields;
                      // 6: the limiter's sun solves to 1e-2 (the image within 0.01%);
@@ -109,7 +109,8 @@ void registerRendererNode(Registry& registry)
                      // diffuse light summed per colour channel in float once a frame (the
                      // image within 1e-5; PNG frames unchanged); 10: surface faces let in
                      // the sky, ground and cloud light they see (SurfaceGather); 11: the
-                     // ground shaded and lit by the clouds above it, its shadows δ-Eddington
+                     // ground shaded and lit by the clouds above it, its shadows δ-Eddington;
+                     // 12: the ground's map blurred (no ghosts of the clouds on the ground)
     d.category = "render";
     d.doc =
         "Ray-marches a fog volume (sigma_t = extinction x density, sigma_s = albedo x sigma_t) "

@@ -94,7 +94,9 @@ TEST(SurfaceGather, AUniformGlowKeepsTheWhiteFurnace)
                 if (k != 6) L.clouds.push_back(glowing(L, i, j, k, sigma, 1, 1.0));
             }
     const std::vector<GatherFace> faces = {{{6, 6, 6}, 5}, {{3, 8, 6}, 1}, {{6, 6, 6}, 4}};
-    const algo::Gathered g = algo::gatherSurfaceLight(L, faces, groundUnder(L), 32, 1.0, 1);
+    GatherGround ground = groundUnder(L);
+    ground.smoothing = 30.0;  // the blur is linear: it keeps the furnace too
+    const algo::Gathered g = algo::gatherSurfaceLight(L, faces, ground, 32, 1.0, 1);
     for (std::size_t f = 0; f < faces.size(); ++f) {
         const GatheredView& v = g.faces[f];
         for (int side = 0; side < 2; ++side)
