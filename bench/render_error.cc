@@ -13,8 +13,9 @@
 //   --fast K=V     a fast-mode setting: lightTexel, step, cellVoxels, or octaves=N for the
 //                  octave model instead of the diffusion solve (to explore, to compare)
 //   --scene K=V    a scene setting for both renderers: ambient (sky light scale), sun
-//                  (intensity), ground (0 or 1), bounces (the reference's maxBounces; with
-//                  --fast octaves=1, single scattering alone), to take the light apart;
+//                  (intensity), ground (0 or 1), groundAlbedo (grey), bounces (the
+//                  reference's maxBounces; with --fast octaves=1, single scattering
+//                  alone), to take the light apart;
 //                  mie=D, the Mie phase function of droplets D μm across
 //   --cache DIR    keep reference images there and reuse them (they depend only on the
 //                  case, the sun, the size, the sample count and the seed)
@@ -213,6 +214,7 @@ int main(int argc, char** argv)
                 if (key == "ambient") s.sky.ambient = v;
                 else if (key == "sun") s.sun.intensity = v;
                 else if (key == "ground") s.ground.enabled = v != 0.0;
+                else if (key == "groundAlbedo") s.ground.albedo = cg::algo::RenderVec3(v);
                 else if (key == "bounces") s.pathTrace.maxBounces = static_cast<int>(v);
                 else if (key == "mie") {
                     s.medium.phase = cg::algo::PhaseModel::Mie;
