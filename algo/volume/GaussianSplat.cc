@@ -24,11 +24,15 @@ namespace {
 
 using LeafT = openvdb::FloatTree::LeafNodeType;
 
-/// The deposit is kept in blocks of 16^3 voxels (32 KiB of weights): small enough that thin
+/// The deposit is kept in blocks of 16^3 voxels (38 KiB of weights): small enough that thin
 /// sparse clouds do not pay for much empty space, large enough that a hash lookup is rare.
+/// Each block stores one more layer on its +x, +y and +z sides (17^3 voxels), so that all 8
+/// corners of a particle whose first corner lies in the block land in it: one lookup a
+/// particle. The layer belongs to the neighbouring blocks and is added into them in finish.
 constexpr int kBlockLog2 = 4;
 constexpr int kBlock = 1 << kBlockLog2;
-constexpr int kBlockVoxels = kBlock * kBlock * kBlock;
+constexpr int kStored = kBlock + 1;  ///< voxels a side a block stores, its halo layer included
+constexpr int kBlockVoxels = kStored * kStored * kStored;
 /// The blur writes bricks of 32^3 voxels (4^3 leaves) at a time.
 constexpr int kBrickLog2 = 5;
 constexpr int kBrick = 1 << kBrickLog2;
@@ -48,9 +52,9 @@ openvdb::Coord blockCoord(std::uint64_t key)
     const auto c = unpackCoordKey(key);
     return {c[0], c[1], c[2]};
 }
-inline int blockIndex(int x, int y, int z)  // x, y, z inside the block
+inline int blockIndex(int x, int y, int z)  // x, y, z in [0, kBlock], the halo at kBlock
 {
-    return (x << (2 * kBlockLog2)) | (y << kBlockLog2) | z;
+    return (x * kStored + y) * kStored + z;
 }
 
 /// floor for |x| < 2^31, exact (truncate, then step down when that moved x up).
@@ -100,19 +104,83 @@ struct GaussianSplatter::Deposit {
         return local.recent.get(key, [&] { return newOrOldBlock(local, key); });
     }
 
+    /// A zeroed block, counted against maxBytes.
+    Block newBlock()
+    {
+        constexpr std::uint64_t kBytes = kBlockVoxels * sizeof(std::int64_t);
+        const std::uint64_t total = bytes.fetch_add(kBytes) + kBytes;
+        if (maxBytes != 0 && total > maxBytes)
+            throw VoxelizeTooLarge("voxelize: the particles' deposit passes the limit of " +
+                                   std::to_string(maxBytes >> 20) +
+                                   " MiB; use larger voxels (voxelSize)");
+        return Block(new std::int64_t[kBlockVoxels]());
+    }
+
+    /// Adds each block's halo layer into the blocks it belongs to (across the +x, +y and +z
+    /// faces, edges and corner: 7 directions), making those that no particle's first corner
+    /// reached, which join `summed` and are owned by `added`. One direction at a time, so that
+    /// no block is written by two threads. Returns the blocks by key.
+    std::unordered_map<std::uint64_t, const std::int64_t*> foldHalos(
+        std::vector<std::pair<std::uint64_t, std::int64_t*>>& summed, std::vector<Block>& added)
+    {
+        // Direction o (1..7): bit 2 across x, bit 1 across y, bit 0 across z. Its part of the
+        // halo: kBlock on the axes it crosses, [0, kBlock) on the others; it lands at 0 there.
+        const auto forHaloOf = [](int o, auto&& visit) {
+            int lo[3], hi[3];
+            for (int a = 0; a < 3; ++a) {
+                const bool across = (o >> (2 - a)) & 1;
+                lo[a] = across ? kBlock : 0;
+                hi[a] = across ? kBlock + 1 : kBlock;
+            }
+            for (int x = lo[0]; x < hi[0]; ++x)
+                for (int y = lo[1]; y < hi[1]; ++y)
+                    for (int z = lo[2]; z < hi[2]; ++z)
+                        visit(blockIndex(x, y, z), blockIndex(x % kBlock, y % kBlock, z % kBlock));
+        };
+        const auto neighbour = [](std::uint64_t key, int o) {
+            const openvdb::Coord c = blockCoord(key);
+            return blockKey(c.x() + ((o >> 2) & 1), c.y() + ((o >> 1) & 1), c.z() + (o & 1));
+        };
+        const std::size_t reached = summed.size();
+        std::vector<std::uint8_t> holds(reached, 0);  // bit o: the halo toward o is nonzero
+        tbb::parallel_for(std::size_t(0), reached, [&](std::size_t u) {
+            const std::int64_t* b = summed[u].second;
+            for (int o = 1; o < 8; ++o)
+                forHaloOf(o, [&](int from, int) {
+                    if (b[from] != 0) holds[u] |= std::uint8_t(1u << o);
+                });
+        });
+        std::unordered_map<std::uint64_t, std::int64_t*> byKey(2 * reached);
+        for (const auto& [key, b] : summed) byKey.emplace(key, b);
+        for (std::size_t u = 0; u < reached; ++u)
+            for (int o = 1; o < 8; ++o) {
+                if (!((holds[u] >> o) & 1)) continue;
+                std::int64_t*& target = byKey[neighbour(summed[u].first, o)];
+                if (target) continue;
+                added.push_back(newBlock());
+                target = added.back().get();
+                summed.emplace_back(neighbour(summed[u].first, o), target);
+            }
+        for (int o = 1; o < 8; ++o)
+            tbb::parallel_for(std::size_t(0), reached, [&](std::size_t u) {
+                if (!((holds[u] >> o) & 1)) return;
+                const std::int64_t* b = summed[u].second;
+                std::int64_t* target = byKey.find(neighbour(summed[u].first, o))->second;
+                forHaloOf(o, [&](int from, int to) { target[to] += b[from]; });
+            });
+        return {byKey.begin(), byKey.end()};
+    }
+
     std::int64_t* newOrOldBlock(LocalDeposit& local, std::uint64_t key)
     {
         Block& b = local.blocks[key];
         if (!b) {
-            constexpr std::uint64_t kBytes = kBlockVoxels * sizeof(std::int64_t);
-            const std::uint64_t total = bytes.fetch_add(kBytes) + kBytes;
-            if (maxBytes != 0 && total > maxBytes) {
+            try {
+                b = newBlock();
+            } catch (...) {
                 local.blocks.erase(key);
-                throw VoxelizeTooLarge("voxelize: the particles' deposit passes the limit of " +
-                                       std::to_string(maxBytes >> 20) +
-                                       " MiB; use larger voxels (voxelSize)");
+                throw;
             }
-            b.reset(new std::int64_t[kBlockVoxels]());
         }
         return b.get();
     }
@@ -152,30 +220,16 @@ void GaussianSplatter::add(const float* xyz, std::size_t count)
             w[a][0] = kAxisUnit - f;
             w[a][1] = f;
         }
-        constexpr int kLast = kBlock - 1;  // a corner there has its +1 neighbour in the next block
-        if ((c[0] & kLast) != kLast && (c[1] & kLast) != kLast && (c[2] & kLast) != kLast) {
-            // All 8 corners in one block (most particles): straight-line adds from one index.
-            std::int64_t* b = d.block(local, blockKey(c[0] >> kBlockLog2, c[1] >> kBlockLog2,
-                                                      c[2] >> kBlockLog2)) +
-                              blockIndex(c[0] & kLast, c[1] & kLast, c[2] & kLast);
-            for (int dx = 0; dx < 2; ++dx)
-                for (int dy = 0; dy < 2; ++dy) {
-                    const std::int32_t wxy = w[0][dx] * w[1][dy];
-                    std::int64_t* row = b + blockIndex(dx, dy, 0);
-                    row[0] += wxy * w[2][0];
-                    row[1] += wxy * w[2][1];
-                }
-            continue;
-        }
+        constexpr int kLast = kBlock - 1;
+        std::int64_t* b =
+            d.block(local, blockKey(c[0] >> kBlockLog2, c[1] >> kBlockLog2, c[2] >> kBlockLog2)) +
+            blockIndex(c[0] & kLast, c[1] & kLast, c[2] & kLast);
         for (int dx = 0; dx < 2; ++dx)
             for (int dy = 0; dy < 2; ++dy) {
                 const std::int32_t wxy = w[0][dx] * w[1][dy];
-                for (int dz = 0; dz < 2; ++dz) {
-                    const int x = c[0] + dx, y = c[1] + dy, z = c[2] + dz;
-                    std::int64_t* b =
-                        d.block(local, blockKey(x >> kBlockLog2, y >> kBlockLog2, z >> kBlockLog2));
-                    b[blockIndex(x & kLast, y & kLast, z & kLast)] += wxy * w[2][dz];
-                }
+                std::int64_t* row = b + blockIndex(dx, dy, 0);
+                row[0] += wxy * w[2][0];
+                row[1] += wxy * w[2][1];
             }
     }
     mCount.fetch_add(count);
@@ -194,18 +248,21 @@ openvdb::FloatGrid::Ptr GaussianSplatter::finish(const std::function<void()>& ch
     for (std::size_t i = 0; i < parts.size(); ++i)
         if (i == 0 || parts[i].first != parts[i - 1].first) firsts.push_back(i);
     firsts.push_back(parts.size());
-    const std::size_t blockCount = firsts.size() - 1;
-    std::unordered_map<std::uint64_t, const std::int64_t*> blocks(blockCount);
-    for (std::size_t u = 0; u < blockCount; ++u)
-        blocks.emplace(parts[firsts[u]].first, parts[firsts[u]].second->get());
-    tbb::parallel_for(std::size_t(0), blockCount, [&](std::size_t u) {
+    std::vector<std::pair<std::uint64_t, std::int64_t*>> summed(firsts.size() - 1);
+    tbb::parallel_for(std::size_t(0), summed.size(), [&](std::size_t u) {
         std::int64_t* sum = parts[firsts[u]].second->get();
         for (std::size_t j = firsts[u] + 1; j < firsts[u + 1]; ++j) {
             const std::int64_t* other = parts[j].second->get();
             for (int v = 0; v < kBlockVoxels; ++v) sum[v] += other[v];
             parts[j].second->reset();
         }
+        summed[u] = {parts[firsts[u]].first, sum};
     });
+    if (checkCancelled) checkCancelled();
+    std::vector<Block> added;  // blocks that only halo layers reach
+    const std::unordered_map<std::uint64_t, const std::int64_t*> blocks =
+        d.foldHalos(summed, added);
+    const std::size_t blockCount = summed.size();
     if (checkCancelled) checkCancelled();
 
     // 2. The bricks the blur can reach: each block's voxels, widened by the taps.
@@ -214,7 +271,7 @@ openvdb::FloatGrid::Ptr GaussianSplatter::finish(const std::function<void()>& ch
     const int reach = static_cast<int>(taps.size() / 2);
     std::vector<std::uint64_t> bricks;
     for (std::size_t u = 0; u < blockCount; ++u) {
-        const openvdb::Coord b = blockCoord(parts[firsts[u]].first);
+        const openvdb::Coord b = blockCoord(summed[u].first);
         int lo[3], hi[3];
         for (int a = 0; a < 3; ++a) {
             lo[a] = (b[a] * kBlock - reach) >> kBrickLog2;
