@@ -107,6 +107,9 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     const PhaseFunction phase = phaseOf(medium);
     const DeltaEddington split = phase.deltaEddington();
     const double peakless = 1.0 - medium.albedo * split.peak;
+    const auto beamAt = [&](const RenderVec3& p) {  // the sun's beam at p, per unit irradiance
+        return std::exp(-peakless * sunMap.opticalDepth(p));
+    };
     // Each voxel's share of its cell: its extinction, and the sun light it scatters for the
     // first time (the sun's transmittance, the costly part). Leaf voxels are shared out in
     // parallel, leaves a batch at a time, and summed into the cells in leaf order; then the
@@ -122,8 +125,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
         out.cell = cellOf(v);
         out.extinction = perVoxel * value;
         const RenderVec3 world = mXform.indexToWorld(v.asVec3d());
-        out.scatter = perVoxel * value * medium.albedo * (1.0 - split.peak) *
-                      std::exp(-peakless * sunMap.opticalDepth(world));
+        out.scatter = perVoxel * value * medium.albedo * (1.0 - split.peak) * beamAt(world);
         return out;
     };
     const auto addShare = [&](const Share& share) {
@@ -221,7 +223,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
                 const double phi = (k + 0.5 * (ring % 2)) * (kPi / 3.0);
                 const RenderVec3 point(world.x() + reach * std::cos(phi),
                                        world.y() + reach * std::sin(phi), 0.0);
-                sum += std::exp(-peakless * sunMap.opticalDepth(point));
+                sum += beamAt(point);
             }
         }
         return sum / 24.0;
@@ -423,10 +425,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
         }
         seen.map = groundMapUnder(lo, hi, mH * kGatherStride);
         seen.smoothing = kGroundSmoothing * std::max(0.0, lo.z());
-        if (ground.sunlit)
-            seen.sunlit = [&](const RenderVec3& p) {
-                return std::exp(-peakless * sunMap.opticalDepth(p));
-            };
+        if (ground.sunlit) seen.sunlit = beamAt;
     }
     const Gathered gathered = gatherSurfaceLight(lattice, faces, seen, kGatherDirections,
                                                  kGatherClearance, kGatherStride, cancelled);
