@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include <tbb/parallel_for.h>
 
@@ -27,14 +28,17 @@ enum Sum { kRz, kRr, kScratch };
 struct Column {
     const std::vector<double>& b;
     std::vector<double>& x;
-    std::vector<double> r, z, p, Ap;
+    // Written before they are read, so left uninitialised: zeroing them was a pass over
+    // memory as long as the solve's first iteration.
+    std::unique_ptr<double[]> r, z, p, Ap;
     std::vector<double> partial[3];  ///< per block: r·z, r·r and a scratch sum
     double rz = 0.0, rr = 0.0, bNorm = 0.0;
     double alpha = 0.0, beta = 0.0;  ///< of the current step
     int iterations = 0;
 
     Column(const std::vector<double>& rhs, std::vector<double>& solution, std::size_t blocks)
-        : b(rhs), x(solution), r(rhs.size()), z(rhs.size()), p(rhs.size()), Ap(rhs.size())
+        : b(rhs), x(solution), r(new double[rhs.size()]), z(new double[rhs.size()]),
+          p(new double[rhs.size()]), Ap(new double[rhs.size()])
     {
         for (auto& sums : partial) sums.assign(blocks, 0.0);
     }
@@ -59,7 +63,7 @@ void multiply(const SparseSystem& A, const std::vector<Column*>& columns, Vector
             const std::int32_t* nb = &A.neighbour[6 * i];
             const float* k = &A.coupling[6 * i];
             for (Column* c : columns) {
-                const std::vector<double>& x = v(*c);
+                const double* x = v(*c);
                 double sum = A.diag[i] * x[i];
                 for (int f = 0; f < 6; ++f) sum -= k[f] * x[static_cast<std::size_t>(nb[f])];
                 c->Ap[i] = sum;
@@ -67,7 +71,7 @@ void multiply(const SparseSystem& A, const std::vector<Column*>& columns, Vector
         }
         if (!dotWithAp) return;
         for (Column* c : columns) {
-            const std::vector<double>& x = v(*c);
+            const double* x = v(*c);
             double dot = 0.0;
             for (std::size_t i = begin; i != end; ++i) dot += x[i] * c->Ap[i];
             c->partial[kScratch][block] = dot;
@@ -91,7 +95,7 @@ int solveConjugateGradient(const SparseSystem& A, const std::vector<SolveColumn>
 
     // r = b − A x, z = p = r / diag; |b|, r·z and r·r.
     multiply(
-        A, active, [](const Column& c) -> const std::vector<double>& { return c.x; }, false);
+        A, active, [](const Column& c) -> const double* { return c.x.data(); }, false);
     for (Column* c : active) {
         forBlocks(n, [&](std::size_t begin, std::size_t end, std::size_t block) {
             double rz = 0.0, rr = 0.0, bb = 0.0;
@@ -122,7 +126,7 @@ int solveConjugateGradient(const SparseSystem& A, const std::vector<SolveColumn>
         // Each step is one pass over the rows for every column; the sums are still taken
         // block by block in order, so they do not depend on how the passes are split.
         multiply(
-            A, active, [](const Column& c) -> const std::vector<double>& { return c.p; }, true);
+            A, active, [](const Column& c) -> const double* { return c.p.get(); }, true);
         for (Column* c : active) c->alpha = c->rz / c->total(kScratch);
         forBlocks(n, [&](std::size_t begin, std::size_t end, std::size_t block) {
             for (Column* c : active) {
