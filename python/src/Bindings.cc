@@ -5,9 +5,9 @@
 #include "Document.h"
 #include "Errors.h"
 #include "ImageFiles.h"
-#include "NodeTypes.h"
 #include "PythonNodes.h"
 #include "Values.h"
+#include "core/NodeDeclJson.h"
 
 namespace py = pybind11;
 
@@ -19,7 +19,7 @@ void defineModule(py::module_& m)
     registerErrorTranslator();
     bindValues(m);
     bindImageFiles(m);
-    m.def("node_types_json", [] { return nodeTypesJson(sharedRegistry()); });
+    m.def("node_types_json", [] { return nodeTypesToJson(sharedRegistry()).dump(); });
     m.def("register_python_node", &registerPythonNode, py::arg("declaration_json"));
 
     py::class_<Document>(m, "Document")

@@ -1,20 +1,13 @@
 #pragma once
-/// The graph behind a Python `cloudgraph.Graph`: its JSON document, validated on every edit
-/// by the same loader as the CLI's, and the evaluators that cook it (one per cache and
-/// output directory, kept between cooks so a second cook reuses what the first made).
+/// The graph behind a Python `cloudgraph.Graph`: a GraphDocument of the module's registry,
+/// cooked with the GIL released.
 
-#include <filesystem>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <utility>
 
 #include <pybind11/pybind11.h>
 
-#include "core/EvalContext.h"
-#include "core/Evaluator.h"
-#include "core/Graph.h"
+#include "core/GraphDocument.h"
 #include "core/Registry.h"
 
 namespace cg::python {
@@ -35,41 +28,27 @@ public:
     static std::unique_ptr<Document> parse(const std::string& text, const std::string& name,
                                            const std::string& baseDir);
 
-    /// The graph as JSON text (graphToJson: every non-default parameter).
-    std::string toJson() const;
+    std::string toJson() const { return mDoc->toJson(); }
     /// Sets one parameter from its JSON text, checked as loading checks it.
     void setParam(const std::string& node, const std::string& param, const std::string& valueJson);
-    /// Replaces the whole graph by `text` (an edited toJson()): loaded like a file except that
-    /// required inputs may still be unconnected; on an error the graph stays as it was.
-    void replace(const std::string& text);
-    /// Writes toJson() to `path` atomically, after checking the graph is complete.
-    void save(const std::string& path) const;
+    void replace(const std::string& text) { mDoc->replace(text); }
+    void save(const std::string& path) const { mDoc->save(path); }
 
-    /// Cooks output `port` of `node` at `frame` with the GIL released, and converts it to a
-    /// Python value. `cache` (may be empty) is a disk cache directory shared with the CLI,
-    /// `out` where writer nodes write. Ctrl-C, or cancel() from another thread, cancels it:
-    /// nothing partial is cached.
+    /// Cooks output `port` of `node` at `frame` with the GIL released (GraphDocument::cook),
+    /// and converts it to a Python value. Ctrl-C, or cancel() from another thread, cancels
+    /// it: nothing partial is cached.
     pybind11::object cook(const std::string& node, const std::string& port, int frame,
                           const std::string& cache, const std::string& out);
-    /// Cancels the cook under way, if any.
-    void cancel();
-    /// The last cook's run report (JSON text): what cooked or came from a cache, and why.
-    std::string lastReport() const { return mLastReport; }
+    void cancel() { mDoc->cancel(); }
+    std::string lastReport() const { return mDoc->lastReport(); }
 
-    int firstFrame() const { return mGraph.frames.start; }
-    int lastFrame() const { return mGraph.frames.end; }
+    int firstFrame() const { return mDoc->graph().frames.start; }
+    int lastFrame() const { return mDoc->graph().frames.end; }
 
 private:
-    explicit Document(Graph graph);
-    /// The graph as the CLI would load it: complete, or an InputError.
-    Graph completeGraph() const;
-    Evaluator& evaluatorFor(const std::string& cache, const std::string& out);
+    explicit Document(std::unique_ptr<GraphDocument> doc) : mDoc(std::move(doc)) {}
 
-    Graph mGraph;  ///< loaded with requireComplete off
-    std::map<std::pair<std::string, std::string>, std::unique_ptr<Evaluator>> mEvaluators;
-    std::mutex mCancelMutex;
-    std::shared_ptr<CancelToken> mCancel;  ///< the cook under way's token
-    std::string mLastReport = "{}";
+    std::unique_ptr<GraphDocument> mDoc;
 };
 
 }  // namespace cg::python

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/GraphDocument.h"
 #include "formats/FormatError.h"
 
 namespace py = pybind11;
@@ -58,7 +59,7 @@ void registerErrorTranslator()
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);
-        } catch (const UnreadableGraphFile& e) {
+        } catch (const UnreadableGraph& e) {  // the file itself, not a place in it
             raise("FileError", e.what(), e.where(), "");
         } catch (const InputError& e) {
             raise(classOf(e), e.what(), e.where(), nodeOf(e.where()));

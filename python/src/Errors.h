@@ -8,13 +8,6 @@
 
 namespace cg::python {
 
-/// A graph file that cannot be read at all (missing, unreadable, over the size limit), as
-/// opposed to a place in it: raised as cloudgraph.FileError.
-class UnreadableGraphFile : public InputError {
-public:
-    using InputError::InputError;
-};
-
 void registerErrorTranslator();
 
 /// The Python exception `e` holds, with its traceback, as Python prints it. Needs the GIL.

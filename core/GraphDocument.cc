@@ -1,0 +1,153 @@
+#include "core/GraphDocument.h"
+
+#include <exception>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "core/DiskCache.h"
+#include "core/Error.h"
+#include "util/AtomicFile.h"
+
+namespace cg {
+
+namespace {
+
+LoadOptions whileBuilding(LoadOptions o)
+{
+    o.requireComplete = false;
+    return o;
+}
+
+}  // namespace
+
+GraphDocument::GraphDocument(Graph graph, const Registry& registry)
+    : mGraph(std::move(graph)), mRegistry(registry)
+{
+}
+
+std::unique_ptr<GraphDocument> GraphDocument::load(const std::filesystem::path& path,
+                                                   const Registry& registry, LoadOptions options)
+{
+    try {
+        return std::unique_ptr<GraphDocument>(
+            new GraphDocument(loadGraph(path, registry, whileBuilding(options)), registry));
+    } catch (const InputError& e) {
+        if (e.where() == path.string()) throw UnreadableGraph(e.where(), e.message());
+        throw;
+    }
+}
+
+std::unique_ptr<GraphDocument> GraphDocument::parse(const std::string& text,
+                                                    const std::string& name,
+                                                    const std::string& baseDir,
+                                                    const Registry& registry)
+{
+    LoadOptions o = whileBuilding({});
+    o.inputFileBase = baseDir;
+    return std::unique_ptr<GraphDocument>(
+        new GraphDocument(parseGraph(text, name, registry, o), registry));
+}
+
+nlohmann::json GraphDocument::json() const { return graphToJson(mGraph); }
+
+std::string GraphDocument::toJson() const { return json().dump(1); }
+
+void GraphDocument::setParam(const std::string& node, const std::string& param,
+                             const nlohmann::json& value)
+{
+    mGraph.setParam(node, param, value);
+}
+
+void GraphDocument::replace(const std::string& text)
+{
+    Graph edited = parseGraph(text, mGraph.sourceName(), mRegistry, whileBuilding(mGraph.limits));
+    edited.source = mGraph.source;
+    mGraph = std::move(edited);
+}
+
+Graph GraphDocument::completeGraph() const
+{
+    LoadOptions o = mGraph.limits;
+    o.requireComplete = true;
+    Graph g = parseGraph(toJson(), mGraph.sourceName(), mRegistry, o);
+    g.source = mGraph.source;
+    return g;
+}
+
+void GraphDocument::save(const std::filesystem::path& path) const
+{
+    completeGraph();
+    try {
+        util::writeFileAtomically(path, toJson() + "\n");
+    } catch (const std::exception& e) {
+        throw InputError(path.string(), std::string("cannot write the graph: ") + e.what());
+    }
+}
+
+Evaluator& GraphDocument::evaluatorFor(const std::string& cache, const std::string& out)
+{
+    auto& slot = mEvaluators[{cache, out}];
+    if (!slot) {
+        EvaluatorOptions o;
+        o.outDir = out;
+        if (!cache.empty()) o.diskCache = std::make_shared<DiskCache>(cache);
+        slot = std::make_unique<Evaluator>(mRegistry, o);
+    }
+    return *slot;
+}
+
+DataPtr GraphDocument::cook(const std::string& node, const std::string& port, int frame,
+                            const std::string& cache, const std::string& out)
+{
+    return cook(completeGraph(), node, port, frame, cache, out);
+}
+
+DataPtr GraphDocument::cook(const Graph& graph, const std::string& node, const std::string& port,
+                            int frame, const std::string& cache, const std::string& out)
+{
+    const GraphNode* target = graph.find(node);
+    if (!target) throw InputError(graph.locate("/nodes"), "unknown node '" + node + "'");
+    if (!target->decl->findOutput(port))
+        throw InputError(
+            graph.locate(target->pointer),
+            "node '" + node + "' (" + target->decl->type + ") has no output port '" + port + "'");
+    auto token = std::make_shared<CancelToken>();
+    {
+        std::lock_guard<std::mutex> lock(mCookMutex);
+        if (mCancel)
+            throw std::runtime_error("this graph is already cooking (one cook at a time a graph)");
+        mCancel = token;
+    }
+    Evaluator& evaluator = evaluatorFor(cache, out);
+    evaluator.setCancelToken(token);
+    evaluator.report().clear();
+    OutputsPtr outputs;
+    std::exception_ptr failure;
+    try {
+        outputs = evaluator.pull(graph, node, frame);
+    } catch (...) {
+        failure = std::current_exception();
+    }
+    {
+        std::lock_guard<std::mutex> lock(mCookMutex);
+        mCancel.reset();
+        mLastReport = evaluator.report().toJson().dump();
+    }
+    if (failure) std::rethrow_exception(failure);
+    return outputs->at(port);
+}
+
+void GraphDocument::cancel()
+{
+    std::lock_guard<std::mutex> lock(mCookMutex);
+    if (mCancel) mCancel->cancel();
+}
+
+std::string GraphDocument::lastReport() const
+{
+    std::lock_guard<std::mutex> lock(mCookMutex);
+    return mLastReport;
+}
+
+}  // namespace cg

@@ -1,0 +1,85 @@
+#pragma once
+/// A graph being edited: its document, validated on every edit by the same loader as the
+/// CLI's, and the evaluators that cook it (one per cache and output directory, kept between
+/// cooks so that a second cook reuses what the first made and recooks only what an edit
+/// dirtied). The Python module's Graph and `cloudgraph serve` both edit through it.
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <utility>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "core/Data.h"
+#include "core/EvalContext.h"
+#include "core/Evaluator.h"
+#include "core/Graph.h"
+
+namespace cg {
+
+class Registry;
+
+/// loadGraph could not read the file at all (missing, unreadable): the error names the file
+/// alone, with no place in it.
+class UnreadableGraph : public InputError {
+public:
+    using InputError::InputError;
+};
+
+class GraphDocument {
+public:
+    /// Loads a graph file (errors name the file and JSON pointer, as the CLI's do). A graph
+    /// being built may still lack nodes or wires: cook and save check it whole.
+    static std::unique_ptr<GraphDocument> load(const std::filesystem::path& path,
+                                               const Registry& registry,
+                                               LoadOptions options = {});
+    /// A graph from JSON text; `name` prefixes error locations, relative input files are
+    /// found under `baseDir`.
+    static std::unique_ptr<GraphDocument> parse(const std::string& text, const std::string& name,
+                                                const std::string& baseDir,
+                                                const Registry& registry);
+
+    const Graph& graph() const { return mGraph; }
+    /// The graph as JSON (graphToJson: every non-default parameter).
+    nlohmann::json json() const;
+    std::string toJson() const;
+    /// Sets one parameter, checked as loading checks it; on an error nothing changes.
+    void setParam(const std::string& node, const std::string& param, const nlohmann::json& value);
+    /// Replaces the whole graph by `text` (an edited toJson()): loaded like a file except
+    /// that required inputs may still be unconnected; on an error the graph stays as it was.
+    void replace(const std::string& text);
+    /// The graph as the CLI would load it: complete, or an InputError.
+    Graph completeGraph() const;
+    /// Writes toJson() to `path` atomically, after checking the graph is complete.
+    void save(const std::filesystem::path& path) const;
+
+    /// Cooks output `port` of `node` at `frame` and what it needs. `cache` (may be empty) is
+    /// a disk cache directory shared with the CLI, `out` where writer nodes write. One cook
+    /// at a time: a second one throws std::runtime_error while the first runs. cancel()
+    /// from another thread stops it (Cancelled): nothing partial is cached.
+    DataPtr cook(const std::string& node, const std::string& port, int frame,
+                 const std::string& cache, const std::string& out);
+    /// The same for `graph`, a completeGraph() taken earlier: edits may go on meanwhile.
+    DataPtr cook(const Graph& graph, const std::string& node, const std::string& port,
+                 int frame, const std::string& cache, const std::string& out);
+    /// Cancels the cook under way, if any.
+    void cancel();
+    /// The last cook's run report (JSON): what cooked or came from a cache, and why.
+    std::string lastReport() const;
+
+private:
+    GraphDocument(Graph graph, const Registry& registry);
+    Evaluator& evaluatorFor(const std::string& cache, const std::string& out);
+
+    Graph mGraph;  ///< loaded with requireComplete off
+    const Registry& mRegistry;
+    std::map<std::pair<std::string, std::string>, std::unique_ptr<Evaluator>> mEvaluators;
+    mutable std::mutex mCookMutex;  ///< guards mCancel and mLastReport
+    std::shared_ptr<CancelToken> mCancel;  ///< the cook under way's token
+    std::string mLastReport = "{}";
+};
+
+}  // namespace cg
