@@ -16,5 +16,6 @@ int nodesCommand(const Args& args);
 int dotCommand(const Args& args);
 int infoCommand(const Args& args);
 int soundingCommand(const Args& args);
+int serveCommand(const Args& args);
 
 }  // namespace cg::cli

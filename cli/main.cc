@@ -45,6 +45,10 @@ usage:
   cloudgraph dot GRAPH [--plugin ...] [--python-nodes ...]                  the graph as Graphviz
   cloudgraph info FILE                                    summary of a primitive-set file (.cgp)
   cloudgraph sounding FILE [--plot PNG]                   a sounding's LCL, LFC, EL, CAPE; its skew-T
+  cloudgraph serve GRAPH [options]   edit the graph in the browser with a live preview
+      --port P                       listen on port P (default 8642; 0: any free port)
+      --host H                       the address to listen on (default 127.0.0.1: this machine only)
+      --out DIR, --cache DIR         as for run
   cloudgraph --help | --version
 Every command takes -v (debug logging) and -q (errors only).
 
@@ -88,6 +92,7 @@ int main(int argc, char** argv)
     if (command == "dot") return dotCommand(args);
     if (command == "info") return infoCommand(args);
     if (command == "sounding") return soundingCommand(args);
+    if (command == "serve") return serveCommand(args);
     std::fprintf(stderr, "error: unknown command '%s'\n\n%s", command.c_str(), kUsage);
     return kExitBadInput;
 }

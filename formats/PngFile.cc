@@ -3,6 +3,7 @@
 #include <png.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <utility>
 
@@ -93,35 +94,63 @@ struct File {
 
 }  // namespace
 
-void writePng(const std::string& path, int width, int height, int channels, int bitDepth,
-              const std::vector<const unsigned char*>& rows, bool srgb)
-{
-    if (width < 1 || height < 1 || rows.size() != static_cast<std::size_t>(height) ||
-        (channels != 1 && channels != 3) || (bitDepth != 8 && bitDepth != 16))
-        throw std::invalid_argument("writePng: bad image size or format");
+namespace {
 
+/// Writes the PNG into `f` and closes it; `name` says where in messages.
+void writePngStream(std::FILE* f, const std::string& name, int width, int height, int channels,
+                    int bitDepth, const std::vector<const unsigned char*>& rows, bool srgb)
+{
     File file;
-    file.f = std::fopen(path.c_str(), "wb");
-    if (!file.f) throw std::runtime_error(path + ": cannot open for writing");
+    file.f = f;
     PngError err;
     png_structp png =
         png_create_write_struct(PNG_LIBPNG_VER_STRING, &err, pngErrorFn, pngWarningFn);
-    if (!png) throw std::runtime_error(path + ": libpng could not start");
+    if (!png) throw std::runtime_error(name + ": libpng could not start");
     png_infop info = png_create_info_struct(png);
     if (!info) {
         png_destroy_write_struct(&png, nullptr);
-        throw std::runtime_error(path + ": libpng could not start");
+        throw std::runtime_error(name + ": libpng could not start");
     }
     // png_write_image takes non-const rows but only reads them.
     const bool ok = pngWrite(png, info, file.f, width, height, channels, bitDepth, srgb,
                              const_cast<png_bytepp>(rows.data()));
     png_destroy_write_struct(&png, &info);
-    if (!ok) throw std::runtime_error(path + ": PNG write failed: " + err.message);
+    if (!ok) throw std::runtime_error(name + ": PNG write failed: " + err.message);
     // Close explicitly: a failed flush (e.g. disk full) must not pass as success.
     const bool flushed = std::fflush(file.f) == 0 && !std::ferror(file.f);
     const bool closed = std::fclose(file.f) == 0;
     file.f = nullptr;
-    if (!flushed || !closed) throw std::runtime_error(path + ": write failed");
+    if (!flushed || !closed) throw std::runtime_error(name + ": write failed");
+}
+
+void checkWritable(int width, int height, int channels, int bitDepth, std::size_t rows)
+{
+    if (width < 1 || height < 1 || rows != static_cast<std::size_t>(height) ||
+        (channels != 1 && channels != 3) || (bitDepth != 8 && bitDepth != 16))
+        throw std::invalid_argument("writePng: bad image size or format");
+}
+
+std::vector<const unsigned char*> rgb8Rows(int width, int height,
+                                           const std::vector<std::uint8_t>& rgb)
+{
+    if (width < 1 || height < 1 ||
+        rgb.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3)
+        throw std::invalid_argument("writePngRgb8: bad image size");
+    const auto w = static_cast<std::size_t>(width);
+    std::vector<const unsigned char*> rows(static_cast<std::size_t>(height));
+    for (std::size_t r = 0; r < rows.size(); ++r) rows[r] = rgb.data() + r * w * 3;
+    return rows;
+}
+
+}  // namespace
+
+void writePng(const std::string& path, int width, int height, int channels, int bitDepth,
+              const std::vector<const unsigned char*>& rows, bool srgb)
+{
+    checkWritable(width, height, channels, bitDepth, rows.size());
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    if (!f) throw std::runtime_error(path + ": cannot open for writing");
+    writePngStream(f, path, width, height, channels, bitDepth, rows, srgb);
 }
 
 PngPixels readPng(const std::string& path, int channels, int bitDepth, std::uint32_t maxSide)
@@ -176,13 +205,26 @@ PngPixels readPng(const std::string& path, int channels, int bitDepth, std::uint
 void writePngRgb8(const std::string& path, int width, int height,
                   const std::vector<std::uint8_t>& rgb)
 {
-    if (width < 1 || height < 1 ||
-        rgb.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3)
-        throw std::invalid_argument("writePngRgb8: bad image size");
-    const auto w = static_cast<std::size_t>(width);
-    std::vector<const unsigned char*> rows(static_cast<std::size_t>(height));
-    for (std::size_t r = 0; r < rows.size(); ++r) rows[r] = rgb.data() + r * w * 3;
-    writePng(path, width, height, 3, 8, rows, /*srgb=*/true);
+    writePng(path, width, height, 3, 8, rgb8Rows(width, height, rgb), /*srgb=*/true);
+}
+
+std::string encodePngRgb8(int width, int height, const std::vector<std::uint8_t>& rgb)
+{
+    const std::vector<const unsigned char*> rows = rgb8Rows(width, height, rgb);
+    char* bytes = nullptr;
+    std::size_t size = 0;
+    std::FILE* f = ::open_memstream(&bytes, &size);
+    if (!f) throw std::runtime_error("PNG in memory: cannot open a memory stream");
+    std::string png;
+    try {
+        writePngStream(f, "PNG in memory", width, height, 3, 8, rows, /*srgb=*/true);
+        png.assign(bytes, size);
+    } catch (...) {
+        std::free(bytes);
+        throw;
+    }
+    std::free(bytes);
+    return png;
 }
 
 Rgb8Image readPngRgb8(const std::string& path)

@@ -40,6 +40,9 @@ PngPixels readPng(const std::string& path, int channels, int bitDepth, std::uint
 void writePngRgb8(const std::string& path, int width, int height,
                   const std::vector<std::uint8_t>& rgb);
 
+/// The same PNG as bytes in memory (a preview served over HTTP).
+std::string encodePngRgb8(int width, int height, const std::vector<std::uint8_t>& rgb);
+
 struct Rgb8Image {
     int width = 0;
     int height = 0;

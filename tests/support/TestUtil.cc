@@ -83,6 +83,8 @@ CliProcess::~CliProcess()
 
 void CliProcess::kill(int signal) { ::kill(mPid, signal); }
 
+std::string CliProcess::outputSoFar() const { return readFile(mDir / "stdout"); }
+
 CliResult CliProcess::wait()
 {
     int status = 0;

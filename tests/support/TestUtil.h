@@ -41,6 +41,8 @@ public:
     CliProcess(const CliProcess&) = delete;
     CliProcess& operator=(const CliProcess&) = delete;
     void kill(int signal);
+    /// What it has written to stdout so far.
+    std::string outputSoFar() const;
     /// Waits for the process to end and collects its output.
     CliResult wait();
 

@@ -1,0 +1,220 @@
+#include "cli/GraphServer.h"
+
+#include <httplib.h>
+
+#include <chrono>
+#include <exception>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "algo/render/Display.h"
+#include "core/Error.h"
+#include "core/NodeDeclJson.h"
+#include "formats/PngFile.h"
+#include "nodes/data/Image.h"
+
+namespace cg::cli {
+
+namespace {
+
+/// Request bodies are small JSON edits; anything larger is refused (413) before it is read.
+constexpr std::size_t kMaxBodyBytes = 1u << 20;
+
+void replyJson(httplib::Response& res, int status, const nlohmann::json& body)
+{
+    res.status = status;
+    res.set_content(body.dump(), "application/json");
+}
+
+void replyError(httplib::Response& res, int status, const std::string& message)
+{
+    replyJson(res, status, {{"error", message}});
+}
+
+/// The request's body as a JSON object; nullopt after replying 400 when it is not one.
+std::optional<nlohmann::json> jsonBody(const httplib::Request& req, httplib::Response& res)
+{
+    nlohmann::json body = nlohmann::json::parse(req.body, nullptr, /*allow_exceptions=*/false);
+    if (body.is_discarded() || !body.is_object()) {
+        replyError(res, 400, "the request body must be a JSON object");
+        return std::nullopt;
+    }
+    return body;
+}
+
+/// body[key] as a string; nullopt after replying 400 when it is missing or not one.
+std::optional<std::string> stringField(const nlohmann::json& body, const char* key,
+                                       httplib::Response& res)
+{
+    const auto it = body.find(key);
+    if (it == body.end() || !it->is_string()) {
+        replyError(res, 400, std::string("'") + key + "' must be a string");
+        return std::nullopt;
+    }
+    return it->get<std::string>();
+}
+
+/// A cooked value the page can show: an image as an 8-bit PNG through the display transform
+/// WriteImage uses by default.
+std::optional<std::string> previewPng(const DataPtr& value)
+{
+    const auto* image = dynamic_cast<const ImageData*>(value.get());
+    if (!image) return std::nullopt;
+    const std::vector<std::uint8_t> rgb =
+        algo::displayRgb8(image->rgba, image->width, image->height, algo::DisplaySettings{});
+    return formats::encodePngRgb8(image->width, image->height, rgb);
+}
+
+}  // namespace
+
+GraphServer::GraphServer(const Registry& registry, ServeOptions options)
+    : mOptions(std::move(options)), mRegistry(registry),
+      mServer(std::make_unique<httplib::Server>()),
+      mDoc(GraphDocument::load(mOptions.graphFile, registry, mOptions.load))
+{
+    mDoc->completeGraph();  // a graph the CLI would refuse is refused here too
+    mServer->set_payload_max_length(kMaxBodyBytes);
+    routes();
+}
+
+GraphServer::~GraphServer() = default;
+
+int GraphServer::bind()
+{
+    const int port = mOptions.port == 0 ? mServer->bind_to_any_port(mOptions.host)
+                                        : (mServer->bind_to_port(mOptions.host, mOptions.port)
+                                               ? mOptions.port
+                                               : -1);
+    if (port < 0)
+        throw InputError("--port " + std::to_string(mOptions.port),
+                         "cannot listen on " + mOptions.host + ":" +
+                             std::to_string(mOptions.port) + " (in use?)");
+    return port;
+}
+
+void GraphServer::listen() { mServer->listen_after_bind(); }
+
+void GraphServer::stop()
+{
+    mDoc->cancel();
+    mServer->stop();
+}
+
+void GraphServer::routes()
+{
+    httplib::Server& s = *mServer;
+    if (!s.set_mount_point("/", mOptions.webDir.string()))
+        throw InputError(mOptions.webDir.string(), "the page's folder does not exist");
+
+    // The graph, the declarations of the node types it uses, and every type's name.
+    s.Get("/api/graph", [this](const httplib::Request&, httplib::Response& res) {
+        nlohmann::json types = nlohmann::json::object();
+        nlohmann::json graph;
+        {
+            std::lock_guard<std::mutex> lock(mDocMutex);
+            graph = mDoc->json();
+            for (const GraphNode& n : mDoc->graph().nodes())
+                types[n.decl->type] = nodeDeclToJson(*n.decl);
+        }
+        nlohmann::json all = nlohmann::json::array();
+        for (const NodeDecl* d : mRegistry.nodes()) all.push_back(d->type);
+        replyJson(res, 200,
+                  {{"file", mOptions.graphFile.filename().string()},
+                   {"graph", graph},
+                   {"types", types},
+                   {"registry", all}});
+    });
+
+    // One parameter, checked as `--set` and loading check it: 400 with the CLI's message.
+    s.Post("/api/param", [this](const httplib::Request& req, httplib::Response& res) {
+        const auto body = jsonBody(req, res);
+        if (!body) return;
+        const auto node = stringField(*body, "node", res);
+        if (!node) return;
+        const auto param = stringField(*body, "param", res);
+        if (!param) return;
+        if (!body->contains("value")) return replyError(res, 400, "'value' is missing");
+        try {
+            std::lock_guard<std::mutex> lock(mDocMutex);
+            mDoc->setParam(*node, *param, body->at("value"));
+        } catch (const InputError& e) {
+            return replyError(res, 400, e.what());
+        }
+        replyJson(res, 200, {{"ok", true}});
+    });
+
+    // Cooks one output at a frame, with what it needs that the last cooks did not make.
+    s.Post("/api/cook", [this](const httplib::Request& req, httplib::Response& res) {
+        const auto body = jsonBody(req, res);
+        if (!body) return;
+        const auto node = stringField(*body, "node", res);
+        if (!node) return;
+        const std::string port = body->value("port", std::string("image"));
+        const auto frame = body->find("frame");
+        if (frame == body->end() || !frame->is_number_integer())
+            return replyError(res, 400, "'frame' must be an integer");
+        Graph graph;
+        try {
+            std::lock_guard<std::mutex> lock(mDocMutex);
+            graph = mDoc->completeGraph();
+        } catch (const InputError& e) {
+            return replyError(res, 400, e.what());
+        }
+        const int f = frame->get<int>();
+        if (f < graph.frames.start || f > graph.frames.end)
+            return replyError(res, 400,
+                              "frame " + std::to_string(f) + " is outside the graph's frames " +
+                                  std::to_string(graph.frames.start) + ":" +
+                                  std::to_string(graph.frames.end));
+        const auto started = std::chrono::steady_clock::now();
+        DataPtr value;
+        try {
+            value = mDoc->cook(graph, *node, port, f, mOptions.cacheDir, mOptions.outDir);
+        } catch (const InputError& e) {
+            return replyError(res, 400, e.what());
+        } catch (const CookError& e) {
+            return replyError(res, e.inputFault() ? 400 : 500, e.what());
+        } catch (const Cancelled&) {
+            return replyError(res, 409, "cancelled; nothing partial was cached");
+        } catch (const std::runtime_error& e) {  // another cook is under way
+            return replyError(res, 409, e.what());
+        }
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        nlohmann::json reply = {{"report", nlohmann::json::parse(mDoc->lastReport())},
+                                {"seconds", seconds}};
+        if (auto png = previewPng(value)) {
+            std::lock_guard<std::mutex> lock(mPreviewMutex);
+            mPreviews[*node] = std::move(*png);
+            reply["preview"] = "/api/preview?node=" + *node;
+        }
+        replyJson(res, 200, reply);
+    });
+
+    s.Post("/api/cancel", [this](const httplib::Request&, httplib::Response& res) {
+        mDoc->cancel();
+        replyJson(res, 200, {{"ok", true}});
+    });
+
+    s.Get("/api/preview", [this](const httplib::Request& req, httplib::Response& res) {
+        std::lock_guard<std::mutex> lock(mPreviewMutex);
+        const auto it = mPreviews.find(req.get_param_value("node"));
+        if (it == mPreviews.end()) return replyError(res, 404, "no preview of that node yet");
+        res.set_header("Cache-Control", "no-store");
+        res.set_content(it->second, "image/png");
+    });
+
+    // Writes the edited graph back to its file, atomically.
+    s.Post("/api/save", [this](const httplib::Request&, httplib::Response& res) {
+        try {
+            std::lock_guard<std::mutex> lock(mDocMutex);
+            mDoc->save(mOptions.graphFile);
+        } catch (const InputError& e) {
+            return replyError(res, 400, e.what());
+        }
+        replyJson(res, 200, {{"saved", mOptions.graphFile.string()}});
+    });
+}
+
+}  // namespace cg::cli

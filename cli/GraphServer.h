@@ -1,0 +1,59 @@
+#pragma once
+/// The HTTP side of `cloudgraph serve`: the page's files and a small JSON API over one
+/// GraphDocument (docs/serve.md lists the routes). Edits are checked exactly as the CLI
+/// checks a graph; a cook recooks only what an edit dirtied, since the document keeps its
+/// evaluator (and the --cache) between cooks. Nothing is written but the graph file (on
+/// save) and what writers write under --out.
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "core/GraphDocument.h"
+#include "core/Registry.h"
+
+namespace httplib {
+class Server;
+}
+
+namespace cg::cli {
+
+struct ServeOptions {
+    std::filesystem::path graphFile;
+    std::filesystem::path webDir;  ///< the page's files, served read-only
+    std::string outDir = "out";
+    std::string cacheDir;          ///< empty: memory only
+    std::string host = "127.0.0.1";
+    int port = 8642;               ///< 0: any free port
+    LoadOptions load;
+};
+
+class GraphServer {
+public:
+    /// Loads the graph (InputError when it is bad: nothing is served).
+    GraphServer(const Registry& registry, ServeOptions options);
+    ~GraphServer();
+
+    /// Binds the socket; returns the port (the one chosen when options.port is 0). Throws
+    /// InputError naming --port when it cannot.
+    int bind();
+    /// Serves until stop().
+    void listen();
+    /// Cancels a cook under way and makes listen() return.
+    void stop();
+
+private:
+    void routes();
+
+    ServeOptions mOptions;
+    const Registry& mRegistry;
+    std::unique_ptr<httplib::Server> mServer;
+    std::mutex mDocMutex;  ///< guards mDoc's graph (edits, snapshots, save)
+    std::unique_ptr<GraphDocument> mDoc;
+    std::mutex mPreviewMutex;
+    std::map<std::string, std::string> mPreviews;  ///< PNG bytes of each node's last cook
+};
+
+}  // namespace cg::cli

@@ -1,0 +1,79 @@
+// cloudgraph serve GRAPH [--port P] [--host H] [--out DIR] [--cache DIR] [--plugin ...]
+//
+// The graph editor and live preview in the browser (docs/serve.md).
+
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <thread>
+
+#include <pthread.h>
+
+#include "cli/Commands.h"
+#include "cli/Common.h"
+#include "cli/GraphServer.h"
+#include "core/Error.h"
+
+namespace cg::cli {
+
+namespace {
+
+/// The page's folder: CLOUDGRAPH_WEB_DIR, else the source tree's web/ this binary was built
+/// from.
+std::filesystem::path webDir()
+{
+    if (const char* dir = std::getenv("CLOUDGRAPH_WEB_DIR"); dir && *dir) return dir;
+    return CLOUDGRAPH_WEB_DIR;
+}
+
+}  // namespace
+
+int serveCommand(const Args& args)
+{
+    OptionParser opts(args);
+    declareNodeTypeOptions(opts);
+    for (const char* o : {"--port", "--host", "--out", "--cache"}) opts.valueOption(o);
+    opts.flag("--allow-outside-out");
+    return guarded([&] {
+        opts.parse();
+        if (opts.positionals().size() != 1)
+            throw InputError("command line", "serve needs exactly one graph file");
+        ServeOptions o;
+        o.graphFile = opts.positionals()[0];
+        o.webDir = webDir();
+        o.outDir = opts.value("--out").value_or("out");
+        o.cacheDir = opts.value("--cache").value_or("");
+        o.host = opts.value("--host").value_or("127.0.0.1");
+        if (const auto port = opts.value("--port"))
+            o.port = static_cast<int>(parseIntegerOption(*port, "--port", "a port", 0, 65535));
+        o.load.allowPathsOutsideOut = opts.has("--allow-outside-out");
+        Registry registry;
+        buildRegistry(registry, opts);
+
+        // SIGINT and SIGTERM stop the server from a thread of their own, so no handler runs
+        // inside a request; every thread started from here on inherits the blocked set.
+        sigset_t stopSignals;
+        sigemptyset(&stopSignals);
+        sigaddset(&stopSignals, SIGINT);
+        sigaddset(&stopSignals, SIGTERM);
+        pthread_sigmask(SIG_BLOCK, &stopSignals, nullptr);
+
+        GraphServer server(registry, o);
+        const int port = server.bind();
+        std::printf("serving %s at http://%s:%d/ (Ctrl-C stops)\n", o.graphFile.c_str(),
+                    o.host.c_str(), port);
+        std::fflush(stdout);
+        std::thread waiter([&] {
+            int signal = 0;
+            sigwait(&stopSignals, &signal);
+            server.stop();
+        });
+        server.listen();
+        // listen() also returns when the socket fails: wake the waiter so that it ends.
+        pthread_kill(waiter.native_handle(), SIGTERM);
+        waiter.join();
+        return kExitOk;
+    });
+}
+
+}  // namespace cg::cli

@@ -1,0 +1,207 @@
+// `cloudgraph serve` end to end: the binary serving a small graph on a free port, driven
+// over HTTP as the page drives it.
+
+#include <gtest/gtest.h>
+#include <httplib.h>
+
+#include <chrono>
+#include <csignal>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "support/TestUtil.h"
+
+namespace cg {
+namespace {
+
+using nlohmann::json;
+using test::CliProcess;
+using test::TempDir;
+
+/// The synthetic cumulus still, small: a SyntheticCumulus, a Renderer and a WriteImage.
+const char* kGraph = R"({
+  "cloudgraph": 1,
+  "frames": {"start": 0, "end": 2},
+  "nodes": {
+    "cloud": {"type": "SyntheticCumulus", "params": {"voxelSize": 40, "baseRadius": 500}},
+    "render": {"type": "Renderer", "inputs": {"volume": "cloud.volume"},
+               "params": {"width": 64, "height": 48, "cameraPosition": [400, -3800, 700]}},
+    "write": {"type": "WriteImage", "inputs": {"image": "render.image"},
+              "params": {"file": "still.png"}}
+  }
+})";
+
+class ServeTest : public ::testing::Test {
+protected:
+    void SetUp() override
+    {
+        test::writeFile(graphFile(), kGraph);
+        std::filesystem::create_directories(dir / "out");
+        server = std::make_unique<CliProcess>(std::vector<std::string>{
+            "serve", graphFile().string(), "--port", "0", "--out", (dir / "out").string()});
+        // The first line names the URL with the port the system chose.
+        for (int i = 0; i < 200 && port == 0; ++i) {
+            const std::string out = server->outputSoFar();
+            const auto at = out.find("http://127.0.0.1:");
+            if (at != std::string::npos && out.find('/', at + 17) != std::string::npos)
+                port = std::stoi(out.substr(at + 17));
+            else
+                std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        }
+        ASSERT_NE(port, 0) << "the server printed no URL";
+    }
+
+    std::filesystem::path graphFile() const { return dir / "graph.json"; }
+    httplib::Client client() const
+    {
+        httplib::Client c("127.0.0.1", port);
+        c.set_read_timeout(60, 0);
+        return c;
+    }
+    httplib::Result post(const std::string& path, const json& body) const
+    {
+        return client().Post(path.c_str(), body.dump(), "application/json");
+    }
+
+    TempDir dir;
+    std::unique_ptr<CliProcess> server;
+    int port = 0;
+};
+
+TEST_F(ServeTest, ServesTheGraphWithItsDeclarationsAndThePage)
+{
+    const auto page = client().Get("/");
+    ASSERT_TRUE(page);
+    EXPECT_EQ(page->status, 200);
+    EXPECT_NE(page->body.find("<title>CloudGraph</title>"), std::string::npos);
+
+    const auto res = client().Get("/api/graph");
+    ASSERT_TRUE(res);
+    ASSERT_EQ(res->status, 200);
+    const json reply = json::parse(res->body);
+    EXPECT_EQ(reply["graph"]["nodes"].size(), 3u);
+    EXPECT_EQ(reply["graph"]["nodes"]["render"]["params"]["width"], 64);
+    EXPECT_EQ(reply["types"]["Renderer"]["outputs"][0]["type"], "Image");
+    EXPECT_GT(reply["registry"].size(), 20u);
+}
+
+TEST_F(ServeTest, RefusesAnOutOfRangeValueWithTheClisMessage)
+{
+    const auto res = post("/api/param", {{"node", "render"}, {"param", "width"}, {"value", 0}});
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 400);
+    const std::string error = json::parse(res->body)["error"];
+    EXPECT_NE(error.find("/nodes/render/params/width"), std::string::npos) << error;
+    EXPECT_NE(error.find("below the minimum 1"), std::string::npos) << error;
+    // `run --set` gives the same words.
+    const auto cli = test::runCli({"validate", graphFile().string(), "--set", "render.width=0"});
+    EXPECT_EQ(cli.exitCode, 2);
+    EXPECT_NE(cli.errors.find("below the minimum 1"), std::string::npos);
+    // Nothing changed.
+    const json graph = json::parse(client().Get("/api/graph")->body)["graph"];
+    EXPECT_EQ(graph["nodes"]["render"]["params"]["width"], 64);
+}
+
+TEST_F(ServeTest, AnEditRecooksOnlyWhatItDirtiesAndChangesThePreview)
+{
+    const auto first = post("/api/cook", {{"node", "render"}, {"frame", 0}});
+    ASSERT_TRUE(first);
+    ASSERT_EQ(first->status, 200) << first->body;
+    const std::string before = client().Get("/api/preview?node=render")->body;
+    ASSERT_EQ(before.substr(1, 3), "PNG");
+
+    ASSERT_EQ(post("/api/param", {{"node", "render"}, {"param", "sunDirection"},
+                                  {"value", {-1.0, 0.5, 0.4}}})
+                  ->status,
+              200);
+    const auto second = post("/api/cook", {{"node", "render"}, {"frame", 0}});
+    ASSERT_EQ(second->status, 200) << second->body;
+    std::map<std::string, std::string> status, reason;
+    const json report = json::parse(second->body)["report"];
+    for (const json& r : report["records"]) {
+        const std::string node = r["node"].get<std::string>();
+        status[node] = r["status"].get<std::string>();
+        reason[node] = r.value("reason", "");
+    }
+    EXPECT_EQ(status["cloud"], "memory-hit");
+    EXPECT_EQ(status["render"], "cooked");
+    EXPECT_NE(reason["render"].find("sunDirection"), std::string::npos) << reason["render"];
+    EXPECT_EQ(status.count("write"), 0u);  // downstream of the preview: not pulled
+    EXPECT_NE(client().Get("/api/preview?node=render")->body, before);
+}
+
+TEST_F(ServeTest, SavesTheEditAtomicallyAsAGraphTheCliLoads)
+{
+    ASSERT_EQ(post("/api/param", {{"node", "render"}, {"param", "fov"}, {"value", 55}})->status, 200);
+    const auto res = post("/api/save", json::object());
+    ASSERT_TRUE(res);
+    ASSERT_EQ(res->status, 200) << res->body;
+    const json saved = test::readJson(graphFile());
+    EXPECT_EQ(saved["nodes"]["render"]["params"]["fov"], 55.0);
+    EXPECT_EQ(saved["nodes"]["render"]["params"]["width"], 64);
+    EXPECT_EQ(test::runCli({"validate", graphFile().string()}).exitCode, 0);
+}
+
+TEST_F(ServeTest, RefusesBadRequestsAndKeepsServing)
+{
+    // Outside the served folder, plain and percent-encoded.
+    for (const char* path : {"/../CMakeLists.txt", "/%2e%2e/CMakeLists.txt", "/..%2fREADME.md"}) {
+        const auto res = client().Get(path);
+        ASSERT_TRUE(res) << path;
+        EXPECT_GE(res->status, 400) << path;
+        EXPECT_EQ(res->body.find("cmake_minimum_required"), std::string::npos) << path;
+    }
+    const auto malformed = client().Post("/api/param", "{\"node\": ", "application/json");
+    ASSERT_TRUE(malformed);
+    EXPECT_EQ(malformed->status, 400);
+    const auto notObject = client().Post("/api/cook", "[1, 2]", "application/json");
+    EXPECT_EQ(notObject->status, 400);
+    const auto badFrame = post("/api/cook", {{"node", "render"}, {"frame", 99}});
+    EXPECT_EQ(badFrame->status, 400);
+    const auto unknownNode = post("/api/cook", {{"node", "nope"}, {"frame", 0}});
+    EXPECT_EQ(unknownNode->status, 400);
+    const std::string huge(8u << 20, 'x');
+    const auto tooBig = client().Post("/api/param", huge, "application/json");
+    ASSERT_TRUE(tooBig);
+    EXPECT_EQ(tooBig->status, 413);
+    EXPECT_EQ(client().Get("/api/graph")->status, 200);
+}
+
+TEST_F(ServeTest, AnswersConcurrentRequests)
+{
+    std::vector<std::thread> threads;
+    std::vector<int> statuses(16, 0);
+    for (int t = 0; t < 16; ++t)
+        threads.emplace_back([&, t] {
+            const auto res = t % 2 ? client().Get("/api/graph")
+                                   : post("/api/param", {{"node", "render"},
+                                                         {"param", "fov"},
+                                                         {"value", 30 + t}});
+            statuses[static_cast<std::size_t>(t)] = res ? res->status : -1;
+        });
+    for (std::thread& t : threads) t.join();
+    for (int s : statuses) EXPECT_EQ(s, 200);
+}
+
+TEST_F(ServeTest, WritesNothingButTheGraphAndUnderOut)
+{
+    ASSERT_EQ(post("/api/cook", {{"node", "write"}, {"port", "files"}, {"frame", 1}})->status, 200);
+    ASSERT_EQ(post("/api/save", json::object())->status, 200);
+    std::vector<std::string> files;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(dir.path()))
+        if (e.is_regular_file())
+            files.push_back(std::filesystem::relative(e.path(), dir.path()).string());
+    std::sort(files.begin(), files.end());
+    EXPECT_EQ(files, (std::vector<std::string>{"graph.json", "out/still.png"}));
+}
+
+TEST_F(ServeTest, StopsOnSigterm)
+{
+    server->kill(SIGTERM);
+    EXPECT_EQ(server->wait().exitCode, 0);
+}
+
+}  // namespace
+}  // namespace cg

@@ -1,0 +1,102 @@
+// The node network as SVG: each node a box with its typed ports, laid out in columns by
+// depth (a node one column right of its deepest input), wires as curves from output to input.
+"use strict";
+
+const NODE_WIDTH = 170, PORT_ROW = 16, HEADER = 34, COLUMN_GAP = 70, ROW_GAP = 22;
+const GROUP_COLOURS = {
+  atmosphere: "#d8ecf7", fluid: "#dbeedd", mapping: "#f4e6c8", volume: "#e8dcf2",
+  render: "#f7d9d4", io: "#e4e4e4", util: "#eeeeee",
+};
+
+function svgElement(tag, attrs, parent) {
+  const el = document.createElementNS("http://www.w3.org/2000/svg", tag);
+  for (const [k, v] of Object.entries(attrs)) el.setAttribute(k, v);
+  if (parent) parent.appendChild(el);
+  return el;
+}
+
+// { id: {x, y, height} } for graph.nodes, given the declarations of their types.
+function layoutNetwork(nodes, types) {
+  const depth = {};
+  const depthOf = (id, seen = new Set()) => {
+    if (id in depth) return depth[id];
+    if (seen.has(id)) return 0;
+    seen.add(id);
+    let d = 0;
+    for (const source of Object.values(nodes[id].inputs || {})) {
+      const upstream = source.split(".")[0];
+      if (upstream in nodes) d = Math.max(d, depthOf(upstream, seen) + 1);
+    }
+    return (depth[id] = d);
+  };
+  const columns = [];
+  for (const id of Object.keys(nodes).sort()) (columns[depthOf(id)] ||= []).push(id);
+  const boxes = {};
+  columns.forEach((ids, c) => {
+    let y = 10;
+    for (const id of ids) {
+      const decl = types[nodes[id].type];
+      const rows = Math.max(decl.inputs.length, decl.outputs.length, 1);
+      const height = HEADER + rows * PORT_ROW;
+      boxes[id] = { x: 10 + c * (NODE_WIDTH + COLUMN_GAP), y, height };
+      y += height + ROW_GAP;
+    }
+  });
+  return boxes;
+}
+
+// Draws the network into `svg`; onSelect(id) when a node is clicked. Returns the node
+// groups by id, so that the page can mark what cooked.
+function drawNetwork(svg, nodes, types, onSelect) {
+  svg.replaceChildren();
+  const boxes = layoutNetwork(nodes, types);
+  let width = 0, height = 0;
+  const portY = (box, index) => box.y + HEADER + index * PORT_ROW + PORT_ROW / 2 - 4;
+  const groups = {};
+  for (const [id, box] of Object.entries(boxes)) {
+    const node = nodes[id], decl = types[node.type];
+    const g = svgElement("g", { class: "node", "data-node": id }, svg);
+    svgElement("rect", { class: "body", x: box.x, y: box.y, width: NODE_WIDTH, height: box.height,
+                         fill: GROUP_COLOURS[decl.category] || "#eee" }, g);
+    const title = svgElement("text", { x: box.x + 6, y: box.y + 14, "font-weight": "bold" }, g);
+    title.textContent = id;
+    const type = svgElement("text", { x: box.x + 6, y: box.y + 27, fill: "#555" }, g);
+    type.textContent = node.type;
+    type.classList.add("type");
+    const stats = svgElement("text", { x: box.x + NODE_WIDTH - 6, y: box.y + 14,
+                                       "text-anchor": "end", fill: "#d9480f" }, g);
+    stats.classList.add("stats");
+    decl.inputs.forEach((p, i) => {
+      svgElement("circle", { class: "port", cx: box.x, cy: portY(box, i), r: 4 }, g);
+      const t = svgElement("text", { x: box.x + 8, y: portY(box, i) + 4 }, g);
+      t.textContent = `${p.name}: ${p.type}`;
+    });
+    decl.outputs.forEach((p, i) => {
+      svgElement("circle", { class: "port", cx: box.x + NODE_WIDTH, cy: portY(box, i), r: 4 }, g);
+      const t = svgElement("text", { x: box.x + NODE_WIDTH - 8, y: portY(box, i) + 4,
+                                     "text-anchor": "end" }, g);
+      t.textContent = `${p.name}: ${p.type}`;
+    });
+    g.addEventListener("click", () => onSelect(id));
+    groups[id] = g;
+    width = Math.max(width, box.x + NODE_WIDTH + 20);
+    height = Math.max(height, box.y + box.height + 20);
+  }
+  for (const [id, node] of Object.entries(nodes)) {
+    const decl = types[node.type];
+    for (const [input, source] of Object.entries(node.inputs || {})) {
+      const [from, port] = source.split(".");
+      if (!(from in boxes)) continue;
+      const out = types[nodes[from].type].outputs.findIndex((p) => p.name === port);
+      const into = decl.inputs.findIndex((p) => p.name === input);
+      const x1 = boxes[from].x + NODE_WIDTH, y1 = portY(boxes[from], out);
+      const x2 = boxes[id].x, y2 = portY(boxes[id], into);
+      const bend = Math.max(30, (x2 - x1) / 2);
+      svgElement("path", { class: "wire", d: `M${x1},${y1} C${x1 + bend},${y1} ${x2 - bend},${y2} ${x2},${y2}` },
+                 svg).dataset.wire = `${source}->${id}.${input}`;
+    }
+  }
+  svg.setAttribute("width", width);
+  svg.setAttribute("height", height);
+  return groups;
+}
