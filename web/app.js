@@ -179,6 +179,7 @@ async function cook() {
     setStatus(e.message, true);
   } finally {
     state.cooking = false;
+    document.body.dataset.cooks = Number(document.body.dataset.cooks || 0) + 1;  // for tests
     $("cancel").disabled = true;
     state.groups[node]?.classList.remove("cooking");
   }

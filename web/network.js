@@ -1,8 +1,9 @@
-// The node network as SVG: each node a box with its typed ports, laid out in columns by
-// depth (a node one column right of its deepest input), wires as curves from output to input.
+// The node network as SVG, flowing down as Houdini's does: each node a box with its typed
+// ports (inputs on the left edge, outputs on the right), laid out in rows by depth (a node
+// one row below its deepest input), wires as curves from output to input.
 "use strict";
 
-const NODE_WIDTH = 170, PORT_ROW = 16, HEADER = 34, COLUMN_GAP = 70, ROW_GAP = 22;
+const NODE_WIDTH = 200, PORT_ROW = 15, HEADER = 32, COLUMN_GAP = 36, ROW_GAP = 34;
 const GROUP_COLOURS = {
   atmosphere: "#d8ecf7", fluid: "#dbeedd", mapping: "#f4e6c8", volume: "#e8dcf2",
   render: "#f7d9d4", io: "#e4e4e4", util: "#eeeeee",
@@ -29,19 +30,22 @@ function layoutNetwork(nodes, types) {
     }
     return (depth[id] = d);
   };
-  const columns = [];
-  for (const id of Object.keys(nodes).sort()) (columns[depthOf(id)] ||= []).push(id);
+  const levels = [];
+  for (const id of Object.keys(nodes).sort()) (levels[depthOf(id)] ||= []).push(id);
   const boxes = {};
-  columns.forEach((ids, c) => {
-    let y = 10;
-    for (const id of ids) {
+  let y = 12;
+  for (const ids of levels) {
+    if (!ids) continue;
+    let tallest = 0;
+    ids.forEach((id, i) => {
       const decl = types[nodes[id].type];
-      const rows = Math.max(decl.inputs.length, decl.outputs.length, 1);
-      const height = HEADER + rows * PORT_ROW;
-      boxes[id] = { x: 10 + c * (NODE_WIDTH + COLUMN_GAP), y, height };
-      y += height + ROW_GAP;
-    }
-  });
+      const height = HEADER + (decl.inputs.length + decl.outputs.length) * PORT_ROW + 4;
+      boxes[id] = { x: 60 + i * (NODE_WIDTH + COLUMN_GAP), y, height,
+                    outputRow: decl.inputs.length };
+      tallest = Math.max(tallest, height);
+    });
+    y += tallest + ROW_GAP;
+  }
   return boxes;
 }
 
@@ -51,7 +55,7 @@ function drawNetwork(svg, nodes, types, onSelect) {
   svg.replaceChildren();
   const boxes = layoutNetwork(nodes, types);
   let width = 0, height = 0;
-  const portY = (box, index) => box.y + HEADER + index * PORT_ROW + PORT_ROW / 2 - 4;
+  const portY = (box, row) => box.y + HEADER + row * PORT_ROW + PORT_ROW / 2 - 2;
   const groups = {};
   for (const [id, box] of Object.entries(boxes)) {
     const node = nodes[id], decl = types[node.type];
@@ -72,8 +76,9 @@ function drawNetwork(svg, nodes, types, onSelect) {
       t.textContent = `${p.name}: ${p.type}`;
     });
     decl.outputs.forEach((p, i) => {
-      svgElement("circle", { class: "port", cx: box.x + NODE_WIDTH, cy: portY(box, i), r: 4 }, g);
-      const t = svgElement("text", { x: box.x + NODE_WIDTH - 8, y: portY(box, i) + 4,
+      const row = box.outputRow + i;
+      svgElement("circle", { class: "port", cx: box.x + NODE_WIDTH, cy: portY(box, row), r: 4 }, g);
+      const t = svgElement("text", { x: box.x + NODE_WIDTH - 8, y: portY(box, row) + 4,
                                      "text-anchor": "end" }, g);
       t.textContent = `${p.name}: ${p.type}`;
     });
@@ -89,9 +94,9 @@ function drawNetwork(svg, nodes, types, onSelect) {
       if (!(from in boxes)) continue;
       const out = types[nodes[from].type].outputs.findIndex((p) => p.name === port);
       const into = decl.inputs.findIndex((p) => p.name === input);
-      const x1 = boxes[from].x + NODE_WIDTH, y1 = portY(boxes[from], out);
+      const x1 = boxes[from].x + NODE_WIDTH, y1 = portY(boxes[from], boxes[from].outputRow + out);
       const x2 = boxes[id].x, y2 = portY(boxes[id], into);
-      const bend = Math.max(30, (x2 - x1) / 2);
+      const bend = Math.min(50, Math.max(30, Math.abs(x2 - x1) / 2));
       svgElement("path", { class: "wire", d: `M${x1},${y1} C${x1 + bend},${y1} ${x2 - bend},${y2} ${x2},${y2}` },
                  svg).dataset.wire = `${source}->${id}.${input}`;
     }

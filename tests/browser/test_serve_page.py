@@ -1,0 +1,141 @@
+"""`cloudgraph serve`'s page in headless Chromium, driven as a user drives it: Figure 6 at a
+reduced size, the sun moved, only the Renderer recooks (the page's own cook report), the
+preview changes, an out-of-range value is refused naming node and parameter, and the saved
+graph loads in the CLI with the edit. Optionally saves a screenshot of the page."""
+
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from webdriver import Browser  # noqa: E402
+
+PREVIEW_BYTES = """
+const img = document.getElementById('preview');
+return fetch(img.src).then(r => r.arrayBuffer()).then(b => {
+  const bytes = new Uint8Array(b);
+  let h = 0;
+  for (const x of bytes) h = (h * 31 + x) >>> 0;
+  return bytes.length + ':' + h;
+});"""
+COOKS = "return Number(document.body.dataset.cooks || 0);"
+STATUS = "return document.getElementById('status').textContent;"
+REPORT = """return [...document.querySelectorAll('#report tbody tr')]
+                .map(r => [r.dataset.node, r.dataset.status]);"""
+SET_INPUTS = """
+const [param, values] = arguments;
+const inputs = [...document.querySelectorAll(`#params [data-param="${param}"]`)];
+inputs.forEach((input, i) => { input.value = values[i]; });
+inputs[0].dispatchEvent(new Event('change'));
+return inputs.length;"""
+
+
+def small_figure6(source, target):
+    """Figure 6 as the golden tests shrink it: the small primitive, coarser voxels, a
+    thumbnail render, frames up to 160."""
+    with open(source) as f:
+        graph = json.load(f)
+    graph["frames"]["end"] = 160
+    nodes = graph["nodes"]
+    nodes["primitive"]["params"] = {"frames": 40, "width": 400.0, "height": 700.0,
+                                    "sourceHeight": 100.0, "sourceRadius": 125.0,
+                                    "sourceHumidity": 1.0}
+    nodes["voxelize"]["params"]["voxelSize"] = 80
+    nodes["render"]["params"].update({"width": 160, "height": 120})
+    nodes["video"]["params"]["lastFrame"] = 160
+    with open(target, "w") as f:
+        json.dump(graph, f, indent=1)
+
+
+def wait_for_cook(browser, cooks_before, what):
+    browser.wait_for(f"return Number(document.body.dataset.cooks || 0) > {cooks_before};",
+                     timeout=300)
+    status = browser.run(STATUS)
+    assert status.startswith("cooked frame"), f"{what}: the cook failed: {status}"
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--cloudgraph", required=True)
+    ap.add_argument("--graph", required=True)
+    ap.add_argument("--work", required=True)
+    ap.add_argument("--chromium", required=True)
+    ap.add_argument("--chromedriver", required=True)
+    ap.add_argument("--screenshot", help="save a PNG of the page here")
+    args = ap.parse_args()
+
+    shutil.rmtree(args.work, ignore_errors=True)
+    os.makedirs(os.path.join(args.work, "out"))
+    graph_file = os.path.join(args.work, "figure6_small.json")
+    small_figure6(args.graph, graph_file)
+
+    server = subprocess.Popen(
+        [args.cloudgraph, "serve", graph_file, "--port", "0",
+         "--out", os.path.join(args.work, "out"), "--cache", os.path.join(args.work, "cache")],
+        stdout=subprocess.PIPE, text=True)
+    browser = None
+    try:
+        line = server.stdout.readline()
+        url = line.split(" at ")[1].split(" ")[0]
+        browser = Browser(args.chromium, args.chromedriver, os.path.join(args.work, "profile"))
+        browser.open(url)
+        wait_for_cook(browser, 0, "the first cook")
+
+        # A frame with a cloud: every node upstream cooks once.
+        cooks = browser.run(COOKS)
+        browser.run("""const s = document.getElementById('frame'); s.value = 150;
+                       s.dispatchEvent(new Event('input'));
+                       s.dispatchEvent(new Event('change'));""")
+        wait_for_cook(browser, cooks, "frame 150")
+        before = browser.run(PREVIEW_BYTES)
+
+        # Select the Renderer in the network and move the sun.
+        browser.run("""document.querySelector('g[data-node="render"]')
+                         .dispatchEvent(new MouseEvent('click', {bubbles: true}));""")
+        title = browser.run("return document.getElementById('params-title').textContent;")
+        assert title.startswith("render"), title
+        cooks = browser.run(COOKS)
+        assert browser.run(SET_INPUTS, "sunDirection", [0.8, -1, 0.5]) == 3
+        wait_for_cook(browser, cooks, "the sun edit")
+        report = dict(browser.run(REPORT))
+        assert report.get("render") == "cooked", report
+        recooked = sorted(n for n, s in report.items() if s == "cooked")
+        assert recooked == ["render"], f"only the Renderer should recook: {report}"
+        assert browser.run(PREVIEW_BYTES) != before, "the preview did not change"
+
+        # An out-of-range value: refused with the node and parameter named.
+        browser.run(SET_INPUTS, "width", [0])
+        error = browser.wait_for("""return [...document.querySelectorAll('#params .error')]
+                                     .map(e => e.textContent).join('');""", timeout=30)
+        assert "/nodes/render/params/width" in error and "minimum" in error, error
+
+        if args.screenshot:
+            browser.run(SET_INPUTS, "width", [160])
+            time.sleep(0.5)
+            browser.screenshot(args.screenshot)
+
+        browser.run("document.getElementById('save').click();")
+        browser.wait_for(f"return document.getElementById('status').textContent"
+                         f".startsWith('saved');", timeout=30)
+        check = subprocess.run([args.cloudgraph, "validate", graph_file], capture_output=True,
+                               text=True)
+        assert check.returncode == 0, check.stderr
+        with open(graph_file) as f:
+            saved = json.load(f)["nodes"]["render"]["params"]
+        assert saved["sunDirection"] == [0.8, -1, 0.5], saved
+        assert saved["width"] == 160, saved
+        print("the page loaded, recooked only the Renderer after the sun edit, refused width 0,"
+              " and saved a graph the CLI loads")
+    finally:
+        if browser:
+            browser.close()
+        server.terminate()
+        server.wait(timeout=30)
+
+
+if __name__ == "__main__":
+    main()
