@@ -177,7 +177,7 @@ void GraphServer::routes()
             return replyError(res, e.inputFault() ? 400 : 500, e.what());
         } catch (const Cancelled&) {
             return replyError(res, 409, "cancelled; nothing partial was cached");
-        } catch (const std::runtime_error& e) {  // another cook is under way
+        } catch (const CookInProgress& e) {
             return replyError(res, 409, e.what());
         }
         const double seconds =

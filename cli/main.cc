@@ -58,9 +58,9 @@ Exit codes: 0 ok, 2 bad input (graph, parameter, file), 1 internal failure.
 
 /// glibc gives every block above its mmap threshold back to the kernel when it is freed and
 /// maps it anew on the next allocation, so the renderer's and the voxelizer's per-frame
-/// buffers (tens to hundreds of MB a frame) were faulted in and zeroed by the kernel again
-/// every frame: a tenth of a default run's CPU time. Blocks up to glibc's largest threshold
-/// come from the heap instead, and freed memory stays there for the next frame.
+/// buffers were faulted in and zeroed by the kernel again every frame. Blocks up to glibc's
+/// largest threshold come from the heap instead, and freed memory stays there for the next
+/// frame: the default run's late frames render in 0.89 of the time (docs/benchmarks.md).
 void keepFreedMemoryForReuse()
 {
     mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's maximum on 64-bit systems

@@ -116,7 +116,7 @@ DataPtr GraphDocument::cook(const Graph& graph, const std::string& node, const s
     {
         std::lock_guard<std::mutex> lock(mCookMutex);
         if (mCancel)
-            throw std::runtime_error("this graph is already cooking (one cook at a time a graph)");
+            throw CookInProgress("this graph is already cooking (one cook at a time a graph)");
         mCancel = token;
     }
     Evaluator& evaluator = evaluatorFor(cache, out);

@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -27,6 +28,12 @@ class Registry;
 class UnreadableGraph : public InputError {
 public:
     using InputError::InputError;
+};
+
+/// cook() was called while another cook of the same document was under way.
+class CookInProgress : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
 };
 
 class GraphDocument {
@@ -58,7 +65,7 @@ public:
 
     /// Cooks output `port` of `node` at `frame` and what it needs. `cache` (may be empty) is
     /// a disk cache directory shared with the CLI, `out` where writer nodes write. One cook
-    /// at a time: a second one throws std::runtime_error while the first runs. cancel()
+    /// at a time: a second one throws CookInProgress while the first runs. cancel()
     /// from another thread stops it (Cancelled): nothing partial is cached.
     DataPtr cook(const std::string& node, const std::string& port, int frame,
                  const std::string& cache, const std::string& out);
