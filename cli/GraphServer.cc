@@ -4,7 +4,11 @@
 
 #include <chrono>
 #include <exception>
+#include <fstream>
+#include <optional>
+#include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -20,6 +24,18 @@ namespace {
 
 /// Request bodies are small JSON edits; anything larger is refused (413) before it is read.
 constexpr std::size_t kMaxBodyBytes = 1u << 20;
+/// How often the graph file is looked at for a change made outside the page.
+constexpr std::chrono::milliseconds kWatchInterval{300};
+
+/// The file's bytes; nullopt when it cannot be read (being replaced, say).
+std::optional<std::string> readText(const std::filesystem::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return std::nullopt;
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
 
 void replyJson(httplib::Response& res, int status, const nlohmann::json& body)
 {
@@ -74,6 +90,7 @@ GraphServer::GraphServer(const Registry& registry, ServeOptions options)
       mDoc(GraphDocument::load(mOptions.graphFile, registry, mOptions.load))
 {
     mDoc->completeGraph();  // a graph the CLI would refuse is refused here too
+    mFileText = readText(mOptions.graphFile).value_or("");
     mServer->set_payload_max_length(kMaxBodyBytes);
     routes();
 }
@@ -93,12 +110,43 @@ int GraphServer::bind()
     return port;
 }
 
-void GraphServer::listen() { mServer->listen_after_bind(); }
+void GraphServer::listen()
+{
+    std::thread watcher([this] { watchFile(); });
+    mServer->listen_after_bind();
+    {
+        std::lock_guard<std::mutex> lock(mStopMutex);
+        mStopping = true;
+    }
+    mStopped.notify_all();
+    watcher.join();
+}
 
 void GraphServer::stop()
 {
     mDoc->cancel();
     mServer->stop();
+}
+
+void GraphServer::watchFile()
+{
+    for (;;) {
+        {
+            std::unique_lock<std::mutex> lock(mStopMutex);
+            if (mStopped.wait_for(lock, kWatchInterval, [this] { return mStopping; })) return;
+        }
+        const std::optional<std::string> text = readText(mOptions.graphFile);
+        std::lock_guard<std::mutex> lock(mDocMutex);
+        if (!text || *text == mFileText) continue;
+        mFileText = *text;
+        try {
+            mDoc->replace(*text);
+            mFileError.clear();
+        } catch (const InputError& e) {
+            mFileError = e.what();  // the page says why; it keeps the graph it has
+        }
+        changed();
+    }
 }
 
 void GraphServer::routes()
@@ -111,9 +159,11 @@ void GraphServer::routes()
     s.Get("/api/graph", [this](const httplib::Request&, httplib::Response& res) {
         nlohmann::json types = nlohmann::json::object();
         nlohmann::json graph;
+        std::string fileError;
         {
             std::lock_guard<std::mutex> lock(mDocMutex);
             graph = mDoc->json();
+            fileError = mFileError;
             for (const GraphNode& n : mDoc->graph().nodes())
                 types[n.decl->type] = nodeDeclToJson(*n.decl);
         }
@@ -123,7 +173,31 @@ void GraphServer::routes()
                   {{"file", mOptions.graphFile.filename().string()},
                    {"graph", graph},
                    {"types", types},
-                   {"registry", all}});
+                   {"registry", all},
+                   {"version", mVersion.load()},
+                   {"fileError", fileError}});
+    });
+
+    s.Get("/api/version", [this](const httplib::Request&, httplib::Response& res) {
+        std::lock_guard<std::mutex> lock(mDocMutex);
+        replyJson(res, 200, {{"version", mVersion.load()}, {"fileError", mFileError}});
+    });
+
+    // Wiring edits (nodes added or deleted, inputs connected or not): the page sends the
+    // whole edited graph, loaded with the same type checks as a file.
+    s.Post("/api/graph", [this](const httplib::Request& req, httplib::Response& res) {
+        const auto body = jsonBody(req, res);
+        if (!body) return;
+        if (!body->contains("graph") || !body->at("graph").is_object())
+            return replyError(res, 400, "'graph' must be a graph's JSON object");
+        try {
+            std::lock_guard<std::mutex> lock(mDocMutex);
+            mDoc->replace(body->at("graph").dump());
+        } catch (const InputError& e) {
+            return replyError(res, 400, e.what());
+        }
+        changed();
+        replyJson(res, 200, {{"version", mVersion.load()}});
     });
 
     // One parameter, checked as `--set` and loading check it: 400 with the CLI's message.
@@ -141,7 +215,8 @@ void GraphServer::routes()
         } catch (const InputError& e) {
             return replyError(res, 400, e.what());
         }
-        replyJson(res, 200, {{"ok", true}});
+        changed();
+        replyJson(res, 200, {{"version", mVersion.load()}});
     });
 
     // Cooks one output at a frame, with what it needs that the last cooks did not make.
@@ -209,7 +284,7 @@ void GraphServer::routes()
     s.Post("/api/save", [this](const httplib::Request&, httplib::Response& res) {
         try {
             std::lock_guard<std::mutex> lock(mDocMutex);
-            mDoc->save(mOptions.graphFile);
+            mFileText = mDoc->save(mOptions.graphFile);  // not a change from outside
         } catch (const InputError& e) {
             return replyError(res, 400, e.what());
         }

@@ -5,6 +5,8 @@
 /// evaluator (and the --cache) between cooks. Nothing is written but the graph file (on
 /// save) and what writers write under --out.
 
+#include <atomic>
+#include <condition_variable>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -46,6 +48,11 @@ public:
 
 private:
     void routes();
+    /// Until stop(): reloads the graph when its file changes on disk (a text editor's save),
+    /// through the same checks; a file that does not load is reported and the graph kept.
+    void watchFile();
+    /// Marks the graph changed, for pages polling /api/version.
+    void changed() { ++mVersion; }
 
     ServeOptions mOptions;
     const Registry& mRegistry;
@@ -54,6 +61,13 @@ private:
     std::unique_ptr<GraphDocument> mDoc;
     std::mutex mPreviewMutex;
     std::map<std::string, std::string> mPreviews;  ///< PNG bytes of each node's last cook
+
+    std::atomic<int> mVersion{1};  ///< of the graph: every edit, reload and save adds one
+    std::string mFileText;         ///< the file as last loaded or saved (under mDocMutex)
+    std::string mFileError;        ///< why the file on disk did not load (under mDocMutex)
+    std::mutex mStopMutex;
+    std::condition_variable mStopped;
+    bool mStopping = false;
 };
 
 }  // namespace cg::cli

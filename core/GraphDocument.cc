@@ -75,14 +75,16 @@ Graph GraphDocument::completeGraph() const
     return g;
 }
 
-void GraphDocument::save(const std::filesystem::path& path) const
+std::string GraphDocument::save(const std::filesystem::path& path) const
 {
     completeGraph();
+    const std::string text = toJson() + "\n";
     try {
-        util::writeFileAtomically(path, toJson() + "\n");
+        util::writeFileAtomically(path, text);
     } catch (const std::exception& e) {
         throw InputError(path.string(), std::string("cannot write the graph: ") + e.what());
     }
+    return text;
 }
 
 Evaluator& GraphDocument::evaluatorFor(const std::string& cache, const std::string& out)

@@ -60,8 +60,9 @@ public:
     void replace(const std::string& text);
     /// The graph as the CLI would load it: complete, or an InputError.
     Graph completeGraph() const;
-    /// Writes toJson() to `path` atomically, after checking the graph is complete.
-    void save(const std::filesystem::path& path) const;
+    /// Writes toJson() to `path` atomically, after checking the graph is complete; returns
+    /// the bytes written.
+    std::string save(const std::filesystem::path& path) const;
 
     /// Cooks output `port` of `node` at `frame` and what it needs. `cache` (may be empty) is
     /// a disk cache directory shared with the CLI, `out` where writer nodes write. One cook

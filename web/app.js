@@ -11,6 +11,8 @@ const state = {
   cooking: false,
   again: false,       // an edit came during a cook: cook once more when it ends
   playing: false,
+  version: 0,         // of the server's graph when this page last read it
+  registry: [],       // every node type, for "Add"
 };
 const $ = (id) => document.getElementById(id);
 
@@ -111,6 +113,52 @@ function showParams(id) {
     form.appendChild(label);
     form.appendChild(message);
   }
+  showInputs(id);
+}
+
+// Each input port as a menu of the outputs of its type, "(none)" to disconnect.
+function showInputs(id) {
+  const node = state.graph.nodes[id];
+  const decl = state.types[node.type];
+  const box = $("inputs");
+  box.replaceChildren();
+  for (const port of decl.inputs) {
+    const label = document.createElement("label");
+    const name = document.createElement("span");
+    name.textContent = `${port.name}: ${port.type}`;
+    label.appendChild(name);
+    const select = document.createElement("select");
+    select.dataset.input = port.name;
+    select.add(new Option("(none)", ""));
+    for (const [other, n] of Object.entries(state.graph.nodes)) {
+      if (other === id) continue;
+      for (const out of state.types[n.type]?.outputs || [])
+        if (out.type === port.type) select.add(new Option(`${other}.${out.name}`, `${other}.${out.name}`));
+    }
+    select.value = (node.inputs || {})[port.name] || "";
+    select.addEventListener("change", () => editGraph((g) => {
+      const inputs = (g.nodes[id].inputs ||= {});
+      if (select.value) inputs[port.name] = select.value; else delete inputs[port.name];
+    }));
+    label.appendChild(select);
+    box.appendChild(label);
+  }
+}
+
+// A wiring edit: the edited graph goes to the server, which loads it with the same type
+// checks as a file; on success the page redraws from the server's graph.
+async function editGraph(edit) {
+  const graph = JSON.parse(JSON.stringify(state.graph));
+  edit(graph);
+  try {
+    await api("/api/graph", { graph });
+  } catch (e) {
+    setStatus(e.message, true);
+    showParams(state.selected);  // back to the graph as it is
+    return;
+  }
+  await reload();
+  cook();
 }
 
 async function editParam(id, name, read, message) {
@@ -122,14 +170,16 @@ async function editParam(id, name, read, message) {
     message.textContent = `not JSON: ${e.message}`;
     return;
   }
+  let reply;
   try {
-    await api("/api/param", { node: id, param: name, value });
+    reply = await api("/api/param", { node: id, param: name, value });
   } catch (e) {
     message.textContent = e.message;   // the CLI's own message, naming node and parameter
     setStatus(e.message, true);
     return;
   }
   (state.graph.nodes[id].params ||= {})[name] = value;
+  state.version = reply.version;
   setStatus(`${id}.${name} = ${JSON.stringify(value)}`);
   cook();
 }
@@ -199,25 +249,69 @@ function nextFrame() {
   cook();
 }
 
-async function load() {
+// Reads the server's graph and redraws, keeping the frame, the preview choice and the
+// selected node where they still exist.
+async function reload() {
   const reply = await api("/api/graph");
   state.graph = reply.graph;
   state.types = reply.types;
+  state.registry = reply.registry;
+  state.version = reply.version;
   $("file").textContent = reply.file;
+  if (reply.fileError) setStatus(`the file on disk does not load: ${reply.fileError}`, true);
   const frames = state.graph.frames;
   const slider = $("frame");
+  const frame = Math.min(Math.max(Number(slider.value), frames.start), frames.end);
   slider.min = frames.start;
   slider.max = frames.end;
-  slider.value = frames.start;
+  slider.value = frame;
   $("frame-value").textContent = slider.value;
   state.groups = drawNetwork($("network"), state.graph.nodes, state.types, showParams);
   const select = $("preview-node");
+  const chosen = select.value;
   select.replaceChildren();
   for (const { id, port } of imageOutputs()) select.add(new Option(id, `${id}.${port}`));
-  const first = Object.keys(state.graph.nodes).sort()[0];
-  if (first) showParams(select.value ? select.value.split(".")[0] : first);
+  if ([...select.options].some((o) => o.value === chosen)) select.value = chosen;
+  const types = $("add-type");
+  if (!types.options.length) for (const t of state.registry) types.add(new Option(t, t));
+  const ids = Object.keys(state.graph.nodes).sort();
+  const keep = ids.includes(state.selected) ? state.selected : null;
+  const show = keep || (select.value ? select.value.split(".")[0] : ids[0]);
+  if (show) showParams(show);
 }
 
+// A change of the graph made elsewhere (the file saved by a text editor): reload and cook.
+async function poll() {
+  try {
+    const reply = await api("/api/version");
+    if (reply.version !== state.version && !state.cooking) {
+      await reload();
+      cook();
+    }
+  } catch (e) {
+    setStatus(`the server does not answer: ${e.message}`, true);
+  }
+  setTimeout(poll, 1000);
+}
+
+$("add").addEventListener("click", () => {
+  const type = $("add-type").value;
+  let n = 1;
+  while (`${type.toLowerCase()}${n}` in state.graph.nodes) ++n;
+  const id = `${type.toLowerCase()}${n}`;
+  state.selected = id;
+  editGraph((g) => { g.nodes[id] = { type }; });
+});
+$("delete").addEventListener("click", () => {
+  const id = state.selected;
+  if (!id) return;
+  editGraph((g) => {
+    delete g.nodes[id];
+    for (const n of Object.values(g.nodes))
+      for (const [port, source] of Object.entries(n.inputs || {}))
+        if (source.split(".")[0] === id) delete n.inputs[port];
+  });
+});
 $("frame").addEventListener("input", () => { $("frame-value").textContent = $("frame").value; });
 $("frame").addEventListener("change", cook);
 $("preview-node").addEventListener("change", cook);
@@ -235,4 +329,4 @@ $("save").addEventListener("click", async () => {
     setStatus(e.message, true);
   }
 });
-load().then(cook).catch((e) => setStatus(e.message, true));
+reload().then(() => { cook(); poll(); }).catch((e) => setStatus(e.message, true));

@@ -128,8 +128,18 @@ def main():
             saved = json.load(f)["nodes"]["render"]["params"]
         assert saved["sunDirection"] == [0.8, -1, 0.5], saved
         assert saved["width"] == 160, saved
+
+        # The file edited outside the page (an editor's save): the page reloads it.
+        with open(graph_file) as f:
+            graph = json.load(f)
+        graph["nodes"]["render"]["params"]["fov"] = 33
+        with open(graph_file + ".new", "w") as f:
+            json.dump(graph, f, indent=1)
+        os.replace(graph_file + ".new", graph_file)
+        browser.wait_for("""const i = document.querySelector('#params [data-param="fov"]');
+                            return i && i.value === '33';""", timeout=30)
         print("the page loaded, recooked only the Renderer after the sun edit, refused width 0,"
-              " and saved a graph the CLI loads")
+              " saved a graph the CLI loads, and reloaded the file edited outside it")
     finally:
         if browser:
             browser.close()

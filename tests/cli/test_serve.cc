@@ -54,6 +54,12 @@ protected:
     }
 
     std::filesystem::path graphFile() const { return dir / "graph.json"; }
+    /// Replaces the graph file as an editor's save does: whole, by a rename.
+    void editFile(const std::string& text) const
+    {
+        test::writeFile(dir / "graph.json.new", text);
+        std::filesystem::rename(dir / "graph.json.new", graphFile());
+    }
     httplib::Client client() const
     {
         httplib::Client c("127.0.0.1", port);
@@ -195,6 +201,67 @@ TEST_F(ServeTest, WritesNothingButTheGraphAndUnderOut)
             files.push_back(std::filesystem::relative(e.path(), dir.path()).string());
     std::sort(files.begin(), files.end());
     EXPECT_EQ(files, (std::vector<std::string>{"graph.json", "out/still.png"}));
+}
+
+TEST_F(ServeTest, WiringEditsAreCheckedAsLoadingChecksThem)
+{
+    json graph = json::parse(client().Get("/api/graph")->body)["graph"];
+    // A FogVolume output into an Image input: refused with the loader's words.
+    json wrong = graph;
+    wrong["nodes"]["write"]["inputs"]["image"] = "cloud.volume";
+    const auto refused = post("/api/graph", {{"graph", wrong}});
+    ASSERT_TRUE(refused);
+    EXPECT_EQ(refused->status, 400);
+    const std::string error = json::parse(refused->body)["error"];
+    EXPECT_NE(error.find("/nodes/write/inputs/image"), std::string::npos) << error;
+    EXPECT_EQ(json::parse(client().Get("/api/graph")->body)["graph"], graph);  // unchanged
+
+    // Add a second renderer wired to the cumulus, cook it, then delete it again.
+    json added = graph;
+    added["nodes"]["render2"] = {{"type", "Renderer"},
+                                 {"inputs", {{"volume", "cloud.volume"}}},
+                                 {"params", {{"width", 32}, {"height", 24}}}};
+    ASSERT_EQ(post("/api/graph", {{"graph", added}})->status, 200);
+    const auto cooked = post("/api/cook", {{"node", "render2"}, {"frame", 0}});
+    ASSERT_EQ(cooked->status, 200) << cooked->body;
+    // Disconnected, the renderer is kept but cannot cook: the CLI's refusal of the graph.
+    added["nodes"]["render2"].erase("inputs");
+    ASSERT_EQ(post("/api/graph", {{"graph", added}})->status, 200);
+    const auto incomplete = post("/api/cook", {{"node", "render"}, {"frame", 0}});
+    EXPECT_EQ(incomplete->status, 400);
+    EXPECT_NE(json::parse(incomplete->body)["error"].get<std::string>().find("render2"),
+              std::string::npos);
+    ASSERT_EQ(post("/api/graph", {{"graph", graph}})->status, 200);
+    EXPECT_EQ(post("/api/cook", {{"node", "render"}, {"frame", 0}})->status, 200);
+}
+
+TEST_F(ServeTest, ReloadsTheGraphWhenItsFileChangesOnDisk)
+{
+    const int version = json::parse(client().Get("/api/version")->body)["version"];
+    json edited = test::readJson(graphFile());
+    edited["nodes"]["render"]["params"]["fov"] = 33;
+    editFile(edited.dump(2));
+    json reply;
+    for (int i = 0; i < 100; ++i) {
+        reply = json::parse(client().Get("/api/version")->body);
+        if (reply["version"] != version) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    ASSERT_NE(reply["version"], version) << "the change on disk was not seen";
+    EXPECT_EQ(reply["fileError"], "");
+    const json graph = json::parse(client().Get("/api/graph")->body)["graph"];
+    EXPECT_EQ(graph["nodes"]["render"]["params"]["fov"], 33.0);
+
+    // A file that does not load is reported; the graph stays as it was.
+    editFile(R"({"cloudgraph": 1, "nodes": {"x": {"type": "Nope"}}})");
+    for (int i = 0; i < 100; ++i) {
+        reply = json::parse(client().Get("/api/version")->body);
+        if (reply["fileError"] != "") break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    EXPECT_NE(reply["fileError"].get<std::string>().find("Nope"), std::string::npos)
+        << reply.dump();
+    EXPECT_EQ(json::parse(client().Get("/api/graph")->body)["graph"], graph);
 }
 
 TEST_F(ServeTest, StopsOnSigterm)
