@@ -71,6 +71,23 @@ std::optional<std::string> stringField(const nlohmann::json& body, const char* k
     return it->get<std::string>();
 }
 
+/// The writers downstream of `node` that cook frame by frame (not those that gather every
+/// frame, such as EncodeVideo).
+std::vector<std::string> writersBelow(const Graph& graph, const std::string& node)
+{
+    const std::size_t from = graph.indexOf(node);
+    std::vector<bool> below(graph.nodes().size(), false);
+    below[from] = true;
+    std::vector<std::string> writers;
+    for (const std::size_t i : graph.topologicalOrder()) {
+        for (const std::size_t up : graph.upstream()[i]) below[i] = below[i] || below[up];
+        const NodeDecl& decl = *graph.nodes()[i].decl;
+        if (i != from && below[i] && decl.writesFiles && !decl.gathersFrames)
+            writers.push_back(graph.nodes()[i].id);
+    }
+    return writers;
+}
+
 /// A cooked value the page can show: an image as an 8-bit PNG through the display transform
 /// WriteImage uses by default.
 std::optional<std::string> previewPng(const DataPtr& value)
@@ -92,6 +109,10 @@ GraphServer::GraphServer(const Registry& registry, ServeOptions options)
     mDoc->completeGraph();  // a graph the CLI would refuse is refused here too
     mFileText = readText(mOptions.graphFile).value_or("");
     mServer->set_payload_max_length(kMaxBodyBytes);
+    // One request a connection: a browser that reuses a kept-alive connection the server has
+    // just timed out sees its POST fail ("Failed to fetch"); on this machine's loopback a new
+    // connection costs nothing.
+    mServer->set_keep_alive_max_count(1);
     routes();
 }
 
@@ -225,10 +246,16 @@ void GraphServer::routes()
         if (!body) return;
         const auto node = stringField(*body, "node", res);
         if (!node) return;
-        const std::string port = body->value("port", std::string("image"));
+        const auto port = body->contains("port") ? stringField(*body, "port", res)
+                                                  : std::optional<std::string>("image");
+        if (!port) return;
         const auto frame = body->find("frame");
         if (frame == body->end() || !frame->is_number_integer())
             return replyError(res, 400, "'frame' must be an integer");
+        // With "write": true the writers below the node write this frame's files too.
+        const auto write = body->find("write");
+        if (write != body->end() && !write->is_boolean())
+            return replyError(res, 400, "'write' must be true or false");
         Graph graph;
         try {
             std::lock_guard<std::mutex> lock(mDocMutex);
@@ -245,7 +272,9 @@ void GraphServer::routes()
         const auto started = std::chrono::steady_clock::now();
         DataPtr value;
         try {
-            value = mDoc->cook(graph, *node, port, f, mOptions.cacheDir, mOptions.outDir);
+            const bool writes = write != body->end() && write->get<bool>() && graph.find(*node);
+            value = mDoc->cook(graph, *node, *port, f, mOptions.cacheDir, mOptions.outDir,
+                               writes ? writersBelow(graph, *node) : std::vector<std::string>{});
         } catch (const InputError& e) {
             return replyError(res, 400, e.what());
         } catch (const CookError& e) {

@@ -106,7 +106,8 @@ DataPtr GraphDocument::cook(const std::string& node, const std::string& port, in
 }
 
 DataPtr GraphDocument::cook(const Graph& graph, const std::string& node, const std::string& port,
-                            int frame, const std::string& cache, const std::string& out)
+                            int frame, const std::string& cache, const std::string& out,
+                            const std::vector<std::string>& alsoCook)
 {
     const GraphNode* target = graph.find(node);
     if (!target) throw InputError(graph.locate("/nodes"), "unknown node '" + node + "'");
@@ -127,7 +128,20 @@ DataPtr GraphDocument::cook(const Graph& graph, const std::string& node, const s
     OutputsPtr outputs;
     std::exception_ptr failure;
     try {
-        outputs = evaluator.pull(graph, node, frame);
+        if (alsoCook.empty()) {
+            outputs = evaluator.pull(graph, node, frame);
+        } else {
+            std::vector<std::string> targets = alsoCook;
+            targets.push_back(node);
+            const std::size_t index = graph.indexOf(node);
+            evaluator.cookFrames(graph, frame, frame, targets,
+                                 [&](int, const Evaluator::FrameOutputs& cooked) {
+                                     outputs = cooked[index];
+                                 });
+            // Writers whose files still verify are skipped with what only they read: the
+            // node was not needed, so pull it on its own (a cache hit, most often).
+            if (!outputs) outputs = evaluator.pull(graph, node, frame);
+        }
     } catch (...) {
         failure = std::current_exception();
     }

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -70,9 +71,12 @@ public:
     /// from another thread stops it (Cancelled): nothing partial is cached.
     DataPtr cook(const std::string& node, const std::string& port, int frame,
                  const std::string& cache, const std::string& out);
-    /// The same for `graph`, a completeGraph() taken earlier: edits may go on meanwhile.
+    /// The same for `graph`, a completeGraph() taken earlier: edits may go on meanwhile;
+    /// `alsoCook` names more nodes to cook at the frame (writers, say), in the same cook
+    /// and report.
     DataPtr cook(const Graph& graph, const std::string& node, const std::string& port,
-                 int frame, const std::string& cache, const std::string& out);
+                 int frame, const std::string& cache, const std::string& out,
+                 const std::vector<std::string>& alsoCook = {});
     /// Cancels the cook under way, if any.
     void cancel();
     /// The last cook's run report (JSON): what cooked or came from a cache, and why.

@@ -222,7 +222,8 @@ async function cook() {
   state.groups[node]?.classList.add("cooking");
   setStatus(`cooking ${node} at frame ${$("frame").value}…`);
   try {
-    const reply = await api("/api/cook", { node, port, frame: Number($("frame").value) });
+    const reply = await api("/api/cook",
+                            { node, port, frame: Number($("frame").value), write: $("write").checked });
     showReport(reply.report, reply.seconds);
     if (reply.preview) $("preview").src = `${reply.preview}&t=${Date.now()}`;
   } catch (e) {

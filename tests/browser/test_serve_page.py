@@ -1,5 +1,6 @@
 """`cloudgraph serve`'s page in headless Chromium, driven as a user drives it: Figure 6 at a
-reduced size, the sun moved, only the Renderer recooks (the page's own cook report), the
+reduced size, the sun moved, only the Renderer and its writer recook (the page's own cook
+report), the
 preview changes, an out-of-range value is refused naming node and parameter, and the saved
 graph loads in the CLI with the edit. Optionally saves a screenshot of the page."""
 
@@ -9,7 +10,6 @@ import os
 import shutil
 import subprocess
 import sys
-import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from webdriver import Browser  # noqa: E402
@@ -93,7 +93,8 @@ def main():
         wait_for_cook(browser, cooks, "frame 150")
         before = browser.run(PREVIEW_BYTES)
 
-        # Select the Renderer in the network and move the sun.
+        # Select the Renderer in the network and move the sun, with its writers writing.
+        browser.run("document.getElementById('write').checked = true;")
         browser.run("""document.querySelector('g[data-node="render"]')
                          .dispatchEvent(new MouseEvent('click', {bubbles: true}));""")
         title = browser.run("return document.getElementById('params-title').textContent;")
@@ -104,7 +105,10 @@ def main():
         report = dict(browser.run(REPORT))
         assert report.get("render") == "cooked", report
         recooked = sorted(n for n, s in report.items() if s == "cooked")
-        assert recooked == ["render"], f"only the Renderer should recook: {report}"
+        assert recooked == ["image", "render"], \
+            f"only the Renderer and its writer should recook: {report}"
+        frame_file = os.path.join(args.work, "out", "figure6", "frame.0150.png")
+        assert os.path.exists(frame_file), "the writer wrote no frame"
         assert browser.run(PREVIEW_BYTES) != before, "the preview did not change"
 
         # An out-of-range value: refused with the node and parameter named.
@@ -113,9 +117,10 @@ def main():
                                      .map(e => e.textContent).join('');""", timeout=30)
         assert "/nodes/render/params/width" in error and "minimum" in error, error
 
+        cooks = browser.run(COOKS)
+        browser.run(SET_INPUTS, "width", [160])
+        wait_for_cook(browser, cooks, "width back to 160")
         if args.screenshot:
-            browser.run(SET_INPUTS, "width", [160])
-            time.sleep(0.5)
             browser.screenshot(args.screenshot)
 
         browser.run("document.getElementById('save').click();")
@@ -138,7 +143,8 @@ def main():
         os.replace(graph_file + ".new", graph_file)
         browser.wait_for("""const i = document.querySelector('#params [data-param="fov"]');
                             return i && i.value === '33';""", timeout=30)
-        print("the page loaded, recooked only the Renderer after the sun edit, refused width 0,"
+        print("the page loaded, recooked only the Renderer and its writer after the sun edit,"
+              " refused width 0,"
               " saved a graph the CLI loads, and reloaded the file edited outside it")
     finally:
         if browser:

@@ -40,7 +40,8 @@ protected:
         test::writeFile(graphFile(), kGraph);
         std::filesystem::create_directories(dir / "out");
         server = std::make_unique<CliProcess>(std::vector<std::string>{
-            "serve", graphFile().string(), "--port", "0", "--out", (dir / "out").string()});
+            "serve", graphFile().string(), "--port", "0", "--out", (dir / "out").string(),
+            "--cache", (dir / "cache").string()});
         // The first line names the URL with the port the system chose.
         for (int i = 0; i < 200 && port == 0; ++i) {
             const std::string out = server->outputSoFar();
@@ -197,10 +198,27 @@ TEST_F(ServeTest, WritesNothingButTheGraphAndUnderOut)
     ASSERT_EQ(post("/api/save", json::object())->status, 200);
     std::vector<std::string> files;
     for (const auto& e : std::filesystem::recursive_directory_iterator(dir.path()))
-        if (e.is_regular_file())
+        if (e.is_regular_file() && e.path().string().rfind((dir / "cache").string(), 0) != 0)
             files.push_back(std::filesystem::relative(e.path(), dir.path()).string());
     std::sort(files.begin(), files.end());
     EXPECT_EQ(files, (std::vector<std::string>{"graph.json", "out/still.png"}));
+}
+
+TEST_F(ServeTest, WritesTheFramesOfTheWritersBelowWhenAsked)
+{
+    const json cook = {{"node", "render"}, {"frame", 1}, {"write", true}};
+    const auto first = post("/api/cook", cook);
+    ASSERT_TRUE(first);
+    ASSERT_EQ(first->status, 200) << first->body;
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / "still.png"));
+    // Again: the writer's file still verifies, so it is skipped with the render only it
+    // read; the preview is still the Renderer's (from the cache).
+    const auto again = post("/api/cook", cook);
+    ASSERT_TRUE(again) << "the server went away";
+    ASSERT_EQ(again->status, 200) << again->body;
+    EXPECT_EQ(json::parse(again->body)["preview"], "/api/preview?node=render");
+    EXPECT_EQ(post("/api/cook", {{"node", "render"}, {"frame", 1}, {"write", "yes"}})->status,
+              400);
 }
 
 TEST_F(ServeTest, WiringEditsAreCheckedAsLoadingChecksThem)
