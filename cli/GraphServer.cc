@@ -149,6 +149,18 @@ void GraphServer::stop()
     mServer->stop();
 }
 
+void GraphServer::edit(httplib::Response& res, const std::function<void(GraphDocument&)>& change)
+{
+    try {
+        std::lock_guard<std::mutex> lock(mDocMutex);
+        change(*mDoc);
+    } catch (const InputError& e) {
+        return replyError(res, 400, e.what());
+    }
+    changed();
+    replyJson(res, 200, {{"version", mVersion.load()}});
+}
+
 void GraphServer::watchFile()
 {
     for (;;) {
@@ -211,14 +223,7 @@ void GraphServer::routes()
         if (!body) return;
         if (!body->contains("graph") || !body->at("graph").is_object())
             return replyError(res, 400, "'graph' must be a graph's JSON object");
-        try {
-            std::lock_guard<std::mutex> lock(mDocMutex);
-            mDoc->replace(body->at("graph").dump());
-        } catch (const InputError& e) {
-            return replyError(res, 400, e.what());
-        }
-        changed();
-        replyJson(res, 200, {{"version", mVersion.load()}});
+        edit(res, [&](GraphDocument& doc) { doc.replace(body->at("graph").dump()); });
     });
 
     // One parameter, checked as `--set` and loading check it: 400 with the CLI's message.
@@ -230,14 +235,7 @@ void GraphServer::routes()
         const auto param = stringField(*body, "param", res);
         if (!param) return;
         if (!body->contains("value")) return replyError(res, 400, "'value' is missing");
-        try {
-            std::lock_guard<std::mutex> lock(mDocMutex);
-            mDoc->setParam(*node, *param, body->at("value"));
-        } catch (const InputError& e) {
-            return replyError(res, 400, e.what());
-        }
-        changed();
-        replyJson(res, 200, {{"version", mVersion.load()}});
+        edit(res, [&](GraphDocument& doc) { doc.setParam(*node, *param, body->at("value")); });
     });
 
     // Cooks one output at a frame, with what it needs that the last cooks did not make.

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -18,6 +19,7 @@
 
 namespace httplib {
 class Server;
+struct Response;
 }
 
 namespace cg::cli {
@@ -53,6 +55,9 @@ private:
     void watchFile();
     /// Marks the graph changed, for pages polling /api/version.
     void changed() { ++mVersion; }
+    /// Applies `change` to the document: the new version, or 400 with the loader's message
+    /// and the graph as it was.
+    void edit(httplib::Response& res, const std::function<void(GraphDocument&)>& change);
 
     ServeOptions mOptions;
     const Registry& mRegistry;
