@@ -27,9 +27,16 @@ constexpr std::size_t kMaxBodyBytes = 1u << 20;
 /// How often the graph file is looked at for a change made outside the page.
 constexpr std::chrono::milliseconds kWatchInterval{300};
 
-/// The file's bytes; nullopt when it cannot be read (being replaced, say).
-std::optional<std::string> readText(const std::filesystem::path& path)
+/// The file's bytes; nullopt when it cannot be read (being replaced, say). A file over
+/// `maxBytes` is not read: InputError, as loading refuses it.
+std::optional<std::string> readText(const std::filesystem::path& path, std::size_t maxBytes)
 {
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (ec) return std::nullopt;
+    if (size > maxBytes)
+        throw InputError(path.string(), "the file is larger than " + std::to_string(maxBytes) +
+                                            " bytes");
     std::ifstream in(path, std::ios::binary);
     if (!in) return std::nullopt;
     std::ostringstream text;
@@ -107,7 +114,7 @@ GraphServer::GraphServer(const Registry& registry, ServeOptions options)
       mDoc(GraphDocument::load(mOptions.graphFile, registry, mOptions.load))
 {
     mDoc->completeGraph();  // a graph the CLI would refuse is refused here too
-    mFileText = readText(mOptions.graphFile).value_or("");
+    mFileText = readText(mOptions.graphFile, mOptions.load.maxFileBytes).value_or("");
     mServer->set_payload_max_length(kMaxBodyBytes);
     // One request a connection: a browser that reuses a kept-alive connection the server has
     // just timed out sees its POST fail ("Failed to fetch"); on this machine's loopback a new
@@ -168,14 +175,16 @@ void GraphServer::watchFile()
             std::unique_lock<std::mutex> lock(mStopMutex);
             if (mStopped.wait_for(lock, kWatchInterval, [this] { return mStopping; })) return;
         }
-        const std::optional<std::string> text = readText(mOptions.graphFile);
         std::lock_guard<std::mutex> lock(mDocMutex);
-        if (!text || *text == mFileText) continue;
-        mFileText = *text;
         try {
+            const std::optional<std::string> text =
+                readText(mOptions.graphFile, mOptions.load.maxFileBytes);
+            if (!text || *text == mFileText) continue;
+            mFileText = *text;
             mDoc->replace(*text);
             mFileError.clear();
         } catch (const InputError& e) {
+            if (mFileError == e.what()) continue;
             mFileError = e.what();  // the page says why; it keeps the graph it has
         }
         changed();

@@ -280,6 +280,17 @@ TEST_F(ServeTest, ReloadsTheGraphWhenItsFileChangesOnDisk)
     EXPECT_NE(reply["fileError"].get<std::string>().find("Nope"), std::string::npos)
         << reply.dump();
     EXPECT_EQ(json::parse(client().Get("/api/graph")->body)["graph"], graph);
+
+    // Nor is a file over the loader's size limit read at all.
+    editFile(std::string((64u << 20) + 1, ' '));
+    for (int i = 0; i < 100; ++i) {
+        reply = json::parse(client().Get("/api/version")->body);
+        if (reply["fileError"].get<std::string>().find("larger") != std::string::npos) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    EXPECT_NE(reply["fileError"].get<std::string>().find("larger than"), std::string::npos)
+        << reply.dump();
+    EXPECT_EQ(json::parse(client().Get("/api/graph")->body)["graph"], graph);
 }
 
 TEST_F(ServeTest, StopsOnSigterm)
