@@ -122,15 +122,20 @@ void declareGraphOptions(OptionParser& opts)
     opts.flag("--allow-graph-programs");
 }
 
+LoadOptions graphLoadOptions(const OptionParser& opts)
+{
+    LoadOptions loadOptions;
+    loadOptions.allowPathsOutsideOut = opts.has("--allow-outside-out");
+    loadOptions.allowGraphPrograms = opts.has("--allow-graph-programs");
+    return loadOptions;
+}
+
 Graph loadGraphFromOptions(const OptionParser& opts, Registry& registry, const char* command)
 {
     if (opts.positionals().size() != 1)
         throw InputError("command line", std::string(command) + " needs exactly one graph file");
     buildRegistry(registry, opts);
-    LoadOptions loadOptions;
-    loadOptions.allowPathsOutsideOut = opts.has("--allow-outside-out");
-    loadOptions.allowGraphPrograms = opts.has("--allow-graph-programs");
-    Graph graph = loadGraph(opts.positionals()[0], registry, loadOptions);
+    Graph graph = loadGraph(opts.positionals()[0], registry, graphLoadOptions(opts));
     for (const std::string& s : opts.values("--set")) applySetOverride(graph, s);
     return graph;
 }

@@ -59,6 +59,8 @@ void buildRegistry(Registry& registry, const OptionParser& opts);
 /// Declares the options that choose and edit a graph: --set, --allow-outside-out, and the
 /// node type options.
 void declareGraphOptions(OptionParser& opts);
+/// How declareGraphOptions' flags load a graph (outside --out, graph programs).
+LoadOptions graphLoadOptions(const OptionParser& opts);
 /// Builds the registry (with --plugin), loads the one positional graph file and applies
 /// every --set. Throws InputError on any bad input.
 Graph loadGraphFromOptions(const OptionParser& opts, Registry& registry, const char* command);

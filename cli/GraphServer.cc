@@ -17,6 +17,7 @@
 #include "core/NodeDeclJson.h"
 #include "formats/PngFile.h"
 #include "nodes/data/Image.h"
+#include "nodes/render/ImageFile.h"
 
 namespace cg::cli {
 
@@ -26,23 +27,6 @@ namespace {
 constexpr std::size_t kMaxBodyBytes = 1u << 20;
 /// How often the graph file is looked at for a change made outside the page.
 constexpr std::chrono::milliseconds kWatchInterval{300};
-
-/// The file's bytes; nullopt when it cannot be read (being replaced, say). A file over
-/// `maxBytes` is not read: InputError, as loading refuses it.
-std::optional<std::string> readText(const std::filesystem::path& path, std::size_t maxBytes)
-{
-    std::error_code ec;
-    const std::uintmax_t size = std::filesystem::file_size(path, ec);
-    if (ec) return std::nullopt;
-    if (size > maxBytes)
-        throw InputError(path.string(), "the file is larger than " + std::to_string(maxBytes) +
-                                            " bytes");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return std::nullopt;
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 void replyJson(httplib::Response& res, int status, const nlohmann::json& body)
 {
@@ -95,14 +79,29 @@ std::vector<std::string> writersBelow(const Graph& graph, const std::string& nod
     return writers;
 }
 
-/// A cooked value the page can show: an image as an 8-bit PNG through the display transform
-/// WriteImage uses by default.
-std::optional<std::string> previewPng(const DataPtr& value)
+/// How the page shows `node`'s image output `port`: as the WriteImage it feeds writes its PNG
+/// of `frame` (exposure, tone map, dither), or with WriteImage's defaults when none does.
+algo::DisplaySettings previewDisplay(const Graph& graph, const std::string& node,
+                                     const std::string& port, int frame)
+{
+    for (const GraphNode& n : graph.nodes()) {
+        const auto in = n.inputs.find("image");
+        if (n.decl->type == "WriteImage" && in != n.inputs.end() && in->second.node == node &&
+            in->second.port == port)
+            return writeImageDisplay(n.params, frame);
+    }
+    algo::DisplaySettings display;
+    display.seed = static_cast<std::uint64_t>(frame);
+    return display;
+}
+
+/// A cooked value the page can show: an image as an 8-bit PNG.
+std::optional<std::string> previewPng(const DataPtr& value, const algo::DisplaySettings& display)
 {
     const auto* image = dynamic_cast<const ImageData*>(value.get());
     if (!image) return std::nullopt;
     const std::vector<std::uint8_t> rgb =
-        algo::displayRgb8(image->rgba, image->width, image->height, algo::DisplaySettings{});
+        algo::displayRgb8(image->rgba, image->width, image->height, display);
     return formats::encodePngRgb8(image->width, image->height, rgb);
 }
 
@@ -113,8 +112,9 @@ GraphServer::GraphServer(const Registry& registry, ServeOptions options)
       mServer(std::make_unique<httplib::Server>()),
       mDoc(GraphDocument::load(mOptions.graphFile, registry, mOptions.load))
 {
+    for (const std::string& assignment : mOptions.sets) mDoc->applySetOverride(assignment);
     mDoc->completeGraph();  // a graph the CLI would refuse is refused here too
-    mFileText = readText(mOptions.graphFile, mOptions.load.maxFileBytes).value_or("");
+    mFileText = readGraphText(mOptions.graphFile, mOptions.load);
     mServer->set_payload_max_length(kMaxBodyBytes);
     // One request a connection: a browser that reuses a kept-alive connection the server has
     // just timed out sees its POST fail ("Failed to fetch"); on this machine's loopback a new
@@ -175,18 +175,28 @@ void GraphServer::watchFile()
             std::unique_lock<std::mutex> lock(mStopMutex);
             if (mStopped.wait_for(lock, kWatchInterval, [this] { return mStopping; })) return;
         }
-        std::lock_guard<std::mutex> lock(mDocMutex);
+        // Read before taking the document, so that edits and cooks do not wait on the disk.
+        std::optional<std::string> text;
+        std::string error;
         try {
-            const std::optional<std::string> text =
-                readText(mOptions.graphFile, mOptions.load.maxFileBytes);
-            if (!text || *text == mFileText) continue;
-            mFileText = *text;
-            mDoc->replace(*text);
-            mFileError.clear();
+            text = readGraphText(mOptions.graphFile, mOptions.load);
         } catch (const InputError& e) {
-            if (mFileError == e.what()) continue;
-            mFileError = e.what();  // the page says why; it keeps the graph it has
+            error = e.what();  // gone, unreadable or too large
         }
+        std::lock_guard<std::mutex> lock(mDocMutex);
+        if (text) {
+            if (*text == mFileText) continue;  // as last loaded (or refused)
+            mFileText = *text;
+            try {
+                mDoc->reload(*text);
+            } catch (const InputError& e) {
+                error = e.what();
+            }
+        } else {
+            mFileText.clear();  // the file coming back is loaded again, even unchanged
+            if (error == mFileError) continue;
+        }
+        mFileError = error;  // the page says why; on an error it keeps the graph it has
         changed();
     }
 }
@@ -295,7 +305,7 @@ void GraphServer::routes()
             std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         nlohmann::json reply = {{"report", nlohmann::json::parse(mDoc->lastReport())},
                                 {"seconds", seconds}};
-        if (auto png = previewPng(value)) {
+        if (auto png = previewPng(value, previewDisplay(graph, *node, *port, f))) {
             std::lock_guard<std::mutex> lock(mPreviewMutex);
             mPreviews[*node] = std::move(*png);
             reply["preview"] = "/api/preview?node=" + *node;

@@ -13,6 +13,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "core/GraphDocument.h"
 #include "core/Registry.h"
@@ -32,6 +33,7 @@ struct ServeOptions {
     std::string host = "127.0.0.1";
     int port = 8642;               ///< 0: any free port
     LoadOptions load;
+    std::vector<std::string> sets;  ///< --set node.param=value, applied after loading
 };
 
 class GraphServer {

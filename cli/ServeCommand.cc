@@ -5,6 +5,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <thread>
 
 #include <pthread.h>
@@ -18,11 +19,17 @@ namespace cg::cli {
 
 namespace {
 
-/// The page's folder: CLOUDGRAPH_WEB_DIR, else the source tree's web/ this binary was built
-/// from.
+/// The page's folder: CLOUDGRAPH_WEB_DIR; else share/cloudgraph/web beside an installed
+/// binary's bin/ (cli/CMakeLists.txt's install rules); else the source tree's web/ this
+/// binary was built from.
 std::filesystem::path webDir()
 {
     if (const char* dir = std::getenv("CLOUDGRAPH_WEB_DIR"); dir && *dir) return dir;
+    std::error_code ec;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    const std::filesystem::path installed =
+        exe.parent_path().parent_path() / "share" / "cloudgraph" / "web";
+    if (!ec && std::filesystem::is_directory(installed, ec)) return installed;
     return CLOUDGRAPH_WEB_DIR;
 }
 
@@ -31,9 +38,8 @@ std::filesystem::path webDir()
 int serveCommand(const Args& args)
 {
     OptionParser opts(args);
-    declareNodeTypeOptions(opts);
+    declareGraphOptions(opts);
     for (const char* o : {"--port", "--host", "--out", "--cache"}) opts.valueOption(o);
-    opts.flag("--allow-outside-out");
     return guarded([&] {
         opts.parse();
         if (opts.positionals().size() != 1)
@@ -46,7 +52,8 @@ int serveCommand(const Args& args)
         o.host = opts.value("--host").value_or("127.0.0.1");
         if (const auto port = opts.value("--port"))
             o.port = static_cast<int>(parseIntegerOption(*port, "--port", "a port", 0, 65535));
-        o.load.allowPathsOutsideOut = opts.has("--allow-outside-out");
+        o.load = graphLoadOptions(opts);
+        o.sets = opts.values("--set");
         Registry registry;
         buildRegistry(registry, opts);
 

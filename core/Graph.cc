@@ -14,6 +14,25 @@
 
 namespace cg {
 
+ParamValue resolveInputFile(const ParamDecl& decl, ParamValue value, const LoadOptions& options)
+{
+    const auto* file = std::get_if<std::string>(&value);
+    if (!file || decl.role != ParamRole::InputFile || file->empty() ||
+        std::filesystem::path(*file).is_absolute() || options.inputFileBase.empty())
+        return value;
+    return (options.inputFileBase / *file).lexically_normal().string();
+}
+
+std::string inputFileInGraph(const std::string& resolved, const std::filesystem::path& base)
+{
+    const std::filesystem::path file(resolved);
+    if (base.empty() || resolved.empty() || file.is_absolute() != base.is_absolute())
+        return resolved;
+    const std::filesystem::path relative = file.lexically_relative(base.lexically_normal());
+    if (relative.empty() || (file.is_absolute() && *relative.begin() == "..")) return resolved;
+    return relative.string();
+}
+
 void checkParamRole(const ParamDecl& decl, const ParamValue& value, const LoadOptions& options,
                     const std::string& where)
 {
@@ -138,7 +157,7 @@ void Graph::setParam(const std::string& nodeId, const std::string& param,
     }
     ParamValue v;
     try {
-        v = paramFromJson(value, *decl, place);
+        v = resolveInputFile(*decl, paramFromJson(value, *decl, place), limits);
         checkParamRole(*decl, v, limits, place);
     } catch (const InputError& e) {
         throw InputError(e.where(), e.message() + inNode);

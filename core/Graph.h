@@ -109,6 +109,13 @@ private:
     std::vector<std::vector<std::size_t>> mUpstream;
 };
 
+/// A relative InputFile value names a file beside the graph: options.inputFileBase / value
+/// (a value of another role, or an absolute one, is returned as it is).
+ParamValue resolveInputFile(const ParamDecl& decl, ParamValue value, const LoadOptions& options);
+/// The inverse, for writing a graph back: a resolved input file as the graph file names it,
+/// relative to `base` (absolute where it lies outside an absolute `base`).
+std::string inputFileInGraph(const std::string& resolved, const std::filesystem::path& base);
+
 /// Checks what paramFromJson cannot see: an OutputPath value must be a relative path with
 /// no ".." component unless options.allowPathsOutsideOut. Throws InputError naming `where`.
 void checkParamRole(const ParamDecl& decl, const ParamValue& value, const LoadOptions& options,
@@ -118,6 +125,12 @@ void checkParamRole(const ParamDecl& decl, const ParamValue& value, const LoadOp
 /// or byte offset; nothing is cooked.
 Graph loadGraph(const std::filesystem::path& path, const Registry& registry,
                 const LoadOptions& options = {});
+/// A graph file's text, refused (InputError naming the file) when it cannot be read or is
+/// over options.maxFileBytes, checked before it is read.
+std::string readGraphText(const std::filesystem::path& path, const LoadOptions& options);
+/// loadGraph once the text is read: relative input files are found beside `path`.
+Graph parseGraphFile(const std::string& text, const std::filesystem::path& path,
+                     const Registry& registry, const LoadOptions& options);
 /// Same, from text; `sourceName` is used in messages.
 Graph parseGraph(const std::string& text, const std::string& sourceName, const Registry& registry,
                  const LoadOptions& options = {});

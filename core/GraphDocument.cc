@@ -7,6 +7,7 @@
 
 #include "core/DiskCache.h"
 #include "core/Error.h"
+#include "core/GraphFileText.h"
 #include "util/AtomicFile.h"
 
 namespace cg {
@@ -30,8 +31,11 @@ std::unique_ptr<GraphDocument> GraphDocument::load(const std::filesystem::path& 
                                                    const Registry& registry, LoadOptions options)
 {
     try {
-        return std::unique_ptr<GraphDocument>(
-            new GraphDocument(loadGraph(path, registry, whileBuilding(options)), registry));
+        std::string text = readGraphText(path, options);
+        std::unique_ptr<GraphDocument> doc(new GraphDocument(
+            parseGraphFile(text, path, registry, whileBuilding(options)), registry));
+        doc->mLayout = std::move(text);
+        return doc;
     } catch (const InputError& e) {
         if (e.where() == path.string()) throw UnreadableGraph(e.where(), e.message());
         throw;
@@ -57,6 +61,13 @@ void GraphDocument::setParam(const std::string& node, const std::string& param,
                              const nlohmann::json& value)
 {
     mGraph.setParam(node, param, value);
+    mComplete.reset();
+}
+
+void GraphDocument::applySetOverride(const std::string& assignment)
+{
+    cg::applySetOverride(mGraph, assignment);
+    mComplete.reset();
 }
 
 void GraphDocument::replace(const std::string& text)
@@ -64,26 +75,37 @@ void GraphDocument::replace(const std::string& text)
     Graph edited = parseGraph(text, mGraph.sourceName(), mRegistry, whileBuilding(mGraph.limits));
     edited.source = mGraph.source;
     mGraph = std::move(edited);
+    mComplete.reset();
 }
 
-Graph GraphDocument::completeGraph() const
+void GraphDocument::reload(const std::string& fileText)
 {
-    LoadOptions o = mGraph.limits;
-    o.requireComplete = true;
-    Graph g = parseGraph(toJson(), mGraph.sourceName(), mRegistry, o);
-    g.source = mGraph.source;
-    return g;
+    replace(fileText);
+    mLayout = fileText;
 }
 
-std::string GraphDocument::save(const std::filesystem::path& path) const
+const Graph& GraphDocument::completeGraph() const
+{
+    if (!mComplete) {
+        LoadOptions o = mGraph.limits;
+        o.requireComplete = true;
+        Graph g = parseGraph(toJson(), mGraph.sourceName(), mRegistry, o);
+        g.source = mGraph.source;
+        mComplete = std::move(g);
+    }
+    return *mComplete;
+}
+
+std::string GraphDocument::save(const std::filesystem::path& path)
 {
     completeGraph();
-    const std::string text = toJson() + "\n";
+    std::string text = graphFileText(mGraph, mLayout);
     try {
         util::writeFileAtomically(path, text);
     } catch (const std::exception& e) {
         throw InputError(path.string(), std::string("cannot write the graph: ") + e.what());
     }
+    mLayout = text;
     return text;
 }
 
@@ -97,12 +119,6 @@ Evaluator& GraphDocument::evaluatorFor(const std::string& cache, const std::stri
         slot = std::make_unique<Evaluator>(mRegistry, o);
     }
     return *slot;
-}
-
-DataPtr GraphDocument::cook(const std::string& node, const std::string& port, int frame,
-                            const std::string& cache, const std::string& out)
-{
-    return cook(completeGraph(), node, port, frame, cache, out);
 }
 
 DataPtr GraphDocument::cook(const Graph& graph, const std::string& node, const std::string& port,

@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -56,24 +57,28 @@ public:
     std::string toJson() const;
     /// Sets one parameter, checked as loading checks it; on an error nothing changes.
     void setParam(const std::string& node, const std::string& param, const nlohmann::json& value);
+    /// Applies a command line's `--set node.param=value` (applySetOverride's checks).
+    void applySetOverride(const std::string& assignment);
     /// Replaces the whole graph by `text` (an edited toJson()): loaded like a file except
     /// that required inputs may still be unconnected; on an error the graph stays as it was.
     void replace(const std::string& text);
-    /// The graph as the CLI would load it: complete, or an InputError.
-    Graph completeGraph() const;
-    /// Writes toJson() to `path` atomically, after checking the graph is complete; returns
-    /// the bytes written.
-    std::string save(const std::filesystem::path& path) const;
+    /// The same for the graph file's new text (changed on disk by a text editor): its layout
+    /// is the one save() keeps from now on.
+    void reload(const std::string& fileText);
+    /// The graph as the CLI would load it: complete, or an InputError. Kept until the next
+    /// edit, so that cooking again checks nothing twice.
+    const Graph& completeGraph() const;
+    /// Writes the graph to `path` atomically, after checking the graph is complete, in the
+    /// layout of the file it was loaded from (graphFileText: its key order and spelling, so
+    /// a diff shows the edit); returns the bytes written.
+    std::string save(const std::filesystem::path& path);
 
-    /// Cooks output `port` of `node` at `frame` and what it needs. `cache` (may be empty) is
-    /// a disk cache directory shared with the CLI, `out` where writer nodes write. One cook
-    /// at a time: a second one throws CookInProgress while the first runs. cancel()
-    /// from another thread stops it (Cancelled): nothing partial is cached.
-    DataPtr cook(const std::string& node, const std::string& port, int frame,
-                 const std::string& cache, const std::string& out);
-    /// The same for `graph`, a completeGraph() taken earlier: edits may go on meanwhile;
-    /// `alsoCook` names more nodes to cook at the frame (writers, say), in the same cook
-    /// and report.
+    /// Cooks output `port` of `node` at `frame` and what it needs, in `graph`: a copy of
+    /// completeGraph() taken earlier, so that edits may go on meanwhile. `cache` (may be
+    /// empty) is a disk cache directory shared with the CLI, `out` where writer nodes write.
+    /// `alsoCook` names more nodes to cook at the frame (writers, say), in the same cook and
+    /// report. One cook at a time: a second one throws CookInProgress while the first runs.
+    /// cancel() from another thread stops it (Cancelled): nothing partial is cached.
     DataPtr cook(const Graph& graph, const std::string& node, const std::string& port,
                  int frame, const std::string& cache, const std::string& out,
                  const std::vector<std::string>& alsoCook = {});
@@ -87,6 +92,8 @@ private:
     Evaluator& evaluatorFor(const std::string& cache, const std::string& out);
 
     Graph mGraph;  ///< loaded with requireComplete off
+    mutable std::optional<Graph> mComplete;  ///< completeGraph() until the next edit
+    std::string mLayout;  ///< the file's text as last loaded or saved: what save() keeps
     const Registry& mRegistry;
     std::map<std::pair<std::string, std::string>, std::unique_ptr<Evaluator>> mEvaluators;
     mutable std::mutex mCookMutex;  ///< guards mCancel and mLastReport

@@ -195,11 +195,7 @@ GraphNode readNode(const std::string& id, const Json& j, const Reader& r, const 
                 throw InputError(where, "unknown parameter '" + item.key() + "' of " + typeName +
                                             didYouMean(item.key(), names));
             }
-            ParamValue v = paramFromJson(item.value(), *p, where);
-            if (const auto* file = std::get_if<std::string>(&v);
-                file && p->role == ParamRole::InputFile && !file->empty() &&
-                std::filesystem::path(*file).is_relative() && !options.inputFileBase.empty())
-                v = (options.inputFileBase / *file).lexically_normal().string();
+            ParamValue v = resolveInputFile(*p, paramFromJson(item.value(), *p, where), options);
             checkParamRole(*p, v, options, where);
             node.params.set(p->name, std::move(v));
         }
@@ -267,8 +263,7 @@ Graph parseGraph(const std::string& text, const std::string& sourceName, const R
     return graph;
 }
 
-Graph loadGraph(const std::filesystem::path& path, const Registry& registry,
-                const LoadOptions& options)
+std::string readGraphText(const std::filesystem::path& path, const LoadOptions& options)
 {
     const std::string name = path.string();
     std::error_code ec;
@@ -282,11 +277,23 @@ Graph loadGraph(const std::filesystem::path& path, const Registry& registry,
     std::ostringstream text;
     if (in) text << in.rdbuf();
     if (!in || in.bad()) throw InputError(name, "cannot read the graph file");
+    return text.str();
+}
+
+Graph parseGraphFile(const std::string& text, const std::filesystem::path& path,
+                     const Registry& registry, const LoadOptions& options)
+{
     LoadOptions besideTheGraph = options;
     besideTheGraph.inputFileBase = path.parent_path();
-    Graph graph = parseGraph(text.str(), name, registry, besideTheGraph);
+    Graph graph = parseGraph(text, path.string(), registry, besideTheGraph);
     graph.source = path;
     return graph;
+}
+
+Graph loadGraph(const std::filesystem::path& path, const Registry& registry,
+                const LoadOptions& options)
+{
+    return parseGraphFile(readGraphText(path, options), path, registry, options);
 }
 
 void applySetOverride(Graph& graph, const std::string& assignment)
@@ -301,6 +308,13 @@ void applySetOverride(Graph& graph, const std::string& assignment)
     // JSON if it parses (numbers, true, [1,2], "quoted"), else the text itself as a string.
     Json value = Json::parse(valueText, nullptr, false);
     if (value.is_discarded()) value = valueText;
+    // A relative input file on the command line is relative to the working directory, not
+    // to the graph file as the graph's own values are.
+    const GraphNode* node = graph.find(lhs.substr(0, dot));
+    const ParamDecl* decl = node ? node->decl->findParam(lhs.substr(dot + 1)) : nullptr;
+    if (decl && decl->role == ParamRole::InputFile && value.is_string() &&
+        !value.get<std::string>().empty())
+        value = std::filesystem::absolute(value.get<std::string>()).lexically_normal().string();
     graph.setParam(lhs.substr(0, dot), lhs.substr(dot + 1), value, where);
 }
 
@@ -319,8 +333,12 @@ Json graphToJson(const Graph& graph)
         Json params = Json::object();
         for (std::size_t i = 0; i < node.decl->params.size(); ++i) {
             const ParamDecl& p = node.decl->params[i];
-            if (node.params.valueAt(i) != p.defaultValue)
-                params[p.name] = paramToJson(node.params.valueAt(i));
+            const ParamValue& v = node.params.valueAt(i);
+            if (v == p.defaultValue) continue;
+            const auto* file = std::get_if<std::string>(&v);
+            params[p.name] = file && p.role == ParamRole::InputFile
+                                 ? Json(inputFileInGraph(*file, graph.limits.inputFileBase))
+                                 : paramToJson(v);
         }
         if (!params.empty()) n["params"] = std::move(params);
         Json inputs = Json::object();

@@ -12,6 +12,11 @@
 namespace cg {
 
 class ImageData;
+class ParamSet;
+
+/// The display transform a WriteImage node's parameters (exposure, toneMap, dither) give its
+/// PNG of `frame` (the dither's seed). `cloudgraph serve`'s preview shows the same.
+algo::DisplaySettings writeImageDisplay(const ParamSet& params, int frame);
 
 /// Whether `file` ends in .png or .exr.
 bool isImageFileName(const std::string& file);

@@ -27,17 +27,22 @@ public:
         if (!writesThisFrame(ctx)) return;
         const auto image = ctx.input<ImageData>("image");
         const std::filesystem::path path = ctx.outputPath("file");
-        algo::DisplaySettings display;
-        display.exposure = ctx.params().getFloat("exposure");
-        display.curve = algo::toneCurveFromName(ctx.params().getString("toneMap"));
-        display.dither = ctx.params().getBool("dither");
-        display.seed = static_cast<std::uint64_t>(ctx.frame());
-        writeImageFile(path, *image, display);
+        writeImageFile(path, *image, writeImageDisplay(ctx.params(), ctx.frame()));
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));
     }
 };
 
 }  // namespace
+
+algo::DisplaySettings writeImageDisplay(const ParamSet& params, int frame)
+{
+    algo::DisplaySettings display;
+    display.exposure = params.getFloat("exposure");
+    display.curve = algo::toneCurveFromName(params.getString("toneMap"));
+    display.dither = params.getBool("dither");
+    display.seed = static_cast<std::uint64_t>(frame);
+    return display;
+}
 
 void registerWriteImageNode(Registry& registry)
 {

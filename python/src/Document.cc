@@ -63,13 +63,14 @@ py::object Document::cook(const std::string& node, const std::string& port, int 
     DataPtr value;
     std::exception_ptr failure;
     std::unique_ptr<py::error_already_set> interrupt;
+    const Graph graph = mDoc->completeGraph();  // while the GIL keeps edits out
     {
         // The cook runs on a thread of its own while this one, holding the GIL only briefly,
         // looks for Ctrl-C: Python runs signal handlers on its main thread alone.
         py::gil_scoped_release release;
         std::packaged_task<void()> task([&] {
             try {
-                value = mDoc->cook(node, port, frame, cache, out);
+                value = mDoc->cook(graph, node, port, frame, cache, out);
             } catch (...) {
                 failure = std::current_exception();
             }

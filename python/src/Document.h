@@ -32,7 +32,7 @@ public:
     /// Sets one parameter from its JSON text, checked as loading checks it.
     void setParam(const std::string& node, const std::string& param, const std::string& valueJson);
     void replace(const std::string& text) { mDoc->replace(text); }
-    void save(const std::string& path) const { mDoc->save(path); }
+    void save(const std::string& path) { mDoc->save(path); }
 
     /// Cooks output `port` of `node` at `frame` with the GIL released (GraphDocument::cook),
     /// and converts it to a Python value. Ctrl-C, or cancel() from another thread, cancels

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "formats/PngFile.h"
 #include "support/TestUtil.h"
 
 namespace cg {
@@ -149,6 +150,13 @@ TEST_F(ServeTest, SavesTheEditAtomicallyAsAGraphTheCliLoads)
     EXPECT_EQ(saved["nodes"]["render"]["params"]["fov"], 55.0);
     EXPECT_EQ(saved["nodes"]["render"]["params"]["width"], 64);
     EXPECT_EQ(test::runCli({"validate", graphFile().string()}).exitCode, 0);
+    // In the file's own order (width, height, cameraPosition; not sorted), the new value
+    // after them, the values not edited spelled as the file spelled them.
+    const std::string text = test::readFile(graphFile());
+    EXPECT_LT(text.find("\"width\""), text.find("\"height\""));
+    EXPECT_LT(text.find("\"height\""), text.find("\"cameraPosition\""));
+    EXPECT_LT(text.find("\"cameraPosition\""), text.find("\"fov\""));
+    EXPECT_NE(text.find("\"voxelSize\": 40,"), std::string::npos) << text;
 }
 
 TEST_F(ServeTest, RefusesBadRequestsAndKeepsServing)
@@ -206,11 +214,23 @@ TEST_F(ServeTest, WritesNothingButTheGraphAndUnderOut)
 
 TEST_F(ServeTest, WritesTheFramesOfTheWritersBelowWhenAsked)
 {
+    // The preview shows the image as the WriteImage below writes it: its exposure, tone
+    // curve and dither (seeded by the frame), so the two are the same pixels.
+    ASSERT_EQ(post("/api/param", {{"node", "write"}, {"param", "exposure"}, {"value", 1.5}})
+                  ->status,
+              200);
+    ASSERT_EQ(post("/api/param", {{"node", "write"}, {"param", "toneMap"}, {"value", "hable"}})
+                  ->status,
+              200);
     const json cook = {{"node", "render"}, {"frame", 1}, {"write", true}};
     const auto first = post("/api/cook", cook);
     ASSERT_TRUE(first);
     ASSERT_EQ(first->status, 200) << first->body;
-    EXPECT_TRUE(std::filesystem::exists(dir / "out" / "still.png"));
+    ASSERT_TRUE(std::filesystem::exists(dir / "out" / "still.png"));
+    test::writeFile(dir / "preview.png", client().Get("/api/preview?node=render")->body);
+    EXPECT_EQ(formats::readPngRgb8((dir / "preview.png").string()).rgb,
+              formats::readPngRgb8((dir / "out" / "still.png").string()).rgb);
+    std::filesystem::remove(dir / "preview.png");
     // Again: the writer's file still verifies, so it is skipped with the render only it
     // read; the preview is still the Renderer's (from the cache).
     const auto again = post("/api/cook", cook);
@@ -285,12 +305,26 @@ TEST_F(ServeTest, ReloadsTheGraphWhenItsFileChangesOnDisk)
     editFile(std::string((64u << 20) + 1, ' '));
     for (int i = 0; i < 100; ++i) {
         reply = json::parse(client().Get("/api/version")->body);
-        if (reply["fileError"].get<std::string>().find("larger") != std::string::npos) break;
+        if (reply["fileError"].get<std::string>().find("over the limit") != std::string::npos)
+            break;
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
-    EXPECT_NE(reply["fileError"].get<std::string>().find("larger than"), std::string::npos)
+    EXPECT_NE(reply["fileError"].get<std::string>().find("over the limit"), std::string::npos)
         << reply.dump();
     EXPECT_EQ(json::parse(client().Get("/api/graph")->body)["graph"], graph);
+
+    // A good file again: loaded, the error gone.
+    edited["nodes"]["render"]["params"]["fov"] = 34;
+    editFile(edited.dump(2));
+    for (int i = 0; i < 100; ++i) {
+        reply = json::parse(client().Get("/api/version")->body);
+        if (reply["fileError"] == "") break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    EXPECT_EQ(reply["fileError"], "");
+    EXPECT_EQ(json::parse(client().Get("/api/graph")->body)["graph"]["nodes"]["render"]["params"]
+                                                              ["fov"],
+              34.0);
 }
 
 TEST_F(ServeTest, StopsOnSigterm)
