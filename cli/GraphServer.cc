@@ -313,6 +313,17 @@ void GraphServer::routes()
         replyJson(res, 200, reply);
     });
 
+    // Where the cook under way stands: the page's progress bar polls it.
+    s.Get("/api/progress", [this](const httplib::Request&, httplib::Response& res) {
+        const CookProgress p = mDoc->progress();
+        replyJson(res, 200,
+                  {{"cooking", p.cooking},
+                   {"done", p.done},
+                   {"total", p.total},
+                   {"seconds", p.seconds},
+                   {"finished", p.finished}});
+    });
+
     s.Post("/api/cancel", [this](const httplib::Request&, httplib::Response& res) {
         mDoc->cancel();
         replyJson(res, 200, {{"ok", true}});

@@ -270,6 +270,7 @@ private:
             p.done = ++mDone;
             p.total = mTotal;
             p.frame = frame;
+            p.node = node.id;
             mEv.mOptions.onProgress(p);
         }
     }

@@ -1,5 +1,6 @@
 #include "core/GraphDocument.h"
 
+#include <algorithm>
 #include <exception>
 #include <stdexcept>
 
@@ -115,6 +116,14 @@ Evaluator& GraphDocument::evaluatorFor(const std::string& cache, const std::stri
     if (!slot) {
         EvaluatorOptions o;
         o.outDir = out;
+        o.onProgress = [this](const Progress& p) {
+            std::lock_guard<std::mutex> lock(mCookMutex);
+            mProgress.done = p.done;
+            mProgress.total = p.total;
+            auto& finished = mProgress.finished;  // a node once, though it cooks many frames
+            if (std::find(finished.begin(), finished.end(), p.node) == finished.end())
+                finished.push_back(p.node);
+        };
         if (!cache.empty()) o.diskCache = std::make_shared<DiskCache>(cache);
         slot = std::make_unique<Evaluator>(mRegistry, o);
     }
@@ -137,6 +146,9 @@ DataPtr GraphDocument::cook(const Graph& graph, const std::string& node, const s
         if (mCancel)
             throw CookInProgress("this graph is already cooking (one cook at a time a graph)");
         mCancel = token;
+        mProgress = CookProgress{};
+        mProgress.cooking = true;
+        mCookStart = std::chrono::steady_clock::now();
     }
     Evaluator& evaluator = evaluatorFor(cache, out);
     evaluator.setCancelToken(token);
@@ -165,6 +177,9 @@ DataPtr GraphDocument::cook(const Graph& graph, const std::string& node, const s
         std::lock_guard<std::mutex> lock(mCookMutex);
         mCancel.reset();
         mLastReport = evaluator.report().toJson().dump();
+        mProgress.cooking = false;
+        mProgress.seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - mCookStart).count();
     }
     if (failure) std::rethrow_exception(failure);
     return outputs->at(port);
@@ -174,6 +189,16 @@ void GraphDocument::cancel()
 {
     std::lock_guard<std::mutex> lock(mCookMutex);
     if (mCancel) mCancel->cancel();
+}
+
+CookProgress GraphDocument::progress() const
+{
+    std::lock_guard<std::mutex> lock(mCookMutex);
+    CookProgress p = mProgress;
+    if (p.cooking)
+        p.seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - mCookStart).count();
+    return p;
 }
 
 std::string GraphDocument::lastReport() const

@@ -4,6 +4,7 @@
 /// cooks so that a second cook reuses what the first made and recooks only what an edit
 /// dirtied). The Python module's Graph and `cloudgraph serve` both edit through it.
 
+#include <chrono>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -36,6 +37,15 @@ public:
 class CookInProgress : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
+};
+
+/// Where the cook under way stands (GraphDocument::progress), for a page that polls it.
+struct CookProgress {
+    bool cooking = false;
+    std::size_t done = 0;   ///< node-frames finished, cooked or from a cache
+    std::size_t total = 0;  ///< node-frames this cook visits (grows as it finds what it needs)
+    double seconds = 0;     ///< since the cook began
+    std::vector<std::string> finished;  ///< the nodes done (once each), in the order they finished
 };
 
 class GraphDocument {
@@ -84,6 +94,8 @@ public:
                  const std::vector<std::string>& alsoCook = {});
     /// Cancels the cook under way, if any.
     void cancel();
+    /// The cook under way's progress (cooking false: the last cook's, when it ended).
+    CookProgress progress() const;
     /// The last cook's run report (JSON): what cooked or came from a cache, and why.
     std::string lastReport() const;
 
@@ -96,9 +108,11 @@ private:
     std::string mLayout;  ///< the file's text as last loaded or saved: what save() keeps
     const Registry& mRegistry;
     std::map<std::pair<std::string, std::string>, std::unique_ptr<Evaluator>> mEvaluators;
-    mutable std::mutex mCookMutex;  ///< guards mCancel and mLastReport
+    mutable std::mutex mCookMutex;  ///< guards mCancel, mLastReport and mProgress
     std::shared_ptr<CancelToken> mCancel;  ///< the cook under way's token
     std::string mLastReport = "{}";
+    CookProgress mProgress;
+    std::chrono::steady_clock::time_point mCookStart;
 };
 
 }  // namespace cg

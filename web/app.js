@@ -9,6 +9,7 @@ const state = {
   groups: {},         // the network's SVG group of each node
   selected: null,     // the node whose parameters are shown
   cooking: false,
+  watching: false,    // the progress bar polls while this is set
   again: false,       // an edit came during a cook: cook once more when it ends
   playing: false,
   version: 0,         // of the server's graph when this page last read it
@@ -206,6 +207,50 @@ function showReport(report, seconds) {
   setStatus(`cooked frame ${$("frame").value} in ${seconds.toFixed(2)} s`);
 }
 
+// The nodes `node` needs, itself included (the ones a cook of it may visit).
+function upstreamOf(node) {
+  const seen = new Set();
+  const visit = (id) => {
+    if (seen.has(id) || !state.graph.nodes[id]) return;
+    seen.add(id);
+    for (const source of Object.values(state.graph.nodes[id].inputs || {}))
+      visit(source.split(".")[0]);
+  };
+  visit(node);
+  return seen;
+}
+
+// While a cook runs: the server's count of node-frames done, the time so far, the finished
+// nodes outlined green and those now cooking (needed, their inputs done) dashed blue.
+function showProgress(target, p) {
+  $("progress-row").hidden = false;
+  $("progress").max = Math.max(p.total, 1);
+  $("progress").value = p.done;
+  $("progress-text").textContent = `${p.done} / ${p.total} · ${p.seconds.toFixed(1)} s`;
+  const finished = new Set(p.finished);
+  for (const id of upstreamOf(target)) {
+    const g = state.groups[id];
+    if (!g) continue;
+    const inputs = Object.values(state.graph.nodes[id].inputs || {}).map((s) => s.split(".")[0]);
+    g.classList.toggle("done", finished.has(id));
+    g.classList.toggle("cooking", !finished.has(id) && inputs.every((i) => finished.has(i)));
+  }
+}
+
+async function watchProgress(target) {
+  state.watching = true;
+  while (state.watching) {
+    await new Promise((resolve) => setTimeout(resolve, 250));
+    if (!state.watching) break;
+    try {
+      const p = await api("/api/progress");
+      if (p.cooking && state.watching) showProgress(target, p);
+    } catch (e) { /* the cook's own reply says what went wrong */ }
+  }
+  $("progress-row").hidden = true;
+  for (const g of Object.values(state.groups)) g.classList.remove("done", "cooking");
+}
+
 // Cooks the chosen renderer at the current frame; an edit during a cook cancels it and
 // cooks again when it has stopped.
 async function cook() {
@@ -221,6 +266,7 @@ async function cook() {
   const [node, port] = choice.split(".");
   state.groups[node]?.classList.add("cooking");
   setStatus(`cooking ${node} at frame ${$("frame").value}…`);
+  const watching = watchProgress(node);
   try {
     const reply = await api("/api/cook",
                             { node, port, frame: Number($("frame").value), write: $("write").checked });
@@ -229,10 +275,11 @@ async function cook() {
   } catch (e) {
     setStatus(e.message, true);
   } finally {
+    state.watching = false;
+    await watching;
     state.cooking = false;
     document.body.dataset.cooks = Number(document.body.dataset.cooks || 0) + 1;  // for tests
     $("cancel").disabled = true;
-    state.groups[node]?.classList.remove("cooking");
   }
   if (state.again) {
     state.again = false;

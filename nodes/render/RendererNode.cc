@@ -116,11 +116,15 @@ void registerRendererNode(Registry& registry)
         "Ray-marches a fog volume (sigma_t = extinction x density, sigma_s = albedo x sigma_t) "
         "with empty-space skipping over 8^3-voxel blocks, and over 2^3-voxel bricks where no sample "
         "can be positive. Each sample scatters sun light "
-        "(two-lobe Henyey-Greenstein phase; optical depth toward the sun from a light map "
-        "precomputed per frame) with multiple scattering approximated by octaves (Wrenninge et "
-        "al. 2013: octave i has weight b^i, optical depth x a^i, asymmetry x c^i), plus sky light "
-        "occluded by the optical depth straight up. Behind the volume: the ground z = 0 (lit, "
-        "with the cloud's shadow, hazed with distance) or a zenith/horizon sky gradient. Output: "
+        "(two-lobe Henyey-Greenstein phase by default; optical depth toward the sun from a "
+        "light map precomputed per frame) and the multiply scattered light of sun, sky and "
+        "ground: by default a flux-limited diffusion solved once a frame on a coarse lattice "
+        "whose surface faces see the sky, the ground and the other clouds (ours, checked "
+        "against mode pathtrace in docs/rendering.md), or Wrenninge et al. 2013's octaves "
+        "with sky light straight up and down (multipleScattering octaves). Behind the volume: "
+        "the ground z = 0 (lit by sun, sky and the clouds above it, with the clouds' shadows, "
+        "hazed with distance) or a zenith/horizon sky gradient. mode pathtrace is the "
+        "reference: an unbiased volumetric path tracer of the same scene. Output: "
         "linear radiance RGBA, top row first, before exposure and tone map (WriteImage applies "
         "them); alpha is the volume's opacity 1 - T. The image also carries the background "
         "alone (the radiance behind the volume), so WriteImage can write the cloud as a "
@@ -131,7 +135,8 @@ void registerRendererNode(Registry& registry)
                       "linear radiance RGBA, alpha = volume opacity, with the background")};
     d.params = {
         stringParam("mode", "fast",
-                    "fast = the ray marcher with light maps and octaves; pathtrace = the "
+                    "fast = the ray marcher with light maps and the multiple-scattering model; "
+                    "pathtrace = the "
                     "reference path tracer (unbiased, slow; samples and maxBounces)",
                     {"fast", "pathtrace"}),
         intParam("width", def.camera.width, "px", "image width", 1, 16384),

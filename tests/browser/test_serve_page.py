@@ -1,12 +1,13 @@
 """`cloudgraph serve`'s page in headless Chromium, driven as a user drives it: Figure 6 at a
 reduced size, the sun moved, only the Renderer and its writer recook (the page's own cook
 report), the
-preview changes, an out-of-range value is refused naming node and parameter, and the saved
+preview changes, a long cook shows its progress, an out-of-range value is refused naming node and parameter, and the saved
 graph loads in the CLI with the edit. Optionally saves a screenshot of the page."""
 
 import argparse
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -22,6 +23,9 @@ return fetch(img.src).then(r => r.arrayBuffer()).then(b => {
   for (const x of bytes) h = (h * 31 + x) >>> 0;
   return bytes.length + ':' + h;
 });"""
+PROGRESS_SHOWN = """const row = document.getElementById('progress-row');
+return getComputedStyle(row).display !== 'none' &&
+       document.getElementById('progress-text').textContent;"""
 COOKS = "return Number(document.body.dataset.cooks || 0);"
 STATUS = "return document.getElementById('status').textContent;"
 REPORT = """return [...document.querySelectorAll('#report tbody tr')]
@@ -85,18 +89,28 @@ def main():
         browser.open(url)
         wait_for_cook(browser, 0, "the first cook")
 
-        # A frame with a cloud: every node upstream cooks once.
+        # A long cook shows its progress while it runs: the path tracer, on a frame with a
+        # cloud (every node upstream cooks once), then the fast mode again.
+        browser.run("""document.querySelector('g[data-node="render"]')
+                         .dispatchEvent(new MouseEvent('click', {bubbles: true}));""")
+        cooks = browser.run(COOKS)
+        browser.run(SET_INPUTS, "mode", ["pathtrace"])
+        wait_for_cook(browser, cooks, "the path tracer at frame 0")
         cooks = browser.run(COOKS)
         browser.run("""const s = document.getElementById('frame'); s.value = 150;
                        s.dispatchEvent(new Event('input'));
                        s.dispatchEvent(new Event('change'));""")
+        progress = browser.wait_for(PROGRESS_SHOWN, timeout=120)
+        assert re.fullmatch(r"\d+ / \d+ · \d+\.\d s", progress), progress
         wait_for_cook(browser, cooks, "frame 150")
+        assert not browser.run(PROGRESS_SHOWN), "the progress bar stayed after the cook"
+        cooks = browser.run(COOKS)
+        browser.run(SET_INPUTS, "mode", ["fast"])
+        wait_for_cook(browser, cooks, "the fast mode at frame 150")
         before = browser.run(PREVIEW_BYTES)
 
-        # Select the Renderer in the network and move the sun, with its writers writing.
+        # Move the sun, with the Renderer's writers writing.
         browser.run("document.getElementById('write').checked = true;")
-        browser.run("""document.querySelector('g[data-node="render"]')
-                         .dispatchEvent(new MouseEvent('click', {bubbles: true}));""")
         title = browser.run("return document.getElementById('params-title').textContent;")
         assert title.startswith("render"), title
         cooks = browser.run(COOKS)

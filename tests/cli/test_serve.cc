@@ -140,6 +140,35 @@ TEST_F(ServeTest, AnEditRecooksOnlyWhatItDirtiesAndChangesThePreview)
     EXPECT_NE(client().Get("/api/preview?node=render")->body, before);
 }
 
+// A long cook (the path tracer) reports its progress while it runs: the page's bar polls it.
+TEST_F(ServeTest, ReportsTheProgressOfACookUnderWay)
+{
+    ASSERT_EQ(post("/api/param", {{"node", "render"}, {"param", "mode"}, {"value", "pathtrace"}})
+                  ->status,
+              200);
+    ASSERT_EQ(post("/api/param", {{"node", "render"}, {"param", "samples"}, {"value", 512}})
+                  ->status,
+              200);
+    std::thread cook([&] { post("/api/cook", {{"node", "render"}, {"frame", 0}}); });
+    json during;
+    for (int i = 0; i < 6000; ++i) {  // a minute at most (the sanitizer build is slow)
+        during = json::parse(client().Get("/api/progress")->body);
+        if (during["cooking"] == true && during["done"] == 1) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    cook.join();
+    // The cumulus done, the Renderer not yet: one of the two node-frames.
+    EXPECT_EQ(during["cooking"], true) << during.dump();
+    EXPECT_EQ(during["done"], 1) << during.dump();
+    EXPECT_EQ(during["total"], 2) << during.dump();
+    EXPECT_EQ(during["finished"], json::array({"cloud"})) << during.dump();
+    const json after = json::parse(client().Get("/api/progress")->body);
+    EXPECT_EQ(after["cooking"], false);
+    EXPECT_EQ(after["done"], 2);
+    EXPECT_EQ(after["finished"], json::array({"cloud", "render"}));
+    EXPECT_GT(after["seconds"].get<double>(), 0.0);
+}
+
 TEST_F(ServeTest, SavesTheEditAtomicallyAsAGraphTheCliLoads)
 {
     ASSERT_EQ(post("/api/param", {{"node", "render"}, {"param", "fov"}, {"value", 55}})->status, 200);
