@@ -1,6 +1,7 @@
 #include "cli/GraphServer.h"
 
 #include <httplib.h>
+#include <sys/socket.h>
 
 #include <chrono>
 #include <exception>
@@ -13,10 +14,10 @@
 #include <nlohmann/json.hpp>
 
 #include "algo/render/Display.h"
+#include "cli/PreviewPicture.h"
 #include "core/Error.h"
 #include "core/NodeDeclJson.h"
 #include "formats/PngFile.h"
-#include "nodes/data/Image.h"
 #include "nodes/render/ImageFile.h"
 
 namespace cg::cli {
@@ -95,16 +96,6 @@ algo::DisplaySettings previewDisplay(const Graph& graph, const std::string& node
     return display;
 }
 
-/// A cooked value the page can show: an image as an 8-bit PNG.
-std::optional<std::string> previewPng(const DataPtr& value, const algo::DisplaySettings& display)
-{
-    const auto* image = dynamic_cast<const ImageData*>(value.get());
-    if (!image) return std::nullopt;
-    const std::vector<std::uint8_t> rgb =
-        algo::displayRgb8(image->rgba, image->width, image->height, display);
-    return formats::encodePngRgb8(image->width, image->height, rgb);
-}
-
 }  // namespace
 
 GraphServer::GraphServer(const Registry& registry, ServeOptions options)
@@ -120,6 +111,10 @@ GraphServer::GraphServer(const Registry& registry, ServeOptions options)
     // just timed out sees its POST fail ("Failed to fetch"); on this machine's loopback a new
     // connection costs nothing.
     mServer->set_keep_alive_max_count(1);
+    mServer->set_socket_options([this](socket_t sock) {
+        httplib::default_socket_options(sock);
+        mListenSocket = sock;
+    });
     routes();
 }
 
@@ -135,6 +130,9 @@ int GraphServer::bind()
         throw InputError("--port " + std::to_string(mOptions.port),
                          "cannot listen on " + mOptions.host + ":" +
                              std::to_string(mOptions.port) + " (in use?)");
+    // Debian's built cpp-httplib listens with a backlog of 5: a page's burst of requests
+    // beyond it waits a second for a SYN retry, or fails. Listening again sets a longer one.
+    if (mListenSocket >= 0) ::listen(mListenSocket, SOMAXCONN);
     return port;
 }
 
@@ -305,10 +303,11 @@ void GraphServer::routes()
             std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         nlohmann::json reply = {{"report", nlohmann::json::parse(mDoc->lastReport())},
                                 {"seconds", seconds}};
-        if (auto png = previewPng(value, previewDisplay(graph, *node, *port, f))) {
+        if (auto picture = previewPicture(value, previewDisplay(graph, *node, *port, f))) {
+            std::string png = formats::encodePngRgb8(picture->width, picture->height, picture->rgb);
             std::lock_guard<std::mutex> lock(mPreviewMutex);
-            mPreviews[*node] = std::move(*png);
-            reply["preview"] = "/api/preview?node=" + *node;
+            mPreviews[*node + "." + *port] = std::move(png);
+            reply["preview"] = "/api/preview?node=" + *node + "&port=" + *port;
         }
         replyJson(res, 200, reply);
     });
@@ -331,7 +330,8 @@ void GraphServer::routes()
 
     s.Get("/api/preview", [this](const httplib::Request& req, httplib::Response& res) {
         std::lock_guard<std::mutex> lock(mPreviewMutex);
-        const auto it = mPreviews.find(req.get_param_value("node"));
+        const std::string port = req.has_param("port") ? req.get_param_value("port") : "image";
+        const auto it = mPreviews.find(req.get_param_value("node") + "." + port);
         if (it == mPreviews.end()) return replyError(res, 404, "no preview of that node yet");
         res.set_header("Cache-Control", "no-store");
         res.set_content(it->second, "image/png");

@@ -64,10 +64,11 @@ private:
     ServeOptions mOptions;
     const Registry& mRegistry;
     std::unique_ptr<httplib::Server> mServer;
+    int mListenSocket = -1;  ///< the server's listening socket, once bound
     std::mutex mDocMutex;  ///< guards mDoc's graph (edits, snapshots, save)
     std::unique_ptr<GraphDocument> mDoc;
     std::mutex mPreviewMutex;
-    std::map<std::string, std::string> mPreviews;  ///< PNG bytes of each node's last cook
+    std::map<std::string, std::string> mPreviews;  ///< "node.port": PNG of its last cook
 
     std::atomic<int> mVersion{1};  ///< of the graph: every edit, reload and save adds one
     std::string mFileText;         ///< the file as last loaded or saved (under mDocMutex)

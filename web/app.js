@@ -32,13 +32,16 @@ async function api(path, body) {
 }
 
 // Renderers (nodes with an Image output) the preview can show.
-function imageOutputs() {
+// The outputs the preview can draw: images, density maps and particles (as points).
+const PREVIEW_TYPES = ["Image", "Map2D", "VapourParticles", "Condensation", "CloudParticles"];
+
+function previewOutputs() {
   const found = [];
-  for (const [id, node] of Object.entries(state.graph.nodes)) {
-    const port = state.types[node.type].outputs.find((p) => p.type === "Image");
-    if (port) found.push({ id, port: port.name });
-  }
-  return found;
+  for (const [id, node] of Object.entries(state.graph.nodes))
+    for (const port of state.types[node.type].outputs)
+      if (PREVIEW_TYPES.includes(port.type)) found.push({ id, port: port.name, type: port.type });
+  // Renderers first: what the preview is mostly for.
+  return found.sort((a, b) => (a.type !== "Image") - (b.type !== "Image"));
 }
 
 function paramValue(id, decl) {
@@ -272,6 +275,8 @@ async function cook() {
                             { node, port, frame: Number($("frame").value), write: $("write").checked });
     showReport(reply.report, reply.seconds);
     if (reply.preview) $("preview").src = `${reply.preview}&t=${Date.now()}`;
+    const type = previewOutputs().find((o) => `${o.id}.${o.port}` === choice)?.type;
+    $("preview").classList.toggle("cells", type === "Map2D");  // a map's cells stay square
   } catch (e) {
     setStatus(e.message, true);
   } finally {
@@ -318,7 +323,8 @@ async function reload() {
   const select = $("preview-node");
   const chosen = select.value;
   select.replaceChildren();
-  for (const { id, port } of imageOutputs()) select.add(new Option(id, `${id}.${port}`));
+  for (const { id, port, type } of previewOutputs())
+    select.add(new Option(type === "Image" ? id : `${id}.${port} (${type})`, `${id}.${port}`));
   if ([...select.options].some((o) => o.value === chosen)) select.value = chosen;
   const types = $("add-type");
   if (!types.options.length) for (const t of state.registry) types.add(new Option(t, t));

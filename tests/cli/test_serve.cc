@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <csignal>
+#include <set>
 #include <thread>
 #include <vector>
 
@@ -36,9 +37,10 @@ const char* kGraph = R"({
 
 class ServeTest : public ::testing::Test {
 protected:
+    virtual const char* graphText() const { return kGraph; }
     void SetUp() override
     {
-        test::writeFile(graphFile(), kGraph);
+        test::writeFile(graphFile(), graphText());
         std::filesystem::create_directories(dir / "out");
         server = std::make_unique<CliProcess>(std::vector<std::string>{
             "serve", graphFile().string(), "--port", "0", "--out", (dir / "out").string(),
@@ -265,7 +267,7 @@ TEST_F(ServeTest, WritesTheFramesOfTheWritersBelowWhenAsked)
     const auto again = post("/api/cook", cook);
     ASSERT_TRUE(again) << "the server went away";
     ASSERT_EQ(again->status, 200) << again->body;
-    EXPECT_EQ(json::parse(again->body)["preview"], "/api/preview?node=render");
+    EXPECT_EQ(json::parse(again->body)["preview"], "/api/preview?node=render&port=image");
     EXPECT_EQ(post("/api/cook", {{"node", "render"}, {"frame", 1}, {"write", "yes"}})->status,
               400);
 }
@@ -354,6 +356,60 @@ TEST_F(ServeTest, ReloadsTheGraphWhenItsFileChangesOnDisk)
     EXPECT_EQ(json::parse(client().Get("/api/graph")->body)["graph"]["nodes"]["render"]["params"]
                                                               ["fov"],
               34.0);
+}
+
+/// A density map and the vapour emitted over it, for the previews of what is not an image.
+const char* kMapGraph = R"({
+  "cloudgraph": 1,
+  "frames": {"start": 0, "end": 0},
+  "nodes": {
+    "noise": {"type": "NoiseMap", "params": {"width": 32, "height": 16, "seed": 3}},
+    "emit": {"type": "VapourEmitter", "inputs": {"map": "noise.map"},
+             "params": {"maxHeight": 800}}
+  }
+})";
+
+class ServePreviewTest : public ServeTest {
+protected:
+    const char* graphText() const override { return kMapGraph; }
+    /// The preview of output `output` of `node` at frame 0, decoded.
+    formats::Rgb8Image preview(const std::string& node, const std::string& output)
+    {
+        const auto cooked = post("/api/cook", {{"node", node}, {"port", output}, {"frame", 0}});
+        EXPECT_EQ(cooked->status, 200) << cooked->body;
+        const std::string url = json::parse(cooked->body)["preview"];
+        EXPECT_EQ(url, "/api/preview?node=" + node + "&port=" + output);
+        test::writeFile(dir / "preview.png", client().Get(url.c_str())->body);
+        return formats::readPngRgb8((dir / "preview.png").string());
+    }
+};
+
+// A map: one grey pixel a cell (north up), from black to white over the map's range.
+TEST_F(ServePreviewTest, ShowsAMapAsGreyCells)
+{
+    const formats::Rgb8Image map = preview("noise", "map");
+    ASSERT_EQ(map.width, 32);
+    ASSERT_EQ(map.height, 16);
+    std::set<int> greys;
+    for (std::size_t i = 0; i < map.rgb.size(); i += 3) {
+        EXPECT_EQ(map.rgb[i], map.rgb[i + 1]);
+        EXPECT_EQ(map.rgb[i], map.rgb[i + 2]);
+        greys.insert(map.rgb[i]);
+    }
+    EXPECT_GT(greys.size(), 20u);  // a noise map, not a flat one
+}
+
+// Particles: points seen from the side, over a dark ground, in a picture 640 wide whose
+// height follows their extent (the emitter's 0-800 m over a 32-cell map).
+TEST_F(ServePreviewTest, ShowsParticlesAsPoints)
+{
+    const formats::Rgb8Image points = preview("emit", "particles");
+    ASSERT_EQ(points.width, 640);
+    EXPECT_GE(points.height, 64);
+    std::size_t lit = 0;
+    for (std::size_t i = 0; i < points.rgb.size(); i += 3) lit += points.rgb[i] > 100;
+    EXPECT_GT(lit, 20u);
+    EXPECT_LT(lit, points.rgb.size() / 3 / 2);  // points, not a wash
 }
 
 TEST_F(ServeTest, StopsOnSigterm)
