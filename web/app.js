@@ -10,6 +10,7 @@ const state = {
   selected: null,     // the node whose parameters are shown
   cooking: false,
   watching: false,    // the progress bar polls while this is set
+  wiring: false,      // the network's drag wiring is set up
   again: false,       // an edit came during a cook: cook once more when it ends
   playing: false,
   version: 0,         // of the server's graph when this page last read it
@@ -140,10 +141,8 @@ function showInputs(id) {
         if (out.type === port.type) select.add(new Option(`${other}.${out.name}`, `${other}.${out.name}`));
     }
     select.value = (node.inputs || {})[port.name] || "";
-    select.addEventListener("change", () => editGraph((g) => {
-      const inputs = (g.nodes[id].inputs ||= {});
-      if (select.value) inputs[port.name] = select.value; else delete inputs[port.name];
-    }));
+    select.addEventListener("change",
+                            () => rewire([{ node: id, input: port.name, source: select.value || null }]));
     label.appendChild(select);
     box.appendChild(label);
   }
@@ -163,6 +162,17 @@ async function editGraph(edit) {
   }
   await reload();
   cook();
+}
+
+// Connects or disconnects inputs in one wiring edit: changes [{node, input, source}], source
+// "node.port" or null.
+function rewire(changes) {
+  return editGraph((g) => {
+    for (const { node, input, source } of changes) {
+      const inputs = (g.nodes[node].inputs ||= {});
+      if (source) inputs[input] = source; else delete inputs[input];
+    }
+  });
 }
 
 async function editParam(id, name, read, message) {
@@ -320,6 +330,10 @@ async function reload() {
   slider.value = frame;
   $("frame-value").textContent = slider.value;
   state.groups = drawNetwork($("network"), state.graph.nodes, state.types, showParams);
+  if (!state.wiring) {  // once: the svg element stays, its contents are redrawn
+    state.wiring = true;
+    enableWiring($("network"), () => state.graph.nodes, rewire);
+  }
   const select = $("preview-node");
   const chosen = select.value;
   select.replaceChildren();

@@ -49,6 +49,66 @@ function layoutNetwork(nodes, types) {
   return boxes;
 }
 
+// Wiring by dragging, as in Houdini: from an output port to an input port of its type
+// connects them (replacing that input's wire); from a connected input port, the wire is
+// picked up and dropped on another input of its type, or anywhere else to disconnect.
+// onWire(changes): one edit, a list of {node, input, source} (source "node.port", or null to
+// disconnect). nodesNow() gives the graph's nodes as the page has them now.
+function enableWiring(svg, nodesNow, onWire) {
+  let drag = null;  // { source, type, from: {x, y}, line, detach: {node, input} | null }
+  const point = (e) => {
+    const box = svg.getBoundingClientRect();
+    return { x: e.clientX - box.left, y: e.clientY - box.top };
+  };
+  const end = (target) => {
+    if (!drag) return;
+    const { source, type, detach, line } = drag;
+    drag = null;
+    line.remove();
+    for (const c of svg.querySelectorAll(".port.can-drop")) c.classList.remove("can-drop");
+    const into = target?.closest?.("circle.port[data-input]");
+    const changes = [];
+    if (into && into.dataset.type === type && into.dataset.node !== source.split(".")[0]) {
+      if (detach) changes.push({ ...detach, source: null });
+      changes.push({ node: into.dataset.node, input: into.dataset.input, source });
+    } else if (detach && !into) {
+      changes.push({ ...detach, source: null });
+    }
+    if (changes.length) onWire(changes);
+  };
+  svg.addEventListener("pointerdown", (e) => {
+    const port = e.target.closest?.("circle.port");
+    if (!port) return;
+    e.preventDefault();
+    e.stopPropagation();
+    let source = null, detach = null;
+    if (port.dataset.output) {
+      source = `${port.dataset.node}.${port.dataset.output}`;
+    } else {
+      source = (nodesNow()[port.dataset.node].inputs || {})[port.dataset.input];
+      if (!source) return;
+      detach = { node: port.dataset.node, input: port.dataset.input };
+    }
+    const start = svg.querySelector(`circle.port[data-node="${source.split(".")[0]}"]` +
+                                    `[data-output="${source.split(".")[1]}"]`);
+    if (!start) return;
+    const from = { x: Number(start.getAttribute("cx")), y: Number(start.getAttribute("cy")) };
+    const line = svgElement("line", { class: "wire dragging", x1: from.x, y1: from.y,
+                                      x2: from.x, y2: from.y }, svg);
+    drag = { source, type: start.dataset.type, from, line, detach };
+    for (const c of svg.querySelectorAll(`circle.port[data-input][data-type="${drag.type}"]`))
+      c.classList.add("can-drop");
+  });
+  svg.addEventListener("pointermove", (e) => {
+    if (!drag) return;
+    const p = point(e);
+    drag.line.setAttribute("x2", p.x);
+    drag.line.setAttribute("y2", p.y);
+  });
+  svg.addEventListener("pointerup", (e) => end(e.target));
+  window.addEventListener("pointerup", (e) => { if (drag && !svg.contains(e.target)) end(null); });
+}
+
 // Draws the network into `svg`; onSelect(id) when a node is clicked. Returns the node
 // groups by id, so that the page can mark what cooked.
 function drawNetwork(svg, nodes, types, onSelect) {
@@ -71,13 +131,15 @@ function drawNetwork(svg, nodes, types, onSelect) {
                                        "text-anchor": "end", fill: "#d9480f" }, g);
     stats.classList.add("stats");
     decl.inputs.forEach((p, i) => {
-      svgElement("circle", { class: "port", cx: box.x, cy: portY(box, i), r: 4 }, g);
+      svgElement("circle", { class: "port", cx: box.x, cy: portY(box, i), r: 5,
+                             "data-node": id, "data-input": p.name, "data-type": p.type }, g);
       const t = svgElement("text", { x: box.x + 8, y: portY(box, i) + 4 }, g);
       t.textContent = `${p.name}: ${p.type}`;
     });
     decl.outputs.forEach((p, i) => {
       const row = box.outputRow + i;
-      svgElement("circle", { class: "port", cx: box.x + NODE_WIDTH, cy: portY(box, row), r: 4 }, g);
+      svgElement("circle", { class: "port", cx: box.x + NODE_WIDTH, cy: portY(box, row), r: 5,
+                             "data-node": id, "data-output": p.name, "data-type": p.type }, g);
       const t = svgElement("text", { x: box.x + NODE_WIDTH - 8, y: portY(box, row) + 4,
                                      "text-anchor": "end" }, g);
       t.textContent = `${p.name}: ${p.type}`;

@@ -26,6 +26,14 @@ return fetch(img.src).then(r => r.arrayBuffer()).then(b => {
 PROGRESS_SHOWN = """const row = document.getElementById('progress-row');
 return getComputedStyle(row).display !== 'none' &&
        document.getElementById('progress-text').textContent;"""
+DRAG = """
+const [fromSelector, toSelector] = arguments;
+const from = document.querySelector(fromSelector);
+const to = toSelector ? document.querySelector(toSelector) : document.getElementById('network');
+from.dispatchEvent(new PointerEvent('pointerdown', {bubbles: true}));
+to.dispatchEvent(new PointerEvent('pointermove', {bubbles: true}));
+to.dispatchEvent(new PointerEvent('pointerup', {bubbles: true}));"""
+WIRE = "return !!document.querySelector('[data-wire=\"voxelize.volume->render.volume\"]');"
 COOKS = "return Number(document.body.dataset.cooks || 0);"
 STATUS = "return document.getElementById('status').textContent;"
 REPORT = """return [...document.querySelectorAll('#report tbody tr')]
@@ -157,9 +165,23 @@ def main():
         os.replace(graph_file + ".new", graph_file)
         browser.wait_for("""const i = document.querySelector('#params [data-param="fov"]');
                             return i && i.value === '33';""", timeout=30)
+        # Wiring by dragging in the network: the Renderer's input picked up and dropped on
+        # nothing disconnects it; dragged from the Voxelizer's output onto it, it connects.
+        render_input = 'circle[data-node="render"][data-input="volume"]'
+        cooks = browser.run(COOKS)
+        browser.run(DRAG, render_input, None)
+        browser.wait_for(f"return !({WIRE[7:-1]});", timeout=30)
+        # Its cook says what is missing, as `cloudgraph run` would.
+        browser.wait_for(f"return {COOKS[7:-1]} > {cooks};", timeout=60)
+        status = browser.run(STATUS)
+        assert "/nodes/render/inputs/volume" in status and "not connected" in status, status
+        cooks = browser.run(COOKS)
+        browser.run(DRAG, 'circle[data-node="voxelize"][data-output="volume"]', render_input)
+        browser.wait_for(WIRE, timeout=30)
+        wait_for_cook(browser, cooks, "the Renderer wired again")
         print("the page loaded, recooked only the Renderer and its writer after the sun edit,"
-              " refused width 0,"
-              " saved a graph the CLI loads, and reloaded the file edited outside it")
+              " showed a long cook's progress, refused width 0, saved a graph the CLI loads,"
+              " reloaded the file edited outside it, and rewired the Renderer by dragging")
     finally:
         if browser:
             browser.close()
