@@ -118,8 +118,10 @@ Evaluator& GraphDocument::evaluatorFor(const std::string& cache, const std::stri
         o.outDir = out;
         o.onProgress = [this](const Progress& p) {
             std::lock_guard<std::mutex> lock(mCookMutex);
-            mProgress.done = p.done;
-            mProgress.total = p.total;
+            // Worker threads report out of order: the most done seen; the total as last
+            // reported (it shrinks when the cook finds what it need not visit).
+            mProgress.done = std::max(mProgress.done, p.done);
+            mProgress.total = std::max(p.total, mProgress.done);
             auto& finished = mProgress.finished;  // a node once, though it cooks many frames
             if (std::find(finished.begin(), finished.end(), p.node) == finished.end())
                 finished.push_back(p.node);
