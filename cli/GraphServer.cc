@@ -63,6 +63,34 @@ std::optional<std::string> stringField(const nlohmann::json& body, const char* k
     return it->get<std::string>();
 }
 
+/// Why a request may not come from this server's own page, or "" when it may. Any web page
+/// the user opens could send requests to a server on 127.0.0.1 (cross-site request forgery)
+/// or reach it through a name of its own that resolves there (DNS rebinding); the page's
+/// edits, cooks and saves must come from the page itself, as development servers such as
+/// Vite's and Jupyter's require:
+/// - the Host header names this server (a loopback name and the port) when it listens on a
+///   loopback address;
+/// - a POST is JSON (a cross-site JSON POST needs a CORS preflight, which is never granted)
+///   and, when it says where it comes from (Origin), it comes from this server.
+std::string refusal(const httplib::Request& req, const std::string& host, int port)
+{
+    const std::string hostHeader = req.get_header_value("Host");
+    const std::string suffix = ":" + std::to_string(port);
+    const bool loopback = host == "127.0.0.1" || host == "localhost" || host == "::1";
+    if (loopback) {
+        bool named = false;
+        for (const char* name : {"127.0.0.1", "localhost", "[::1]"})
+            named = named || hostHeader == name + suffix;
+        if (!named) return "Host '" + hostHeader + "' is not this server";
+    }
+    if (req.method != "POST") return "";
+    if (req.get_header_value("Content-Type").rfind("application/json", 0) != 0)
+        return "a POST must be JSON (Content-Type: application/json)";
+    if (req.has_header("Origin") && req.get_header_value("Origin") != "http://" + hostHeader)
+        return "Origin '" + req.get_header_value("Origin") + "' is not this server's page";
+    return "";
+}
+
 /// The writers downstream of `node` that cook frame by frame (not those that gather every
 /// frame, such as EncodeVideo).
 std::vector<std::string> writersBelow(const Graph& graph, const std::string& node)
@@ -111,6 +139,12 @@ GraphServer::GraphServer(const Registry& registry, ServeOptions options)
     // just timed out sees its POST fail ("Failed to fetch"); on this machine's loopback a new
     // connection costs nothing.
     mServer->set_keep_alive_max_count(1);
+    mServer->set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+        const std::string why = refusal(req, mOptions.host, mPort.load());
+        if (why.empty()) return httplib::Server::HandlerResponse::Unhandled;
+        replyError(res, 403, why);
+        return httplib::Server::HandlerResponse::Handled;
+    });
     mServer->set_socket_options([this](socket_t sock) {
         httplib::default_socket_options(sock);
         mListenSocket = sock;
@@ -133,6 +167,7 @@ int GraphServer::bind()
     // Debian's built cpp-httplib listens with a backlog of 5: a page's burst of requests
     // beyond it waits a second for a SYN retry, or fails. Listening again sets a longer one.
     if (mListenSocket >= 0) ::listen(mListenSocket, SOMAXCONN);
+    mPort = port;
     return port;
 }
 

@@ -65,6 +65,7 @@ private:
     const Registry& mRegistry;
     std::unique_ptr<httplib::Server> mServer;
     int mListenSocket = -1;  ///< the server's listening socket, once bound
+    std::atomic<int> mPort{0};  ///< the port it listens on, once bound
     std::mutex mDocMutex;  ///< guards mDoc's graph (edits, snapshots, save)
     std::unique_ptr<GraphDocument> mDoc;
     std::mutex mPreviewMutex;

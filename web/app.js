@@ -32,7 +32,6 @@ async function api(path, body) {
   return reply;
 }
 
-// Renderers (nodes with an Image output) the preview can show.
 // The outputs the preview can draw: images, density maps and particles (as points).
 const PREVIEW_TYPES = ["Image", "Map2D", "VapourParticles", "Condensation", "CloudParticles"];
 

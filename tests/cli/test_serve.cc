@@ -215,6 +215,37 @@ TEST_F(ServeTest, RefusesBadRequestsAndKeepsServing)
     EXPECT_EQ(client().Get("/api/graph")->status, 200);
 }
 
+// Another site's page open in the same browser may not drive the server: not by a form or
+// fetch POST that is not JSON, not from another Origin, not through a DNS name of its own
+// that resolves to 127.0.0.1. Nothing changes and nothing is saved.
+TEST_F(ServeTest, RefusesRequestsFromOtherSites)
+{
+    const std::string edit = json{{"node", "render"}, {"param", "fov"}, {"value", 12}}.dump();
+    const std::string ours = "127.0.0.1:" + std::to_string(port);
+    const auto plain = client().Post("/api/param", edit, "text/plain");
+    ASSERT_TRUE(plain);
+    EXPECT_EQ(plain->status, 403);
+    EXPECT_NE(plain->body.find("application/json"), std::string::npos) << plain->body;
+    const auto foreign =
+        client().Post("/api/param", {{"Origin", "http://evil.example"}}, edit, "application/json");
+    EXPECT_EQ(foreign->status, 403);
+    const auto rebound = client().Get("/api/graph", {{"Host", "evil.example:" + std::to_string(port)}});
+    EXPECT_EQ(rebound->status, 403);
+    const auto save = client().Post("/api/save", {{"Origin", "http://evil.example"}}, "{}",
+                                    "application/json");
+    EXPECT_EQ(save->status, 403);
+    EXPECT_EQ(test::readFile(graphFile()), kGraph);  // not saved
+    const json graph = json::parse(client().Get("/api/graph")->body)["graph"];
+    EXPECT_FALSE(graph["nodes"]["render"]["params"].contains("fov"));  // not edited
+
+    // The page itself: its own Origin, JSON.
+    const auto own =
+        client().Post("/api/param", {{"Origin", "http://" + ours}}, edit, "application/json");
+    EXPECT_EQ(own->status, 200) << own->body;
+    EXPECT_EQ(client().Get("/api/graph", {{"Host", "localhost:" + std::to_string(port)}})->status,
+              200);
+}
+
 TEST_F(ServeTest, AnswersConcurrentRequests)
 {
     std::vector<std::thread> threads;
