@@ -3,6 +3,7 @@
 #include <httplib.h>
 #include <sys/socket.h>
 
+#include <algorithm>
 #include <chrono>
 #include <exception>
 #include <fstream>
@@ -89,6 +90,33 @@ std::string refusal(const httplib::Request& req, const std::string& host, int po
     if (req.has_header("Origin") && req.get_header_value("Origin") != "http://" + hostHeader)
         return "Origin '" + req.get_header_value("Origin") + "' is not this server's page";
     return "";
+}
+
+/// The files beside the graph file (in its folder and up to kFileListDepth folders below,
+/// hidden ones left out, at most kFileListMax), as relative paths: what an input-file
+/// parameter may name, offered by the page as suggestions.
+constexpr int kFileListDepth = 3;
+constexpr std::size_t kFileListMax = 1000;
+
+std::vector<std::string> filesBeside(const std::filesystem::path& graphFile)
+{
+    namespace fs = std::filesystem;
+    const fs::path dir = graphFile.parent_path().empty() ? fs::path(".") : graphFile.parent_path();
+    std::vector<std::string> files;
+    std::error_code ec;
+    fs::recursive_directory_iterator it(dir, fs::directory_options::skip_permission_denied, ec);
+    for (; !ec && it != fs::recursive_directory_iterator() && files.size() < kFileListMax;
+         it.increment(ec)) {
+        const bool hidden = it->path().filename().string().rfind('.', 0) == 0;
+        if (it->is_directory(ec) && (hidden || it.depth() + 1 >= kFileListDepth)) {
+            it.disable_recursion_pending();
+            continue;
+        }
+        if (!hidden && it->is_regular_file(ec))
+            files.push_back(it->path().lexically_relative(dir).generic_string());
+    }
+    std::sort(files.begin(), files.end());
+    return files;
 }
 
 /// The writers downstream of `node` that cook frame by frame (not those that gather every
@@ -266,6 +294,11 @@ void GraphServer::routes()
     s.Get("/api/version", [this](const httplib::Request&, httplib::Response& res) {
         std::lock_guard<std::mutex> lock(mDocMutex);
         replyJson(res, 200, {{"version", mVersion.load()}, {"fileError", mFileError}});
+    });
+
+    // The files an input-file parameter may name, relative to the graph.
+    s.Get("/api/files", [this](const httplib::Request&, httplib::Response& res) {
+        replyJson(res, 200, {{"files", filesBeside(mOptions.graphFile)}});
     });
 
     // Wiring edits (nodes added or deleted, inputs connected or not): the page sends the

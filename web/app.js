@@ -98,6 +98,12 @@ function showParams(id) {
     } else if (p.type === "string") {
       const input = document.createElement("input");
       input.value = value;
+      if (p.role === "input_file") {  // suggestions: the files beside the graph
+        input.setAttribute("list", "graph-files");
+        input.placeholder = "a file, relative to the graph";
+      } else if (p.role === "output_path") {
+        input.placeholder = "a file under --out (#### = frame)";
+      }
       inputs.push(input);
       read = () => input.value;
     } else {  // lists: edited as JSON
@@ -315,6 +321,8 @@ function nextFrame() {
 // selected node where they still exist.
 async function reload() {
   const reply = await api("/api/graph");
+  const files = (await api("/api/files")).files;
+  $("graph-files").replaceChildren(...files.map((f) => new Option(f, f)));
   state.graph = reply.graph;
   state.types = reply.types;
   state.registry = reply.registry;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <httplib.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <set>
@@ -95,6 +96,21 @@ TEST_F(ServeTest, ServesTheGraphWithItsDeclarationsAndThePage)
     EXPECT_EQ(reply["graph"]["nodes"]["render"]["params"]["width"], 64);
     EXPECT_EQ(reply["types"]["Renderer"]["outputs"][0]["type"], "Image");
     EXPECT_GT(reply["registry"].size(), 20u);
+}
+
+// The files an input-file parameter may name, offered by the page: those beside the graph,
+// relative to it, hidden folders left out.
+TEST_F(ServeTest, ListsTheFilesBesideTheGraph)
+{
+    for (const char* folder : {"soundings", ".git"})
+        std::filesystem::create_directories(dir / folder);
+    test::writeFile(dir / "soundings" / "day.txt", "x");
+    test::writeFile(dir / ".git" / "config", "x");
+    const json files = json::parse(client().Get("/api/files")->body)["files"];
+    EXPECT_NE(std::find(files.begin(), files.end(), "graph.json"), files.end()) << files.dump();
+    EXPECT_NE(std::find(files.begin(), files.end(), "soundings/day.txt"), files.end())
+        << files.dump();
+    for (const json& f : files) EXPECT_EQ(f.get<std::string>().find(".git"), std::string::npos);
 }
 
 TEST_F(ServeTest, RefusesAnOutOfRangeValueWithTheClisMessage)
@@ -229,7 +245,8 @@ TEST_F(ServeTest, RefusesRequestsFromOtherSites)
     const auto foreign =
         client().Post("/api/param", {{"Origin", "http://evil.example"}}, edit, "application/json");
     EXPECT_EQ(foreign->status, 403);
-    const auto rebound = client().Get("/api/graph", {{"Host", "evil.example:" + std::to_string(port)}});
+    const auto rebound =
+        client().Get("/api/graph", {{"Host", "evil.example:" + std::to_string(port)}});
     EXPECT_EQ(rebound->status, 403);
     const auto save = client().Post("/api/save", {{"Origin", "http://evil.example"}}, "{}",
                                     "application/json");

@@ -32,7 +32,8 @@ const char* kGraph = R"({
   "frames": {"start": 0, "end": 2},
   "nodes": {
     "render": {"type": "Renderer", "inputs": {"volume": "cloud.volume"},
-               "params": {"width": 64, "height": 48, "fov": 40, "cameraPosition": [400, -3800, 700]}},
+               "params": {"width": 64, "height": 48, "fov": 40,
+                          "cameraPosition": [400, -3800, 700]}},
     "cloud": {"type": "SyntheticCumulus", "params": {"voxelSize": 40}}
   }
 })";
