@@ -11,6 +11,7 @@ const state = {
   cooking: false,
   watching: false,    // the progress bar polls while this is set
   wiring: false,      // the network's drag wiring is set up
+  editing: 0,         // this page's edits under way (their new version is not read yet)
   again: false,       // an edit came during a cook: cook once more when it ends
   playing: false,
   version: 0,         // of the server's graph when this page last read it
@@ -158,14 +159,17 @@ function showInputs(id) {
 async function editGraph(edit) {
   const graph = JSON.parse(JSON.stringify(state.graph));
   edit(graph);
+  state.editing++;
   try {
     await api("/api/graph", { graph });
+    await reload();
   } catch (e) {
     setStatus(e.message, true);
     showParams(state.selected);  // back to the graph as it is
     return;
+  } finally {
+    state.editing--;
   }
-  await reload();
   cook();
 }
 
@@ -189,16 +193,18 @@ async function editParam(id, name, read, message) {
     message.textContent = `not JSON: ${e.message}`;
     return;
   }
-  let reply;
+  state.editing++;
   try {
-    reply = await api("/api/param", { node: id, param: name, value });
+    const reply = await api("/api/param", { node: id, param: name, value });
+    (state.graph.nodes[id].params ||= {})[name] = value;
+    state.version = reply.version;
   } catch (e) {
     message.textContent = e.message;   // the CLI's own message, naming node and parameter
     setStatus(e.message, true);
     return;
+  } finally {
+    state.editing--;
   }
-  (state.graph.nodes[id].params ||= {})[name] = value;
-  state.version = reply.version;
   setStatus(`${id}.${name} = ${JSON.stringify(value)}`);
   cook();
 }
@@ -280,6 +286,7 @@ async function cook() {
     return;
   }
   state.cooking = true;
+  document.body.dataset.cooking = "yes";  // for tests
   $("cancel").disabled = false;
   const [node, port] = choice.split(".");
   state.groups[node]?.classList.add("cooking");
@@ -298,6 +305,7 @@ async function cook() {
     state.watching = false;
     await watching;
     state.cooking = false;
+    delete document.body.dataset.cooking;
     document.body.dataset.cooks = Number(document.body.dataset.cooks || 0) + 1;  // for tests
     $("cancel").disabled = true;
   }
@@ -359,7 +367,7 @@ async function reload() {
 async function poll() {
   try {
     const reply = await api("/api/version");
-    if (reply.version !== state.version && !state.cooking) {
+    if (reply.version !== state.version && !state.cooking && !state.editing) {
       await reload();
       cook();
     }

@@ -64,8 +64,10 @@ def small_figure6(source, target):
 
 
 def wait_for_cook(browser, cooks_before, what):
-    browser.wait_for(f"return Number(document.body.dataset.cooks || 0) > {cooks_before};",
-                     timeout=300)
+    """Waits for a cook after `cooks_before`, and for the page to be idle (an edit during a
+    cook cancels it and cooks again: the last one is the one that counts)."""
+    browser.wait_for(f"return Number(document.body.dataset.cooks || 0) > {cooks_before} &&"
+                     " document.body.dataset.cooking === undefined;", timeout=300)
     status = browser.run(STATUS)
     assert status.startswith("cooked frame"), f"{what}: the cook failed: {status}"
 
@@ -172,7 +174,8 @@ def main():
         browser.run(DRAG, render_input, None)
         browser.wait_for(f"return !({WIRE[7:-1]});", timeout=30)
         # Its cook says what is missing, as `cloudgraph run` would.
-        browser.wait_for(f"return {COOKS[7:-1]} > {cooks};", timeout=60)
+        browser.wait_for(f"return {COOKS[7:-1]} > {cooks} &&"
+                         " document.body.dataset.cooking === undefined;", timeout=60)
         status = browser.run(STATUS)
         assert "/nodes/render/inputs/volume" in status and "not connected" in status, status
         cooks = browser.run(COOKS)
