@@ -29,6 +29,8 @@ namespace {
 constexpr std::size_t kMaxBodyBytes = 1u << 20;
 /// How often the graph file is looked at for a change made outside the page.
 constexpr std::chrono::milliseconds kWatchInterval{300};
+/// How often stop() looks whether the server has begun to run.
+constexpr std::chrono::milliseconds kStopPoll{5};
 
 void replyJson(httplib::Response& res, int status, const nlohmann::json& body)
 {
@@ -203,6 +205,7 @@ void GraphServer::listen()
 {
     std::thread watcher([this] { watchFile(); });
     mServer->listen_after_bind();
+    mListenEnded = true;
     {
         std::lock_guard<std::mutex> lock(mStopMutex);
         mStopping = true;
@@ -214,6 +217,9 @@ void GraphServer::listen()
 void GraphServer::stop()
 {
     mDoc->cancel();
+    // httplib's stop() does nothing until the server runs: a signal that comes between bind()
+    // and listen() would be lost and listen() would never return. Wait for it to run.
+    while (!mServer->is_running() && !mListenEnded) std::this_thread::sleep_for(kStopPoll);
     mServer->stop();
 }
 

@@ -47,7 +47,8 @@ public:
     int bind();
     /// Serves until stop().
     void listen();
-    /// Cancels a cook under way and makes listen() return.
+    /// Cancels a cook under way and makes listen() return (waiting, if listen() has not
+    /// begun yet, until it has: call it only once listen() is called or about to be).
     void stop();
 
 private:
@@ -66,6 +67,7 @@ private:
     std::unique_ptr<httplib::Server> mServer;
     int mListenSocket = -1;  ///< the server's listening socket, once bound
     std::atomic<int> mPort{0};  ///< the port it listens on, once bound
+    std::atomic<bool> mListenEnded{false};  ///< listen() has returned
     std::mutex mDocMutex;  ///< guards mDoc's graph (edits, snapshots, save)
     std::unique_ptr<GraphDocument> mDoc;
     std::mutex mPreviewMutex;
