@@ -163,7 +163,7 @@ GraphServer::GraphServer(const Registry& registry, ServeOptions options)
 {
     for (const std::string& assignment : mOptions.sets) mDoc->applySetOverride(assignment);
     mDoc->completeGraph();  // a graph the CLI would refuse is refused here too
-    mFileText = readGraphText(mOptions.graphFile, mOptions.load);
+    mFileText = mDoc->fileText();
     mServer->set_payload_max_length(kMaxBodyBytes);
     // One request a connection: a browser that reuses a kept-alive connection the server has
     // just timed out sees its POST fail ("Failed to fetch"); on this machine's loopback a new

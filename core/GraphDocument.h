@@ -82,6 +82,8 @@ public:
     /// layout of the file it was loaded from (graphFileText: its key order and spelling, so
     /// a diff shows the edit); returns the bytes written.
     std::string save(const std::filesystem::path& path);
+    /// The file's text as last loaded, reloaded or saved (empty for a parsed document).
+    const std::string& fileText() const { return mLayout; }
 
     /// Cooks output `port` of `node` at `frame` and what it needs, in `graph`: a copy of
     /// completeGraph() taken earlier, so that edits may go on meanwhile. `cache` (may be

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -33,7 +34,22 @@ OrderedJson inWritingOrder(const Json& value)
         for (const Json& item : value) out.push_back(inWritingOrder(item));
         return out;
     }
-    if (!value.is_object()) return OrderedJson::parse(value.dump());
+    switch (value.type()) {
+    case Json::value_t::object:
+        break;
+    case Json::value_t::boolean:
+        return value.get<bool>();
+    case Json::value_t::number_integer:
+        return value.get<std::int64_t>();
+    case Json::value_t::number_unsigned:
+        return value.get<std::uint64_t>();
+    case Json::value_t::number_float:
+        return value.get<double>();
+    case Json::value_t::string:
+        return value.get<std::string>();
+    default:
+        return nullptr;  // null: graph files hold no binary values
+    }
     std::vector<std::string> keys;
     for (const auto& item : value.items()) keys.push_back(item.key());
     std::stable_sort(keys.begin(), keys.end(), [](const std::string& a, const std::string& b) {
