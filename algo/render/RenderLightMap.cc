@@ -146,16 +146,21 @@ double RenderLightMap::lookup(const RenderVec3& p, bool farEnd) const
         i0[a] = std::min(static_cast<int>(f[a]), std::max(mN[a] - 2, 0));
         w1[a] = f[a] - i0[a];
     }
-    const auto at = [&](int du, int dv, int dw) {
-        return this->at(std::min(i0[0] + du, mN[0] - 1), std::min(i0[1] + dv, mN[1] - 1),
-                        std::min(i0[2] + dw, mN[2] - 1));
-    };
+    // The four columns around p, each read once for its two nodes.
+    double tau[2][2][2];  // [dw][dv][du]
+    for (int dv = 0; dv < 2; ++dv)
+        for (int du = 0; du < 2; ++du) {
+            const Column& c = mColumns[static_cast<std::size_t>(std::min(i0[0] + du, mN[0] - 1)) *
+                                           static_cast<std::size_t>(mN[1]) +
+                                       static_cast<std::size_t>(std::min(i0[1] + dv, mN[1] - 1))];
+            for (int dw = 0; dw < 2; ++dw) tau[dw][dv][du] = tauIn(c, std::min(i0[2] + dw, mN[2] - 1));
+        }
     double result = 0.0;
     for (int c = 0; c < 8; ++c) {
         const int du = c & 1, dv = (c >> 1) & 1, dw = (c >> 2) & 1;
         const double w = (du ? w1[0] : 1.0 - w1[0]) * (dv ? w1[1] : 1.0 - w1[1]) *
                          (dw ? w1[2] : 1.0 - w1[2]);
-        if (w > 0.0) result += w * at(du, dv, dw);
+        if (w > 0.0) result += w * tau[dw][dv][du];
     }
     return result;
 }

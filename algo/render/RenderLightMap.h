@@ -54,11 +54,10 @@ public:
 
 private:
     double lookup(const RenderVec3& p, bool farEnd) const;
-    /// τ at lattice node (iu, iv, iw); inline: a lookup reads eight.
-    double at(int iu, int iv, int iw) const
+    struct Column;
+    /// τ at height iw of a column.
+    double tauIn(const Column& c, int iw) const
     {
-        const Column& c = mColumns[static_cast<std::size_t>(iu) * static_cast<std::size_t>(mN[1]) +
-                                   static_cast<std::size_t>(iv)];
         if (iw >= c.hi) return 0.0;  // at or above the light end of the cloud (or no cloud)
         return mTau[c.offset + static_cast<std::size_t>(std::max(iw, c.lo) - c.lo)];
     }

@@ -90,6 +90,8 @@ struct RenderMarch {
     bool jitter = true;           ///< offset each pixel's samples by a per-pixel random fraction
     std::uint64_t seed = 0;       ///< seed of that offset and of the path tracer's paths
     double minTransmittance = 1e-3;  ///< stop a ray once less than this gets through
+    /// Once less than this gets through, a ray's samples stand for two steps each (0: never).
+    double coarseTransmittance = 0.1;
 };
 
 /// The reference path tracer (renderPathTraced).

@@ -32,22 +32,35 @@ void require(bool ok, const std::string& what)
     if (!ok) throw std::invalid_argument(what);
 }
 
+/// What a sample's visitor asks of the march next.
+enum class MarchNext { Stop, Fine, Coarse };
+
 /// Visits density samples on the lattice t_k = (k + offset) dt, t in [0, tMax), inside the
 /// occupied spans; each sample stands for the interval [t - dt/2, t + dt/2]. The lattice is
-/// global along the ray, so span boundaries leave no seams. fn(t, density) returns false to
-/// stop. Zero-density samples are skipped.
+/// global along the ray, so span boundaries leave no seams. fn(t, density, width) returns
+/// what to do next: stop, go on, or go on with samples that each stand for two cells of the
+/// lattice (width 2 dt, taken at their middle); a coarse march stays coarse. Zero-density
+/// samples are skipped.
 template <class Fn>
 void marchRay(const RenderOccupancy& occ, TrilinearDensity& sampler, const IndexRay& ray,
               double tMax, double dt, double offset, std::vector<Span>& spans, Fn&& fn)
 {
     spans.clear();
     occ.spans(ray.o, ray.d, 0.0, tMax, spans);
+    bool coarse = false;
     for (const Span& s : spans) {
-        for (double k = std::ceil(s.t0 / dt - offset);; k += 1.0) {
-            const double t = (k + offset) * dt;
-            if (t >= s.t1) break;
+        for (double k = std::ceil(s.t0 / dt - offset);; k += coarse ? 2.0 : 1.0) {
+            if ((k + offset) * dt >= s.t1) break;
+            const double t = (k + offset + (coarse ? 0.5 : 0.0)) * dt;
             const double density = sampler.sample(ray.o + ray.d * t);
-            if (density > 0.0 && !fn(t, density)) return;
+            if (!(density > 0.0)) continue;
+            const MarchNext next = fn(t, density, coarse ? 2.0 * dt : dt);
+            if (next == MarchNext::Stop) return;
+            // Once coarse, cell k + 1 is the first of the next coarse sample's two.
+            if (next == MarchNext::Coarse && !coarse) {
+                coarse = true;
+                k -= 1.0;
+            }
         }
     }
 }
@@ -183,13 +196,19 @@ struct Frame {
         const double ext = s.medium.extinction;
         const double albedo = s.medium.albedo;
         const double minT = s.march.minTransmittance;
+        const double coarseT = s.march.coarseTransmittance;
+        // What the rest of the ray adds is at most T of the pixel: below coarseT, samples
+        // twice as far apart change it by little; below minT the ray stops.
+        const auto next = [&](double T) {
+            return T < minT ? MarchNext::Stop : T < coarseT ? MarchNext::Coarse : MarchNext::Fine;
+        };
         const bool skyOcclusion = !skyMap.empty();
         double T = 1.0;
         RenderVec3 L(0.0);
         marchRay(occupancy, sampler, toIndexRay(grid.transform(), origin, dir), tGround, dt, offset,
-                 spans, [&](double t, double density) {
+                 spans, [&](double t, double density, double width) {
                      const double sigmaT = ext * density;
-                     const double segT = std::exp(-sigmaT * dt);
+                     const double segT = std::exp(-sigmaT * width);
                      const RenderVec3 p = origin + dir * t;
                      const double tauSun = sunMap.opticalDepth(p);
                      if (useDiffusion) {
@@ -206,7 +225,7 @@ struct Frame {
                                  diffuseScattered(field.phi[c], field.flux[c], -dir, split);
                          L += source * (T * albedo * (1.0 - segT));
                          T *= segT;
-                         return T >= minT;
+                         return next(T);
                      }
                      double sun = 0.0;
                      for (int i = 0; i < octaves; ++i)
@@ -225,7 +244,7 @@ struct Frame {
                      // Source constant over the step: ∫ T σ_s S ds = T albedo S (1 − segT).
                      L += source * (T * albedo * (1.0 - segT));
                      T *= segT;
-                     return T >= minT;
+                     return next(T);
                  });
         const RenderVec3 bg = background(dir, tGround);
         L += bg * T;
@@ -278,9 +297,9 @@ double fogTransmittance(const openvdb::FloatGrid& grid, const RenderVec3& origin
     std::vector<Span> spans;
     double tau = 0.0;
     marchRay(occ, sampler, toIndexRay(grid.transform(), origin, direction.unitSafe()),
-             std::numeric_limits<double>::infinity(), dt, 0.5, spans, [&](double, double d) {
-                 tau += extinction * d * dt;
-                 return true;
+             std::numeric_limits<double>::infinity(), dt, 0.5, spans, [&](double, double d, double width) {
+                 tau += extinction * d * width;
+                 return MarchNext::Fine;
              });
     return std::exp(-tau);
 }

@@ -86,7 +86,7 @@ void writeExpected(const std::filesystem::path& file, const nlohmann::json& expe
 {
     std::filesystem::create_directories(file.parent_path());
     std::ofstream out(file, std::ios::binary | std::ios::trunc);
-    out << expected.dump(1) << '\n';
+    out << expected.dump(4) << '\n';
     if (!out.flush()) throw std::runtime_error("cannot write " + file.string());
 }
 
