@@ -91,7 +91,7 @@ struct RenderMarch {
     std::uint64_t seed = 0;       ///< seed of that offset and of the path tracer's paths
     double minTransmittance = 1e-3;  ///< stop a ray once less than this gets through
     /// Once less than this gets through, a ray's samples stand for two steps each (0: never).
-    double coarseTransmittance = 0.1;
+    double coarseTransmittance = 0.2;
 };
 
 /// The reference path tracer (renderPathTraced).
