@@ -10,8 +10,9 @@
 //   --samples N    reference paths a pixel, both halves together (default 256)
 //   --size WxH     image size (default 240x180)
 //   --png DIR      write DIR/NAME_SUN.png: fast | reference, tone-mapped as WriteImage does
-//   --fast K=V     a fast-mode setting: lightTexel, step, cellVoxels, or octaves=N for the
-//                  octave model instead of the diffusion solve (to explore, to compare)
+//   --fast K=V     a fast-mode setting: lightTexel, step, coarseTransmittance, cellVoxels,
+//                  or octaves=N for the octave model instead of the diffusion solve (to
+//                  explore, to compare)
 //   --scene K=V    a scene setting for both renderers: ambient (sky light scale), sun
 //                  (intensity), ground (0 or 1), groundAlbedo (grey), bounces (the
 //                  reference's maxBounces; with --fast octaves=1, single scattering
@@ -227,6 +228,7 @@ int main(int argc, char** argv)
             for (const auto& [key, v] : fastSettings) {
                 if (key == "lightTexel") fastS.march.lightTexel = v;
                 else if (key == "step") fastS.march.step = v;
+                else if (key == "coarseTransmittance") fastS.march.coarseTransmittance = v;
                 else if (key == "cellVoxels") fastS.multiScatter.cellVoxels = static_cast<int>(v);
                 else if (key == "octaves") {  // the model before the diffusion solve
                     fastS.multiScatter.model = cg::algo::MultiScatterModel::Octaves;
