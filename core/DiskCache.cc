@@ -238,52 +238,35 @@ bool DiskCache::contains(const Key& key) const
 std::vector<unsigned char> DiskCache::encodeEntry(const Key& key, const OutputMap& outputs,
                                                   bool& serializable)
 {
-    std::vector<unsigned char> buf;
-    serializable = encodeEntry(key, outputs, buf);
-    if (!serializable) buf.clear();
-    return buf;
-}
-
-bool DiskCache::encodeEntry(const Key& key, const OutputMap& outputs,
-                            std::vector<unsigned char>& buffer)
-{
-    buffer.clear();
-    ByteWriter out(std::move(buffer));
+    serializable = false;
+    ByteWriter out;
     std::vector<unsigned char>& buf = out.buffer();
     buf.resize(kHeaderSize);  // filled in once the payload is known
 
     out.u64(outputs.size());
-    bool serializable = true;
     for (const auto& [name, value] : outputs) {
-        if (!value) {
-            serializable = false;
-            break;
-        }
+        if (!value) return {};
         out.str(name);
         out.str(value->typeName());
         // Length placeholder, patched after serializing in place (no extra copy).
         const std::size_t lengthAt = buf.size();
         out.u64(0);
-        if (!value->serialize(out)) {
-            serializable = false;
-            break;
-        }
+        if (!value->serialize(out)) return {};
         putU64(buf.data() + lengthAt, buf.size() - lengthAt - 8);
     }
-    if (serializable) {
-        const std::size_t payloadSize = buf.size() - kHeaderSize;
-        unsigned char* h = buf.data();
-        std::memcpy(h, kMagic, 8);
-        putU32(h + 8, kVersion);
-        putU32(h + 12, 0);
-        putU64(h + 16, key.hi);
-        putU64(h + 24, key.lo);
-        putU64(h + 32, payloadSize);
-        putU64(h + 40, checksum64(buf.data() + kHeaderSize, payloadSize));
-        putU64(h + 48, checksum64(h, kHeaderChecksumOffset));
-    }
-    buffer = std::move(buf);
-    return serializable;
+
+    const std::size_t payloadSize = buf.size() - kHeaderSize;
+    unsigned char* h = buf.data();
+    std::memcpy(h, kMagic, 8);
+    putU32(h + 8, kVersion);
+    putU32(h + 12, 0);
+    putU64(h + 16, key.hi);
+    putU64(h + 24, key.lo);
+    putU64(h + 32, payloadSize);
+    putU64(h + 40, checksum64(buf.data() + kHeaderSize, payloadSize));
+    putU64(h + 48, checksum64(h, kHeaderChecksumOffset));
+    serializable = true;
+    return std::move(buf);
 }
 
 OutputMap DiskCache::decodeEntry(const Key& key, const unsigned char* data, std::size_t size,
@@ -394,10 +377,9 @@ std::optional<OutputMap> DiskCache::load(const Key& key, const Registry& registr
 
 bool DiskCache::store(const Key& key, const OutputMap& outputs) const
 {
-    // One buffer per thread, kept between entries: a frame's entries are megabytes, and a
-    // fresh buffer grown for each was reallocated and page-faulted in every time.
-    thread_local std::vector<unsigned char> bytes;
-    if (!encodeEntry(key, outputs, bytes)) return false;
+    bool serializable = false;
+    const std::vector<unsigned char> bytes = encodeEntry(key, outputs, serializable);
+    if (!serializable) return false;
     // Entries carry checksums that load() verifies: one torn by an operating-system crash
     // reads as a miss, so the write need not wait for the disk.
     return writeAtomically(entryPath(key), bytes.data(), bytes.size(),

@@ -1,10 +1,10 @@
 #pragma once
 /// Jacobi-preconditioned conjugate gradients for the sparse symmetric positive definite
 /// systems of RenderDiffusion: one row per cloud cell, coupled to at most its 6 face
-/// neighbours. Several right-hand sides of the same matrix are solved together, so each
-/// block of matrix rows is read from memory once per iteration for all of them; each column keeps its own step
-/// sizes and stops on its own, so its result is what a solve of it alone gives. Sums are
-/// taken in fixed blocks, in order: the result does not depend on the thread count.
+/// neighbours. Several right-hand sides of the same matrix are solved together, so each block
+/// of matrix rows is read from memory once per iteration for all of them; each column keeps
+/// its own step sizes and stops on its own, so its result is what a solve of it alone gives.
+/// Sums are taken in fixed blocks, in order: the result does not depend on the thread count.
 
 #include <cstdint>
 #include <functional>

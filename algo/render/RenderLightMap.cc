@@ -153,7 +153,8 @@ double RenderLightMap::lookup(const RenderVec3& p, bool farEnd) const
             const Column& c = mColumns[static_cast<std::size_t>(std::min(i0[0] + du, mN[0] - 1)) *
                                            static_cast<std::size_t>(mN[1]) +
                                        static_cast<std::size_t>(std::min(i0[1] + dv, mN[1] - 1))];
-            for (int dw = 0; dw < 2; ++dw) tau[dw][dv][du] = tauIn(c, std::min(i0[2] + dw, mN[2] - 1));
+            for (int dw = 0; dw < 2; ++dw)
+                tau[dw][dv][du] = tauIn(c, std::min(i0[2] + dw, mN[2] - 1));
         }
     double result = 0.0;
     for (int c = 0; c < 8; ++c) {

@@ -297,7 +297,8 @@ double fogTransmittance(const openvdb::FloatGrid& grid, const RenderVec3& origin
     std::vector<Span> spans;
     double tau = 0.0;
     marchRay(occ, sampler, toIndexRay(grid.transform(), origin, direction.unitSafe()),
-             std::numeric_limits<double>::infinity(), dt, 0.5, spans, [&](double, double d, double width) {
+             std::numeric_limits<double>::infinity(), dt, 0.5, spans,
+             [&](double, double d, double width) {
                  tau += extinction * d * width;
                  return MarchNext::Fine;
              });
