@@ -17,6 +17,10 @@ namespace cg {
 /// Little-endian byte sink for the disk cache.
 class ByteWriter {
 public:
+    ByteWriter() = default;
+    /// Appends to `buffer` (whose capacity a caller may reuse).
+    explicit ByteWriter(std::vector<unsigned char> buffer) : mBuf(std::move(buffer)) {}
+
     void bytes(const void* data, std::size_t size)
     {
         const auto* p = static_cast<const unsigned char*>(data);

@@ -56,6 +56,7 @@ constexpr std::size_t kHeaderChecksumOffset = 48;
 constexpr std::uint64_t kMaxEntryBytes = 64ull << 30;
 /// Records are small JSON explanations; a larger file is not one of ours.
 constexpr std::uint64_t kMaxRecordBytes = 16ull << 20;
+constexpr std::size_t kKeptBufferBytes = std::size_t(64) << 20;  ///< see store()
 
 using util::getU32;
 using util::getU64;
@@ -238,35 +239,52 @@ bool DiskCache::contains(const Key& key) const
 std::vector<unsigned char> DiskCache::encodeEntry(const Key& key, const OutputMap& outputs,
                                                   bool& serializable)
 {
-    serializable = false;
-    ByteWriter out;
+    std::vector<unsigned char> buf;
+    serializable = encodeEntry(key, outputs, buf);
+    if (!serializable) buf.clear();
+    return buf;
+}
+
+bool DiskCache::encodeEntry(const Key& key, const OutputMap& outputs,
+                            std::vector<unsigned char>& buffer)
+{
+    buffer.clear();
+    ByteWriter out(std::move(buffer));
     std::vector<unsigned char>& buf = out.buffer();
     buf.resize(kHeaderSize);  // filled in once the payload is known
 
     out.u64(outputs.size());
+    bool serializable = true;
     for (const auto& [name, value] : outputs) {
-        if (!value) return {};
+        if (!value) {
+            serializable = false;
+            break;
+        }
         out.str(name);
         out.str(value->typeName());
         // Length placeholder, patched after serializing in place (no extra copy).
         const std::size_t lengthAt = buf.size();
         out.u64(0);
-        if (!value->serialize(out)) return {};
+        if (!value->serialize(out)) {
+            serializable = false;
+            break;
+        }
         putU64(buf.data() + lengthAt, buf.size() - lengthAt - 8);
     }
-
-    const std::size_t payloadSize = buf.size() - kHeaderSize;
-    unsigned char* h = buf.data();
-    std::memcpy(h, kMagic, 8);
-    putU32(h + 8, kVersion);
-    putU32(h + 12, 0);
-    putU64(h + 16, key.hi);
-    putU64(h + 24, key.lo);
-    putU64(h + 32, payloadSize);
-    putU64(h + 40, checksum64(buf.data() + kHeaderSize, payloadSize));
-    putU64(h + 48, checksum64(h, kHeaderChecksumOffset));
-    serializable = true;
-    return std::move(buf);
+    if (serializable) {
+        const std::size_t payloadSize = buf.size() - kHeaderSize;
+        unsigned char* h = buf.data();
+        std::memcpy(h, kMagic, 8);
+        putU32(h + 8, kVersion);
+        putU32(h + 12, 0);
+        putU64(h + 16, key.hi);
+        putU64(h + 24, key.lo);
+        putU64(h + 32, payloadSize);
+        putU64(h + 40, checksum64(buf.data() + kHeaderSize, payloadSize));
+        putU64(h + 48, checksum64(h, kHeaderChecksumOffset));
+    }
+    buffer = std::move(buf);
+    return serializable;
 }
 
 OutputMap DiskCache::decodeEntry(const Key& key, const unsigned char* data, std::size_t size,
@@ -377,13 +395,18 @@ std::optional<OutputMap> DiskCache::load(const Key& key, const Registry& registr
 
 bool DiskCache::store(const Key& key, const OutputMap& outputs) const
 {
-    bool serializable = false;
-    const std::vector<unsigned char> bytes = encodeEntry(key, outputs, serializable);
-    if (!serializable) return false;
+    // One buffer per thread, kept between entries: a frame's entries are megabytes, and a
+    // fresh buffer grown for each was reallocated and page-faulted in every time (a cold
+    // default run spent 3-5 s more in the kernel). One larger than kKeptBufferBytes is given
+    // back, so a thread does not hold a large volume's worth of memory for good.
+    thread_local std::vector<unsigned char> bytes;
     // Entries carry checksums that load() verifies: one torn by an operating-system crash
     // reads as a miss, so the write need not wait for the disk.
-    return writeAtomically(entryPath(key), bytes.data(), bytes.size(),
-                           util::AtomicOutput::Flush::None);
+    const bool stored = encodeEntry(key, outputs, bytes) &&
+                        writeAtomically(entryPath(key), bytes.data(), bytes.size(),
+                                        util::AtomicOutput::Flush::None);
+    if (bytes.capacity() > kKeptBufferBytes) std::vector<unsigned char>().swap(bytes);
+    return stored;
 }
 
 bool DiskCache::writeAtomically(const fs::path& target, const void* data, std::size_t size,

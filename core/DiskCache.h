@@ -59,6 +59,10 @@ public:
     /// Serialization used for entries, exposed for tests: bytes of a whole entry file.
     static std::vector<unsigned char> encodeEntry(const Key& key, const OutputMap& outputs,
                                                   bool& serializable);
+    /// The same into `buffer` (cleared first, its capacity kept); false if an output cannot
+    /// be serialized.
+    static bool encodeEntry(const Key& key, const OutputMap& outputs,
+                            std::vector<unsigned char>& buffer);
     /// Parses a whole entry file; throws std::runtime_error with the byte offset of the
     /// first inconsistency (std::bad_alloc passes through).
     static OutputMap decodeEntry(const Key& key, const unsigned char* data, std::size_t size,
