@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -23,6 +24,27 @@ void forParticles(std::size_t n, F&& f)
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
+                      });
+}
+
+/// Two doubles side by side, one lane per particle: each lane does the scalar arithmetic of
+/// its own particle in the same order, so a pair gives the same bits as two single visits,
+/// with half the arithmetic instructions (the neighbour passes are bound by them).
+using Pair = double __attribute__((vector_size(16)));
+
+Pair pairOf(double a, double b) { return Pair{a, b}; }
+
+/// f(a, b) for the particles of [0, n) two at a time, b = a + 1 (or b = a, a lone last
+/// particle of a range, when `pair` is false).
+template <typename F>
+void forParticlePairs(std::size_t n, F&& f)
+{
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i < r.end(); i += 2) {
+                              const bool pair = i + 1 < r.end();
+                              f(i, pair ? i + 1 : i, pair);
+                          }
                       });
 }
 
@@ -280,49 +302,73 @@ void SphSolver::computeForcesAndHeat()
     });
 }
 
+template <typename F>
+void SphSolver::forNeighbourPairs(std::size_t a, std::size_t b, bool pair, F&& f) const
+{
+    const std::size_t na = mNbrCount[a], nb = pair ? mNbrCount[b] : 0;
+    const std::uint32_t* rowA = &mNbr[mStride * a];
+    const std::uint32_t* rowB = &mNbr[mStride * b];
+    const float* fA = &mGradF[mStride * a];
+    const float* fB = &mGradF[mStride * b];
+    const std::size_t common = std::min(na, nb);
+    std::size_t c = 0;
+    for (; c < common; ++c) f(rowA[c], rowB[c], pairOf(fA[c], fB[c]));
+    for (; c < na; ++c) f(rowA[c], b, pairOf(fA[c], 0.0));
+    for (; c < nb; ++c) f(a, rowB[c], pairOf(0.0, fB[c]));
+}
+
 void SphSolver::pressureAcceleration(const std::vector<double>& p, std::vector<double>& acc) const
 {
     // a_i = -m/rho0^2 [ sum_fluid (p_i + p_j) grad W_ij + sum_wall p_i grad W_iw ]: the
     // wall term (p_wall = 0) makes this the exact adjoint of densityChange, so the pressure
-    // system is symmetric and conjugate gradients apply.
+    // system is symmetric and conjugate gradients apply. p holds the walls' zeros after the
+    // fluid, so p_i + p_wall is p_i (or +0 for p_i = -0, a term of +-0 that changes no sum).
     const double s0 = -mMass / (mRho0 * mRho0);
-    forParticles(mFluid, [&](std::size_t i) {
-        const std::uint32_t* nb = &mNbr[mStride * i];
-        const float* f = &mGradF[mStride * i];
-        const double* xi = &mX[3 * i];
-        double a[3] = {0, 0, 0};
-        for (std::size_t c = 0; c < mNbrCount[i]; ++c) {
-            const std::size_t j = nb[c];
-            const double* xj = &mX[3 * j];
-            const double s = s0 * f[c] * (j < mFluid ? p[i] + p[j] : p[i]);
-            a[0] += s * (xi[0] - xj[0]);
-            a[1] += s * (xi[1] - xj[1]);
-            a[2] += s * (xi[2] - xj[2]);
+    forParticlePairs(mFluid, [&](std::size_t ia, std::size_t ib, bool pair) {
+        const double* xa = &mX[3 * ia];
+        const double* xb = &mX[3 * ib];
+        const Pair xi[3] = {pairOf(xa[0], xb[0]), pairOf(xa[1], xb[1]), pairOf(xa[2], xb[2])};
+        const Pair pi = pairOf(p[ia], p[ib]);
+        Pair a[3] = {};
+        forNeighbourPairs(ia, ib, pair, [&](std::size_t ja, std::size_t jb, Pair f) {
+            const double* xja = &mX[3 * ja];
+            const double* xjb = &mX[3 * jb];
+            const Pair s = s0 * f * (pi + pairOf(p[ja], p[jb]));
+            a[0] += s * (xi[0] - pairOf(xja[0], xjb[0]));
+            a[1] += s * (xi[1] - pairOf(xja[1], xjb[1]));
+            a[2] += s * (xi[2] - pairOf(xja[2], xjb[2]));
+        });
+        for (int k = 0; k < 3; ++k) {
+            acc[3 * ia + k] = a[k][0];
+            if (pair) acc[3 * ib + k] = a[k][1];
         }
-        for (int k = 0; k < 3; ++k) acc[3 * i + k] = a[k];
     });
 }
 
 void SphSolver::densityChange(const std::vector<double>& v, double scale,
                               std::vector<double>& out) const
 {
-    // out_i = scale sum_j m (v_i - v_j) . grad W_ij, walls at rest.
-    forParticles(mFluid, [&](std::size_t i) {
-        const double* vi = &v[3 * i];
-        const std::uint32_t* nb = &mNbr[mStride * i];
-        const float* f = &mGradF[mStride * i];
-        const double* xi = &mX[3 * i];
-        double div = 0.0;
-        for (std::size_t c = 0; c < mNbrCount[i]; ++c) {
-            const std::size_t j = nb[c];
-            const double* xj = &mX[3 * j];
-            double dv[3] = {vi[0], vi[1], vi[2]};
-            if (j < mFluid)
-                for (int k = 0; k < 3; ++k) dv[k] -= v[3 * j + k];
-            div += f[c] *
-                   (dv[0] * (xi[0] - xj[0]) + dv[1] * (xi[1] - xj[1]) + dv[2] * (xi[2] - xj[2]));
-        }
-        out[i] = scale * mMass * div;
+    // out_i = scale sum_j m (v_i - v_j) . grad W_ij, walls at rest: v holds the walls' zero
+    // velocities after the fluid's, and v_i - 0 is v_i exactly.
+    forParticlePairs(mFluid, [&](std::size_t ia, std::size_t ib, bool pair) {
+        const double* xa = &mX[3 * ia];
+        const double* xb = &mX[3 * ib];
+        const double* va = &v[3 * ia];
+        const double* vb = &v[3 * ib];
+        const Pair xi[3] = {pairOf(xa[0], xb[0]), pairOf(xa[1], xb[1]), pairOf(xa[2], xb[2])};
+        const Pair vi[3] = {pairOf(va[0], vb[0]), pairOf(va[1], vb[1]), pairOf(va[2], vb[2])};
+        Pair div = {};
+        forNeighbourPairs(ia, ib, pair, [&](std::size_t ja, std::size_t jb, Pair f) {
+            const double* xja = &mX[3 * ja];
+            const double* xjb = &mX[3 * jb];
+            const double* vja = &v[3 * ja];
+            const double* vjb = &v[3 * jb];
+            div += f * ((vi[0] - pairOf(vja[0], vjb[0])) * (xi[0] - pairOf(xja[0], xjb[0])) +
+                        (vi[1] - pairOf(vja[1], vjb[1])) * (xi[1] - pairOf(xja[1], xjb[1])) +
+                        (vi[2] - pairOf(vja[2], vjb[2])) * (xi[2] - pairOf(xja[2], xjb[2])));
+        });
+        out[ia] = scale * mMass * div[0];
+        if (pair) out[ib] = scale * mMass * div[1];
     });
 }
 
@@ -342,8 +388,11 @@ void SphSolver::solvePressure(double dt)
     std::vector<double>& d = mWork[4];
     std::vector<double>& q = mWork[5];
     std::vector<double>& diag = mWork[6];
-    for (std::vector<double>* w : {&vstar, &accD}) w->resize(3 * n);
-    for (std::vector<double>* w : {&r, &z, &d, &q, &diag}) w->resize(n);
+    // The passes read the walls' velocities and pressures after the fluid's: zeros.
+    const std::size_t all = mX.size() / 3;
+    for (std::vector<double>* w : {&vstar, &accD}) w->assign(3 * all, 0.0);
+    d.assign(all, 0.0);
+    for (std::vector<double>* w : {&r, &z, &q, &diag}) w->resize(n);
 
     const double scale = dt * dt * mMass * mMass / (mRho0 * mRho0);
     forParticles(

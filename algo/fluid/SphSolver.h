@@ -111,9 +111,16 @@ private:
     void computeDensity();
     void computeForcesAndHeat();
     void solvePressure(double dt);
-    /// acc = the pressure acceleration of the pressures p (fluid particles).
+    /// f(ja, jb, F) for the neighbour slots of particles a and b side by side, F holding
+    /// both slots' F_ij; past the shorter row, that lane visits its own particle with F = 0
+    /// (a term of +-0, which changes no sum that starts at +0). b = a when `pair` is false.
+    template <typename F>
+    void forNeighbourPairs(std::size_t a, std::size_t b, bool pair, F&& f) const;
+    /// acc = the pressure acceleration of the pressures p (fluid particles, then the walls'
+    /// zeros).
     void pressureAcceleration(const std::vector<double>& p, std::vector<double>& acc) const;
-    /// out_i = scale sum_j m (v_i - v_j) . grad W_ij, the walls at rest.
+    /// out_i = scale sum_j m (v_i - v_j) . grad W_ij; v holds the walls' zeros after the
+    /// fluid.
     void densityChange(const std::vector<double>& v, double scale, std::vector<double>& out) const;
     void integrate(double dt);
 
