@@ -32,35 +32,31 @@ void require(bool ok, const std::string& what)
     if (!ok) throw std::invalid_argument(what);
 }
 
-/// What a sample's visitor asks of the march next.
-enum class MarchNext { Stop, Fine, Coarse };
+/// The most lattice cells one camera sample stands for.
+constexpr int kMaxStride = 8;
 
 /// Visits density samples on the lattice t_k = (k + offset) dt, t in [0, tMax), inside the
 /// occupied spans; each sample stands for the interval [t - dt/2, t + dt/2]. The lattice is
 /// global along the ray, so span boundaries leave no seams. fn(t, density, width) returns
-/// what to do next: stop, go on, or go on with samples that each stand for two cells of the
-/// lattice (width 2 dt, taken at their middle); a coarse march stays coarse. Zero-density
-/// samples are skipped.
+/// how many cells of the lattice the next samples should stand for (a power of two; 0:
+/// stop): a sample of `stride` cells is taken at their middle (width stride dt), and a
+/// march never grows finer again. Zero-density samples are skipped.
 template <class Fn>
 void marchRay(const RenderOccupancy& occ, TrilinearDensity& sampler, const IndexRay& ray,
               double tMax, double dt, double offset, std::vector<Span>& spans, Fn&& fn)
 {
     spans.clear();
     occ.spans(ray.o, ray.d, 0.0, tMax, spans);
-    bool coarse = false;
+    int stride = 1;
     for (const Span& s : spans) {
-        for (double k = std::ceil(s.t0 / dt - offset);; k += coarse ? 2.0 : 1.0) {
-            if ((k + offset) * dt >= s.t1) break;
-            const double t = (k + offset + (coarse ? 0.5 : 0.0)) * dt;
+        for (double k = std::ceil(s.t0 / dt - offset); (k + offset) * dt < s.t1;) {
+            const double t = (k + offset + 0.5 * (stride - 1)) * dt;
             const double density = sampler.sample(ray.o + ray.d * t);
+            k += stride;  // the first cell of the next sample
             if (!(density > 0.0)) continue;
-            const MarchNext next = fn(t, density, coarse ? 2.0 * dt : dt);
-            if (next == MarchNext::Stop) return;
-            // Once coarse, cell k + 1 is the first of the next coarse sample's two.
-            if (next == MarchNext::Coarse && !coarse) {
-                coarse = true;
-                k -= 1.0;
-            }
+            const int wanted = fn(t, density, stride * dt);
+            if (wanted == 0) return;
+            stride = std::max(stride, wanted);
         }
     }
 }
@@ -198,9 +194,14 @@ struct Frame {
         const double minT = s.march.minTransmittance;
         const double coarseT = s.march.coarseTransmittance;
         // What the rest of the ray adds is at most T of the pixel: below coarseT, samples
-        // twice as far apart change it by little; below minT the ray stops.
+        // twice as far apart change it by little, and each halving of T doubles the
+        // distance again (up to kMaxStride steps); below minT the ray stops.
         const auto next = [&](double T) {
-            return T < minT ? MarchNext::Stop : T < coarseT ? MarchNext::Coarse : MarchNext::Fine;
+            if (T < minT) return 0;
+            int stride = 1;
+            for (double limit = coarseT; T < limit && stride < kMaxStride; limit *= 0.5)
+                stride *= 2;
+            return stride;
         };
         const bool skyOcclusion = !skyMap.empty();
         double T = 1.0;
@@ -300,7 +301,7 @@ double fogTransmittance(const openvdb::FloatGrid& grid, const RenderVec3& origin
              std::numeric_limits<double>::infinity(), dt, 0.5, spans,
              [&](double, double d, double width) {
                  tau += extinction * d * width;
-                 return MarchNext::Fine;
+                 return 1;
              });
     return std::exp(-tau);
 }

@@ -101,7 +101,7 @@ void registerRendererNode(Registry& registry)
     const auto v3 = [](const algo::RenderVec3& v) { return Vec3{v.x(), v.y(), v.z()}; };
     NodeDecl d;
     d.type = "Renderer";
-    d.version = 13;  // 2: the image carries its background; 3: the diffusion sees sky and ground
+    d.version = 14;  // 2: the image carries its background; 3: the diffusion sees sky and ground
                      // apart; 4: δ-Eddington sun, flux-limited diffusion, one radiance lobe;
                      // 5: sparse sun light map, one voxel a texel in large sparse fields;
                      // 6: the limiter's sun solves to 1e-2 (the image within 0.01%);
@@ -112,7 +112,8 @@ void registerRendererNode(Registry& registry)
                      // the sky, ground and cloud light they see (SurfaceGather); 11: the
                      // ground shaded and lit by the clouds above it, its shadows δ-Eddington;
                      // 12: the ground's map blurred (no ghosts of the clouds on the ground);
-                     // 13: samples two steps long once T < coarseTransmittance
+                     // 13: samples two steps long once T < coarseTransmittance; 14: and
+                     // twice as long again at each halving of T, up to 8 steps
     d.category = "render";
     d.doc =
         "Ray-marches a fog volume (sigma_t = extinction x density, sigma_s = albedo x sigma_t) "
@@ -204,8 +205,9 @@ void registerRendererNode(Registry& registry)
         floatParam("step", def.march.step, "voxels", "camera-ray step", 0.05, 16),
         floatParam("coarseTransmittance", def.march.coarseTransmittance, "",
                    "once a camera ray lets less than this through, each of its samples stands "
-                   "for two steps (what is left of the ray adds at most this fraction of the "
-                   "pixel; 0: never)",
+                   "for two steps, and for twice as many at each halving of what gets through, "
+                   "up to 8 (what is left of the ray adds at most this fraction of the pixel; "
+                   "0: never)",
                    0, 1),
         floatParam("lightTexel", def.march.lightTexel, "voxels",
                    "texel of the sun light map (grown if the map would exceed 8M texels)",
