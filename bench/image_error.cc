@@ -5,9 +5,14 @@
 // the voxelizer's kernels with it.
 //
 // Usage: image_error IMAGE.exr REFERENCE.exr
-//   prints: pixels=N ratio=R mean=M p90=P      exit 2 for an unreadable file or other sizes
+//   prints: pixels=N ratio=R mean=M p90=P differing=D max=X   exit 2 for an unreadable file
+//   or other sizes; D counts the RGBA values that are not bit for bit the same, X is the
+//   largest absolute difference among them (0 0: the images are identical).
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <string>
 
@@ -35,8 +40,18 @@ int main(int argc, char** argv)
         return 2;
     }
     try {
-        const cg::algo::LuminanceError e = cg::algo::luminanceError(readImage(argv[1]), readImage(argv[2]));
-        std::printf("pixels=%zu ratio=%.5f mean=%.5f p90=%.5f\n", e.pixels, e.ratio, e.mean, e.p90);
+        const cg::algo::RenderedImage image = readImage(argv[1]);
+        const cg::algo::RenderedImage reference = readImage(argv[2]);
+        const cg::algo::LuminanceError e = cg::algo::luminanceError(image, reference);
+        std::size_t differing = 0;
+        float most = 0.0f;
+        for (std::size_t i = 0; i < image.rgba.size(); ++i) {
+            if (std::memcmp(&image.rgba[i], &reference.rgba[i], sizeof(float)) == 0) continue;
+            ++differing;
+            most = std::max(most, std::fabs(image.rgba[i] - reference.rgba[i]));
+        }
+        std::printf("pixels=%zu ratio=%.5f mean=%.5f p90=%.5f differing=%zu max=%g\n", e.pixels,
+                    e.ratio, e.mean, e.p90, differing, double(most));
     } catch (const std::exception& e) {
         std::fprintf(stderr, "image_error: %s\n", e.what());
         return 2;

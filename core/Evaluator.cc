@@ -151,7 +151,10 @@ public:
     void cookRange(const std::vector<std::size_t>& closure, int first, int last,
                    const FrameCallback& onFrame)
     {
-        FramePipeline(mGraph.upstream(), kFramesInFlight)
+        std::vector<bool> anyOrder;
+        for (const GraphNode& node : mGraph.nodes())
+            anyOrder.push_back(node.decl->framesInAnyOrder);
+        FramePipeline(mGraph.upstream(), kFramesInFlight, std::move(anyOrder))
             .run(
                 first, last,
                 [&](int frame, FrameOutputs& results) {

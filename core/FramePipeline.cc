@@ -27,9 +27,13 @@ using Ready = std::vector<std::pair<Frame*, std::size_t>>;
 
 }  // namespace
 
-FramePipeline::FramePipeline(const std::vector<std::vector<std::size_t>>& upstream, int window)
-    : mUpstream(upstream), mDownstream(upstream.size()), mWindow(window < 1 ? 1 : window)
+FramePipeline::FramePipeline(const std::vector<std::vector<std::size_t>>& upstream, int window,
+                             std::vector<bool> anyOrder)
+    : mUpstream(upstream), mDownstream(upstream.size()), mInOrder(upstream.size(), true),
+      mWindow(window < 1 ? 1 : window)
 {
+    for (std::size_t i = 0; i < anyOrder.size() && i < upstream.size(); ++i)
+        mInOrder[i] = !anyOrder[i];
     for (std::size_t i = 0; i < upstream.size(); ++i)
         for (std::size_t up : upstream[i]) mDownstream[up].push_back(i);
 }
@@ -70,7 +74,7 @@ void FramePipeline::run(int first, int last, const Plan& plan, const Cook& cook,
             --fr.left;
             for (std::size_t down : mDownstream[idx])
                 if (fr.member[down] && --fr.waiting[down] == 0) ready.emplace_back(&fr, down);
-            if (Frame* later = successor(fr))
+            if (Frame* later = mInOrder[idx] ? successor(fr) : nullptr)
                 if (later->member[idx] && --later->waiting[idx] == 0)
                     ready.emplace_back(later, idx);
             finishFrames();
@@ -152,7 +156,8 @@ void FramePipeline::run(int first, int last, const Plan& plan, const Cook& cook,
                 for (std::size_t idx : nodes) {
                     int wait = 0;
                     for (std::size_t up : mUpstream[idx]) wait += fr->member[up];
-                    if (before && before->member[idx] && !before->done[idx]) ++wait;
+                    if (before && mInOrder[idx] && before->member[idx] && !before->done[idx])
+                        ++wait;
                     fr->waiting[idx] = wait;
                     if (wait == 0) ready.emplace_back(fr.get(), idx);
                 }

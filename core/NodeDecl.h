@@ -54,6 +54,11 @@ struct NodeDecl {
     /// outputs so large and so cheap to cook that keeping frames of them costs more (page
     /// faults, evictions, gigabytes of resident memory) than cooking again when asked twice.
     bool cacheInMemory = true;
+    /// The output at a frame depends on nothing but the inputs at that frame, the parameters
+    /// and the frame itself, and a cook does nothing else: two frames of the node may cook at
+    /// once (one frame's render beside the next one's, so that the cores one frame's serial
+    /// parts leave idle are not lost). Never a simulation, a writer or a logger.
+    bool framesInAnyOrder = false;
     /// The node reads the evaluation context's time step or seed (hashed into its key).
     bool readsTimeStep = false;
     bool readsSeed = false;

@@ -31,6 +31,8 @@ void checkDeclaration(const NodeDecl& d, const Registry& registry)
     checkPorts(d.inputs, "input");
     checkPorts(d.outputs, "output");
     if (d.outputs.empty()) bad("no output port");
+    if (d.framesInAnyOrder && (d.simulation || d.writesFiles || d.gathersFrames))
+        bad("a simulation, a writer or a gatherer of frames cooks its frames in order");
     for (const ParamDecl& p : d.params) {
         if (p.doc.empty()) bad("parameter '" + p.name + "' is undocumented");
         if (p.role == ParamRole::InputFile && !d.hashExtra)

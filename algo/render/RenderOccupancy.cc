@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <tbb/parallel_for.h>
+
 namespace cg::algo {
 
 namespace {
@@ -72,7 +74,48 @@ RenderOccupancy::RenderOccupancy(const openvdb::FloatTree& tree, bool majorants)
                     mOcc[blockIndex(i, j, k)] = 1;
     });
     if (majorants) recordMajorants(tree);
-    if (total <= kMostBrickBlocks) recordBricks(tree);
+    if (total <= kMostBrickBlocks) {
+        recordBricks(tree);
+        trimToBricks();
+    }
+}
+
+void RenderOccupancy::trimToBricks()
+{
+    // near[o]: the bricks of the block at offset o = (di, dj, dk) that touch this block.
+    std::uint64_t near[27];
+    for (int o = 0; o < 27; ++o) {
+        const int d[3] = {o / 9 - 1, o / 3 % 3 - 1, o % 3 - 1};
+        near[o] = 0;
+        for (int b = 0; b < 64; ++b) {
+            const int brick[3] = {b & 3, (b >> 2) & 3, (b >> 4) & 3};
+            bool touches = true;
+            for (int a = 0; a < 3; ++a)
+                touches = touches && (d[a] == 0 || brick[a] == (d[a] > 0 ? 0 : 3));
+            if (touches) near[o] |= std::uint64_t(1) << bitOfBrick(brick[0], brick[1], brick[2]);
+        }
+    }
+    // A block is kept while some sample in it or in a brick next to it can be positive: the
+    // brick of margin keeps a sample whose floor lies just across a block face from being
+    // lost to the DDA's rounding of where the ray crosses it.
+    std::vector<std::uint8_t> kept(mOcc.size(), 0);
+    tbb::parallel_for(0, mN[0], [&](int i) {
+        for (int j = 0; j < mN[1]; ++j)
+            for (int k = 0; k < mN[2]; ++k) {
+                const std::size_t block = blockIndex(i, j, k);
+                if (mOcc[block] == 0) continue;
+                bool keep = false;
+                for (int o = 0; o < 27 && !keep; ++o) {
+                    const int n[3] = {i + o / 9 - 1, j + o / 3 % 3 - 1, k + o % 3 - 1};
+                    if (n[0] < 0 || n[1] < 0 || n[2] < 0 || n[0] >= mN[0] || n[1] >= mN[1] ||
+                        n[2] >= mN[2])
+                        continue;
+                    keep = (mBricks[blockIndex(n[0], n[1], n[2])] & near[o]) != 0;
+                }
+                kept[block] = keep ? 1 : 0;
+            }
+    });
+    mOcc.swap(kept);
 }
 
 void RenderOccupancy::spans(const RenderVec3& origin, const RenderVec3& dir, double tMin,

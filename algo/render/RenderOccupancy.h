@@ -96,6 +96,10 @@ private:
 
     void recordMajorants(const openvdb::FloatTree& tree);
     void recordBricks(const openvdb::FloatTree& tree);
+    /// Leaves out of the spans the blocks where no sample, nor any in the bricks next to
+    /// them, can be positive (most of the blocks that the one-voxel margin around each leaf
+    /// adds); the walk and the majorants still see them.
+    void trimToBricks();
 
     int mMin[3] = {0, 0, 0};  ///< first block, in block units
     int mN[3] = {0, 0, 0};    ///< blocks per axis

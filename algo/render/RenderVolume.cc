@@ -36,27 +36,33 @@ void require(bool ok, const std::string& what)
 constexpr int kMaxStride = 8;
 
 /// Visits density samples on the lattice t_k = (k + offset) dt, t in [0, tMax), inside the
-/// occupied spans; each sample stands for the interval [t - dt/2, t + dt/2]. The lattice is
-/// global along the ray, so span boundaries leave no seams. fn(t, density, width) returns
-/// how many cells of the lattice the next samples should stand for (a power of two; 0:
-/// stop): a sample of `stride` cells is taken at their middle (width stride dt), and a
-/// march never grows finer again. Zero-density samples are skipped.
+/// occupied spans; each sample stands for the interval [t - dt/2, t + dt/2]. fn(t, density,
+/// width) returns how many cells of the lattice the samples should stand for from then on (a
+/// power of two; 0: stop); a sample of `stride` cells k .. k + stride - 1 is taken at their
+/// middle (width stride dt), with k a multiple of the stride. The lattice and its groups are
+/// global along the ray, so span boundaries leave no seams and how the spans are cut does
+/// not move a sample: at a span's first cell that is not a multiple of the stride, and
+/// until a multiple of the larger stride fn asks for, the march takes the largest stride
+/// that fits. Zero-density samples are skipped.
 template <class Fn>
 void marchRay(const RenderOccupancy& occ, TrilinearDensity& sampler, const IndexRay& ray,
               double tMax, double dt, double offset, std::vector<Span>& spans, Fn&& fn)
 {
     spans.clear();
     occ.spans(ray.o, ray.d, 0.0, tMax, spans);
-    int stride = 1;
+    const auto alignedTo = [](double k, int stride) { return std::fmod(k, stride) == 0.0; };
+    int stride = 1, wanted = 1;
     for (const Span& s : spans) {
         for (double k = std::ceil(s.t0 / dt - offset); (k + offset) * dt < s.t1;) {
+            while (!alignedTo(k, stride)) stride /= 2;
+            while (stride < wanted && alignedTo(k, 2 * stride)) stride *= 2;
             const double t = (k + offset + 0.5 * (stride - 1)) * dt;
             const double density = sampler.sample(ray.o + ray.d * t);
-            k += stride;  // the first cell of the next sample
+            k += stride;
             if (!(density > 0.0)) continue;
-            const int wanted = fn(t, density, stride * dt);
-            if (wanted == 0) return;
-            stride = std::max(stride, wanted);
+            const int next = fn(t, density, stride * dt);
+            if (next == 0) return;
+            wanted = std::max(wanted, next);
         }
     }
 }

@@ -101,7 +101,7 @@ void registerRendererNode(Registry& registry)
     const auto v3 = [](const algo::RenderVec3& v) { return Vec3{v.x(), v.y(), v.z()}; };
     NodeDecl d;
     d.type = "Renderer";
-    d.version = 14;  // 2: the image carries its background; 3: the diffusion sees sky and ground
+    d.version = 15;  // 2: the image carries its background; 3: the diffusion sees sky and ground
                      // apart; 4: δ-Eddington sun, flux-limited diffusion, one radiance lobe;
                      // 5: sparse sun light map, one voxel a texel in large sparse fields;
                      // 6: the limiter's sun solves to 1e-2 (the image within 0.01%);
@@ -113,8 +113,10 @@ void registerRendererNode(Registry& registry)
                      // ground shaded and lit by the clouds above it, its shadows δ-Eddington;
                      // 12: the ground's map blurred (no ghosts of the clouds on the ground);
                      // 13: samples two steps long once T < coarseTransmittance; 14: and
-                     // twice as long again at each halving of T, up to 8 steps
+                     // twice as long again at each halving of T, up to 8 steps; 15: those
+                     // samples on a lattice of their own, whatever the spans
     d.category = "render";
+    d.framesInAnyOrder = true;
     d.doc =
         "Ray-marches a fog volume (sigma_t = extinction x density, sigma_s = albedo x sigma_t) "
         "with empty-space skipping over 8^3-voxel blocks, and over 2^3-voxel bricks where no sample "

@@ -393,6 +393,13 @@ TEST_F(EvaluatorTest, InputFilesEnterTheKeyByContentNotByPath)
     unhashed.type = "TestReadTextWithoutContentHash";
     unhashed.hashExtra = nullptr;
     EXPECT_THROW(registry.addNode(unhashed), std::invalid_argument);
+
+    // A node that writes files cooks its frames in order: it cannot be of any order.
+    NodeDecl unordered = d;
+    unordered.type = "TestWriterOfAnyOrder";
+    unordered.writesFiles = true;
+    unordered.framesInAnyOrder = true;
+    EXPECT_THROW(registry.addNode(unordered), std::invalid_argument);
 }
 
 TEST_F(EvaluatorTest, ReportShowsSmallOutputValues)

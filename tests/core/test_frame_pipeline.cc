@@ -1,6 +1,6 @@
-// FramePipeline: each node cooks its frames in order and after its inputs, frames finish in
-// order, the next frame's first nodes overlap the last nodes of the frame before, and a
-// failure stops the frames from its own on while the earlier ones finish.
+// FramePipeline: each node cooks its frames in order (unless it is of any order) and after its
+// inputs, frames finish in order, the next frame's first nodes overlap the last nodes of the
+// frame before, and a failure stops the frames from its own on while the earlier ones finish.
 
 #include <gtest/gtest.h>
 
@@ -110,6 +110,39 @@ TEST(FramePipeline, TheNextFramesSourceCooksWhileThisFramesSinkDoes)
                 [](int, const FramePipeline::FrameOutputs&) {});
     });
     EXPECT_TRUE(overlapped);
+}
+
+TEST(FramePipeline, ANodeOfAnyOrderCooksTheNextFrameWhileThisOneCooksAndTheOthersKeepOrder)
+{
+    // The middle node, of any order, waits at frame 0 (at most 20 s) for itself at frame 1:
+    // in frame order it would never come. The sink still cooks its frames in order.
+    tbb::task_arena arena(2);
+    std::atomic<bool> nextMiddleStarted{false};
+    bool overlapped = false;
+    Log log;
+    std::vector<int> finished;
+    arena.execute([&] {
+        FramePipeline(kUpstream, 2, {false, true, false, false})
+            .run(
+                0, 3, allNodes,
+                [&](std::size_t node, int frame, const FramePipeline::FrameOutputs& results) {
+                    for (std::size_t up : kUpstream[node])
+                        EXPECT_TRUE(results[up]) << node << "@" << frame << " before its input";
+                    if (node == 1 && frame == 1) nextMiddleStarted = true;
+                    if (node == 1 && frame == 0) {
+                        waitFor(nextMiddleStarted);
+                        overlapped = nextMiddleStarted;
+                    }
+                    log.add(node, frame);
+                    return outputOf(node, frame);
+                },
+                [&](int frame, const FramePipeline::FrameOutputs&) { finished.push_back(frame); });
+    });
+    EXPECT_TRUE(overlapped);
+    EXPECT_LT(log.position(1, 1), log.position(1, 0));
+    for (int frame = 1; frame < 4; ++frame)
+        EXPECT_LT(log.position(2, frame - 1), log.position(2, frame));
+    EXPECT_EQ(finished, (std::vector<int>{0, 1, 2, 3}));
 }
 
 TEST(FramePipeline, AFailureStopsItsFrameAndLaterOnesWhileEarlierFramesFinish)
