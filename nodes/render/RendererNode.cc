@@ -101,7 +101,7 @@ void registerRendererNode(Registry& registry)
     const auto v3 = [](const algo::RenderVec3& v) { return Vec3{v.x(), v.y(), v.z()}; };
     NodeDecl d;
     d.type = "Renderer";
-    d.version = 15;  // 2: the image carries its background; 3: the diffusion sees sky and ground
+    d.version = 16;  // 2: the image carries its background; 3: the diffusion sees sky and ground
                      // apart; 4: δ-Eddington sun, flux-limited diffusion, one radiance lobe;
                      // 5: sparse sun light map, one voxel a texel in large sparse fields;
                      // 6: the limiter's sun solves to 1e-2 (the image within 0.01%);
@@ -114,7 +114,8 @@ void registerRendererNode(Registry& registry)
                      // 12: the ground's map blurred (no ghosts of the clouds on the ground);
                      // 13: samples two steps long once T < coarseTransmittance; 14: and
                      // twice as long again at each halving of T, up to 8 steps; 15: those
-                     // samples on a lattice of their own, whatever the spans
+                     // samples on a lattice of their own, whatever the spans; 16: the
+                     // gather read 4 blocks out, and run twice
     d.category = "render";
     d.framesInAnyOrder = true;
     d.doc =
