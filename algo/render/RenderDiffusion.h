@@ -16,8 +16,9 @@
 ///     surface face takes the sky and the ground in proportion to its view of each: first
 ///     the open view, then, once every light is solved, what it sees through the clear air,
 ///     the other clouds' scattered light of every light included (SurfaceGather.h), and
-///     every light is solved again;
-///   - SunGlowGround, SkyGlowGround (with a ground, in that second solve only): the ground
+///     every light is solved again; twice, so that the second gather sees clouds that
+///     already lit and shaded one another;
+///   - SunGlowGround, SkyGlowGround (with a ground, in the solves after a gather): the ground
 ///     lit by the clouds' scattered sun and sky light, which the ground's albedo colours.
 ///     With them, the ground a face sees is shaded from the sky by the clouds above it and
 ///     lit by them, point by point; the same map of the ground lights the ground the camera

@@ -115,7 +115,7 @@ void registerRendererNode(Registry& registry)
                      // 13: samples two steps long once T < coarseTransmittance; 14: and
                      // twice as long again at each halving of T, up to 8 steps; 15: those
                      // samples on a lattice of their own, whatever the spans; 16: the
-                     // gather read 4 blocks out, and run twice
+                     // gather read 4 blocks out, and run twice (first on 8 directions)
     d.category = "render";
     d.framesInAnyOrder = true;
     d.doc =
