@@ -27,14 +27,16 @@ constexpr double kTolerance = 1e-3;  ///< relative residual at which the solve s
 /// The same for the solves before the last (the flux limiter's, and the first solve of all
 /// lights, which only feeds the gather): R and the clouds' glow need not be exact.
 constexpr double kLimiterTolerance = 1e-2;
-/// The gather (SurfaceGather.h), our choices: 16 directions and blocks of 2^3 cells gave the
-/// same error against the path tracer as 32 to 96 directions on the cells themselves
-/// (docs/rendering.md) at a fifth of the cost. It is read 4 blocks (8 cells) out along each
-/// direction, and run twice, each time followed by a solve of every light: against the path
-/// tracer on Figure 9 one block out and one gather were 14-18% off, a gather more alone
-/// 15-18%, both 10-13%; 2 and 6 blocks were worse than 4, a third gather moved 0.5 point at
-/// most. The first gather only feeds the second's clouds: 8 directions give the same error.
-constexpr int kGatherDirections = 16;
+/// The gather (SurfaceGather.h), our choices: blocks of 2^3 cells gave the same error
+/// against the path tracer as the cells themselves (docs/rendering.md) at a fifth of the
+/// cost. It is read 4 blocks (8 cells) out along each direction, and run twice, each time
+/// followed by a solve of every light: against the path tracer on Figure 9 one block out and
+/// one gather were 14-18% off, a gather more alone 15-18%, both 10-13%; 2 and 6 blocks were
+/// worse than 4, a third gather moved 0.5 point at most. 32 directions, with the sweeps'
+/// sideways spread: turned about z, 16 directions without it moved Figure 9's error by up
+/// to 5 points, 32 with it by 1.3; 48 and 64 were no better than 32. The first gather only
+/// feeds the second's clouds: 8 directions give the same error as 16, 4 a little more.
+constexpr int kGatherDirections = 32;
 constexpr int kFirstGatherDirections = 8;
 constexpr int kGatherStride = 2;
 constexpr double kGatherClearance = 4.0;

@@ -101,7 +101,7 @@ void registerRendererNode(Registry& registry)
     const auto v3 = [](const algo::RenderVec3& v) { return Vec3{v.x(), v.y(), v.z()}; };
     NodeDecl d;
     d.type = "Renderer";
-    d.version = 16;  // 2: the image carries its background; 3: the diffusion sees sky and ground
+    d.version = 17;  // 2: the image carries its background; 3: the diffusion sees sky and ground
                      // apart; 4: δ-Eddington sun, flux-limited diffusion, one radiance lobe;
                      // 5: sparse sun light map, one voxel a texel in large sparse fields;
                      // 6: the limiter's sun solves to 1e-2 (the image within 0.01%);
@@ -115,7 +115,8 @@ void registerRendererNode(Registry& registry)
                      // 13: samples two steps long once T < coarseTransmittance; 14: and
                      // twice as long again at each halving of T, up to 8 steps; 15: those
                      // samples on a lattice of their own, whatever the spans; 16: the
-                     // gather read 4 blocks out, and run twice (first on 8 directions)
+                     // gather read 4 blocks out, and run twice (first on 8 directions);
+                     // 17: its last on 32 directions, each sweep spread sideways as a cone
     d.category = "render";
     d.framesInAnyOrder = true;
     d.doc =
