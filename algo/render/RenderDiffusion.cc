@@ -32,10 +32,11 @@ constexpr double kLimiterTolerance = 1e-2;
 /// cost. It is read 4 blocks (8 cells) out along each direction, and run twice, each time
 /// followed by a solve of every light: against the path tracer on Figure 9 one block out and
 /// one gather were 14-18% off, a gather more alone 15-18%, both 10-13%; 2 and 6 blocks were
-/// worse than 4, a third gather moved 0.5 point at most. 32 directions, with the sweeps'
-/// sideways spread: turned about z, 16 directions without it moved Figure 9's error by up
-/// to 5 points, 32 with it by 1.3; 48 and 64 were no better than 32. The first gather only
-/// feeds the second's clouds: 8 directions give the same error as 16, 4 a little more.
+/// worse than 4, a third gather moved 0.5 point at most; 3, 5 and 6 still worse with 32
+/// directions. 32 directions, with the sweeps' sideways spread: turned about z, 16
+/// directions without it moved Figure 9's error by up to 5 points, 32 with it by 1.8; 64
+/// and 128 were 0.5-1 point better at 2 and 4 times the gather's cost. The first gather
+/// only feeds the second's clouds: 8 directions give the same error as 16, 4 a little more.
 constexpr int kGatherDirections = 32;
 constexpr int kFirstGatherDirections = 8;
 constexpr int kGatherStride = 2;

@@ -18,9 +18,9 @@ namespace {
 constexpr int kUnits = GatherLattice::kUnits;
 constexpr int kLanes = 1 + kUnits;  ///< per cell of a sweep: T, then E per unit
 /// The sideways blur's weight a per slice (Sweep::spread), our choice: against the path
-/// tracer on Figure 9 0.15 and 0.3 gave the same error, and less than none, at any turn of
-/// the directions; 0.3 is a spread of √(0.6 s) blocks after s slices, a 32-direction cone's
-/// (half-angle 0.36 rad) at about 20 blocks.
+/// tracer on Figure 9 0.3 gave less error than none at every turn of the directions, and
+/// as little as two or four such blurs a slice; it spreads a sweep √(0.6 s) blocks after
+/// s slices, as wide as a 32-direction cone (half-angle 0.36 rad) at about 20 blocks.
 constexpr double kSpreadPerSlice = 0.3;
 
 /// `count` (rounded up to even) unit vectors of a Fibonacci sphere: z = 1 − (2i + 1) / K,
@@ -58,6 +58,17 @@ public:
         mStride[0] = static_cast<std::size_t>(L.n[1]) * static_cast<std::size_t>(L.n[2]);
         mStride[1] = static_cast<std::size_t>(L.n[2]);
         mStride[2] = 1;
+        // The lattice axis nearest the vertical: the spread keeps to the others.
+        const openvdb::Mat3d metresPerCell = L.cellsPerMetre.inverse();
+        double most = -1.0;
+        for (int a = 0; a < 3; ++a) {
+            const RenderVec3 step = metresPerCell * RenderVec3(a == 0, a == 1, a == 2);
+            const double up = std::abs(step.z()) / step.length();
+            if (up > most) {
+                most = up;
+                mVertical = a;
+            }
+        }
     }
 
     /// Fills the field for the direction whose travel moves `u` cells a metre.
@@ -125,37 +136,43 @@ private:
                static_cast<std::size_t>(k) * mStride[mC];
     }
 
-    /// Blurs slice i sideways, [a, 1 − 2a, a] along b and then along c (its edge cells
+    /// Blurs slice i sideways, [a, 1 − 2a, a] along each of its horizontal axes (edge cells
     /// repeated), before the next slice reads it. A direction of the sweep stands for a
     /// cone of 4π / N steradians, not a ray: without the spread a neighbouring cloud that
-    /// lies between two directions is missed by both, and one that a direction meets counts
-    /// for the whole cone, so the light a face gathers hangs on where the directions happen
-    /// to fall (turning the 16 directions about z moved Figure 9's error by up to 5 points).
-    /// The blur widens each sweep with distance as a cone does, if only as √distance
-    /// (docs/rendering.md).
+    /// lies between two directions' azimuths is missed by both, and one that a direction
+    /// meets counts for the whole cone, so the light a face gathers hangs on where the
+    /// directions happen to fall (turning the 16 directions about z moved Figure 9's error
+    /// by up to 5 points). The blur widens each sweep with distance as a cone does, if only
+    /// as √distance. It keeps to the horizontal: across heights it would carry shade and
+    /// glow from above the horizon to below it (a slab overhead would dim the view down).
     void spread(int i)
+    {
+        for (const int axis : {mB, mC})
+            if (axis != mVertical) spreadAlong(i, axis == mB);
+    }
+
+    /// The blur of slice i along b (or along c).
+    void spreadAlong(int i, bool alongB)
     {
         const int nb = L.n[mB], nc = L.n[mC];
         mScratch.resize(kLanes * static_cast<std::size_t>(nb) * static_cast<std::size_t>(nc));
         constexpr float a = static_cast<float>(kSpreadPerSlice), keep = 1.0f - 2.0f * a;
         const auto at = [&](int j, int k) { return &mField[kLanes * swept(i, j, k)]; };
-        tbb::parallel_for(0, nb, [&](int j) {  // along b, into the scratch slice
-            const int before = std::max(0, j - 1), after = std::min(nb - 1, j + 1);
-            float* row = &mScratch[kLanes * static_cast<std::size_t>(j) * nc];
+        const auto scratch = [&](int j, int k) {
+            return &mScratch[kLanes * (static_cast<std::size_t>(j) * nc + k)];
+        };
+        tbb::parallel_for(0, nb, [&](int j) {  // into the scratch slice
             for (int k = 0; k < nc; ++k) {
-                const float *m = at(before, k), *c = at(j, k), *p = at(after, k);
-                for (int l = 0; l < kLanes; ++l)
-                    row[kLanes * k + l] = keep * c[l] + a * (m[l] + p[l]);
-            }
-        });
-        tbb::parallel_for(0, nb, [&](int j) {  // along c, back into the field
-            const float* row = &mScratch[kLanes * static_cast<std::size_t>(j) * nc];
-            for (int k = 0; k < nc; ++k) {
-                const float *m = row + kLanes * std::max(0, k - 1), *c = row + kLanes * k,
-                            *p = row + kLanes * std::min(nc - 1, k + 1);
-                float* out = at(j, k);
+                const float* c = at(j, k);
+                const float* m = alongB ? at(std::max(0, j - 1), k) : at(j, std::max(0, k - 1));
+                const float* p =
+                    alongB ? at(std::min(nb - 1, j + 1), k) : at(j, std::min(nc - 1, k + 1));
+                float* out = scratch(j, k);
                 for (int l = 0; l < kLanes; ++l) out[l] = keep * c[l] + a * (m[l] + p[l]);
             }
+        });
+        tbb::parallel_for(0, nb, [&](int j) {  // and back
+            for (int k = 0; k < nc; ++k) std::copy_n(scratch(j, k), kLanes, at(j, k));
         });
     }
 
@@ -205,6 +222,7 @@ private:
     std::vector<float> mScratch;  ///< one slice, (b, c) row by row
     std::size_t mStride[3];
     int mA = 0, mB = 1, mC = 2;
+    int mVertical = 2;  ///< the lattice axis nearest the world's z
     double mStep = 1.0;             ///< m travelled from one slice to the next
     double mShift[2] = {0.0, 0.0};  ///< cells moved across (b, c) from one slice to the next
 };

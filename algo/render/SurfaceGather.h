@@ -10,8 +10,9 @@
 /// transmittance T toward v and, per unit light, the radiance E the clouds scatter back
 /// along −v, E = ∫ σ_t J exp(−τ) ds with J the cell's source radiance toward −v (its
 /// scattered light, a lobe about its net flux as the renderer takes it, and the sun light it
-/// scatters out of the beam). Each slice is blurred sideways before the next reads it, so a
-/// direction's sweep widens with distance as the cone of directions it stands for does.
+/// scatters out of the beam). Each slice is blurred along the horizontal before the next
+/// reads it, so a direction's sweep widens with distance as the cone of directions it
+/// stands for does.
 /// Directions are points of a Fibonacci sphere (about equal solid angles); a face takes the
 /// cosine-weighted means of T and E over the directions in its outward hemisphere, above and
 /// below the horizon apart. The directions are swept one after
