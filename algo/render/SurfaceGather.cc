@@ -151,28 +151,25 @@ private:
             if (axis != mVertical) spreadAlong(i, axis == mB);
     }
 
-    /// The blur of slice i along b (or along c).
+    /// The blur of slice i along b (or along c), line by line in parallel: each line of
+    /// cells along that axis is blurred from a copy of itself.
     void spreadAlong(int i, bool alongB)
     {
-        const int nb = L.n[mB], nc = L.n[mC];
-        mScratch.resize(kLanes * static_cast<std::size_t>(nb) * static_cast<std::size_t>(nc));
+        const int length = L.n[alongB ? mB : mC], lines = L.n[alongB ? mC : mB];
         constexpr float a = static_cast<float>(kSpreadPerSlice), keep = 1.0f - 2.0f * a;
-        const auto at = [&](int j, int k) { return &mField[kLanes * swept(i, j, k)]; };
-        const auto scratch = [&](int j, int k) {
-            return &mScratch[kLanes * (static_cast<std::size_t>(j) * nc + k)];
-        };
-        tbb::parallel_for(0, nb, [&](int j) {  // into the scratch slice
-            for (int k = 0; k < nc; ++k) {
-                const float* c = at(j, k);
-                const float* m = alongB ? at(std::max(0, j - 1), k) : at(j, std::max(0, k - 1));
-                const float* p =
-                    alongB ? at(std::min(nb - 1, j + 1), k) : at(j, std::min(nc - 1, k + 1));
-                float* out = scratch(j, k);
+        tbb::parallel_for(0, lines, [&](int line) {
+            const auto at = [&](int x) {
+                return &mField[kLanes * (alongB ? swept(i, x, line) : swept(i, line, x))];
+            };
+            std::vector<float> copy(kLanes * static_cast<std::size_t>(length));
+            for (int x = 0; x < length; ++x) std::copy_n(at(x), kLanes, &copy[kLanes * x]);
+            for (int x = 0; x < length; ++x) {
+                const float* m = &copy[kLanes * std::max(0, x - 1)];
+                const float* c = &copy[kLanes * x];
+                const float* p = &copy[kLanes * std::min(length - 1, x + 1)];
+                float* out = at(x);
                 for (int l = 0; l < kLanes; ++l) out[l] = keep * c[l] + a * (m[l] + p[l]);
             }
-        });
-        tbb::parallel_for(0, nb, [&](int j) {  // and back
-            for (int k = 0; k < nc; ++k) std::copy_n(scratch(j, k), kLanes, at(j, k));
         });
     }
 
@@ -219,7 +216,6 @@ private:
 
     const Blocks& L;
     std::vector<float>& mField;
-    std::vector<float> mScratch;  ///< one slice, (b, c) row by row
     std::size_t mStride[3];
     int mA = 0, mB = 1, mC = 2;
     int mVertical = 2;  ///< the lattice axis nearest the world's z
