@@ -62,7 +62,9 @@ public:
         const openvdb::Mat3d metresPerCell = L.cellsPerMetre.inverse();
         double most = -1.0;
         for (int a = 0; a < 3; ++a) {
-            const RenderVec3 step = metresPerCell * RenderVec3(a == 0, a == 1, a == 2);
+            RenderVec3 axis(0.0);
+            axis[a] = 1.0;
+            const RenderVec3 step = metresPerCell * axis;
             const double up = std::abs(step.z()) / step.length();
             if (up > most) {
                 most = up;
@@ -218,7 +220,7 @@ private:
     std::vector<float>& mField;
     std::size_t mStride[3];
     int mA = 0, mB = 1, mC = 2;
-    int mVertical = 2;  ///< the lattice axis nearest the world's z
+    int mVertical = 2;              ///< the lattice axis nearest the world's z
     double mStep = 1.0;             ///< m travelled from one slice to the next
     double mShift[2] = {0.0, 0.0};  ///< cells moved across (b, c) from one slice to the next
 };

@@ -12,10 +12,9 @@
 /// scattered light, a lobe about its net flux as the renderer takes it, and the sun light it
 /// scatters out of the beam). Each slice is blurred along the horizontal before the next
 /// reads it, so a direction's sweep widens with distance as the cone of directions it
-/// stands for does.
-/// Directions are points of a Fibonacci sphere (about equal solid angles); a face takes the
-/// cosine-weighted means of T and E over the directions in its outward hemisphere, above and
-/// below the horizon apart. The directions are swept one after
+/// stands for does. Directions are points of a Fibonacci sphere (about equal solid angles);
+/// a face takes the cosine-weighted means of T and E over the directions in its outward
+/// hemisphere, above and below the horizon apart. The directions are swept one after
 /// another and each slice's cells in parallel, so the result does not depend on the thread
 /// count.
 ///

@@ -117,7 +117,7 @@ void registerRendererNode(Registry& registry)
                      // samples on a lattice of their own, whatever the spans; 16: the
                      // gather read 4 blocks out, and run twice (first on 8 directions);
                      // 17: its last on 32 directions, each sweep spread sideways as a cone
-                     // (along the horizontal)
+                     // (along the horizontal), the solve between the gathers to 0.1
     d.category = "render";
     d.framesInAnyOrder = true;
     d.doc =
