@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "algo/render/DiffuseLight.h"
@@ -154,23 +155,25 @@ private:
     }
 
     /// The blur of slice i along b (or along c), line by line in parallel: each line of
-    /// cells along that axis is blurred from a copy of itself.
+    /// cells along that axis is blurred from a copy of itself (one copy buffer a chunk).
     void spreadAlong(int i, bool alongB)
     {
         const int length = L.n[alongB ? mB : mC], lines = L.n[alongB ? mC : mB];
         constexpr float a = static_cast<float>(kSpreadPerSlice), keep = 1.0f - 2.0f * a;
-        tbb::parallel_for(0, lines, [&](int line) {
-            const auto at = [&](int x) {
-                return &mField[kLanes * (alongB ? swept(i, x, line) : swept(i, line, x))];
-            };
+        tbb::parallel_for(tbb::blocked_range<int>(0, lines), [&](const tbb::blocked_range<int>& r) {
             std::vector<float> copy(kLanes * static_cast<std::size_t>(length));
-            for (int x = 0; x < length; ++x) std::copy_n(at(x), kLanes, &copy[kLanes * x]);
-            for (int x = 0; x < length; ++x) {
-                const float* m = &copy[kLanes * std::max(0, x - 1)];
-                const float* c = &copy[kLanes * x];
-                const float* p = &copy[kLanes * std::min(length - 1, x + 1)];
-                float* out = at(x);
-                for (int l = 0; l < kLanes; ++l) out[l] = keep * c[l] + a * (m[l] + p[l]);
+            for (int line = r.begin(); line != r.end(); ++line) {
+                const auto at = [&](int x) {
+                    return &mField[kLanes * (alongB ? swept(i, x, line) : swept(i, line, x))];
+                };
+                for (int x = 0; x < length; ++x) std::copy_n(at(x), kLanes, &copy[kLanes * x]);
+                for (int x = 0; x < length; ++x) {
+                    const float* m = &copy[kLanes * std::max(0, x - 1)];
+                    const float* c = &copy[kLanes * x];
+                    const float* p = &copy[kLanes * std::min(length - 1, x + 1)];
+                    float* out = at(x);
+                    for (int l = 0; l < kLanes; ++l) out[l] = keep * c[l] + a * (m[l] + p[l]);
+                }
             }
         });
     }

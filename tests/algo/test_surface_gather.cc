@@ -200,10 +200,10 @@ TEST(SurfaceGather, TheGroundUnderACloudSeesLessSkyAndItsGlow)
 TEST(SurfaceGather, ASmallCloudAsideIsSeenAsLargeAsItIsWhereverTheDirectionsFall)
 {
     // A thick glowing ball (J = 1, radius 6 cells) 22 cells in front of a face looking
-    // along +y, moved sideways by 0 to 8 cells: the face should gather J times
-    // the ball's share of its cosine-weighted view (computed here on a fine grid of
-    // directions). 32 directions as bare rays meet so small a ball with a few or none; the
-    // sweeps' spread makes each a cone, so the share holds better at every offset.
+    // along +y, moved sideways by 0 to 8 cells: the face should gather J times the ball's
+    // share of its cosine-weighted view (computed here on a fine grid of directions). 32 directions
+    // as bare rays meet so small a ball with a few or none; the sweeps' spread makes each a cone,
+    // so the share holds better at every offset.
     constexpr int kN = 48;
     constexpr double kRadius = 6.0;
     const RenderVec3 face(24.0, 8.5, 24.0);  // the air cell's face toward +y, in cells
@@ -222,6 +222,7 @@ TEST(SurfaceGather, ASmallCloudAsideIsSeenAsLargeAsItIsWhereverTheDirectionsFall
         const double seen = 0.5 * (v.emitted[0][1] + v.emitted[1][1]);
         // The exact share: cosine-weighted directions about +y on a fine grid (sin²θ and
         // the azimuth uniform), each tested against the ball.
+        const RenderVec3 to = centre - face;
         double share = 0.0;
         constexpr int kRings = 400, kAzimuths = 400;
         for (int r = 0; r < kRings; ++r)
@@ -230,7 +231,6 @@ TEST(SurfaceGather, ASmallCloudAsideIsSeenAsLargeAsItIsWhereverTheDirectionsFall
                 const double phi = 2.0 * 3.14159265358979323846 * (a + 0.5) / kAzimuths;
                 const RenderVec3 d(sinT * std::cos(phi), std::sqrt(1.0 - sin2),
                                    sinT * std::sin(phi));
-                const RenderVec3 to = centre - face;
                 const double along = to.dot(d);
                 if (along > 0.0 && (to - d * along).length() <= kRadius + 0.5) share += 1.0;
             }
