@@ -14,12 +14,18 @@
 //                  or octaves=N for the octave model instead of the diffusion solve (to
 //                  explore, to compare)
 //   --scene K=V    a scene setting for both renderers: ambient (sky light scale), sun
-//                  (intensity), ground (0 or 1), groundAlbedo (grey), bounces (the
+//                  (intensity), skyRadiance (scales the sky's colours, 0 = a black sky, so
+//                  a camera in the clear air sees only what the clouds send it), haze (the
+//                  ground's haze distance, m, 0 = none), ground (0 or 1), groundAlbedo
+//                  (grey), bounces (the
 //                  reference's maxBounces; with --fast octaves=1, single scattering
 //                  alone), to take the light apart;
 //                  mie=D, the Mie phase function of droplets D μm across
-//   --cache DIR    keep reference images there and reuse them (they depend only on the
-//                  case, the sun, the size, the sample count and the seed)
+//   --cache DIR    keep reference images there and reuse them; a file's name holds what the
+//                  image depends on: the case's name and a hash of its grid's voxels,
+//                  transform, camera and extinction, the sun, the size, the scene settings,
+//                  the sample count and the seed (so an edited .vdb under the same name is
+//                  rendered again, not read back stale)
 //   --seed N       the reference's random seeds are 2N and 2N + 1 (default N = 0)
 //
 // The reference is the mean of two halves of samples/2 paths each with independent seeds;
@@ -32,6 +38,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -119,12 +126,61 @@ Case fileCase(const std::string& spec)
     return out;
 }
 
+/// FNV-1a, 64 bits, over the bytes of the values added.
+class ContentHash {
+public:
+    template <class T>
+    void add(const T& value)
+    {
+        const auto* bytes = reinterpret_cast<const unsigned char*>(&value);
+        for (std::size_t i = 0; i < sizeof(T); ++i) mHash = (mHash ^ bytes[i]) * 0x100000001b3ull;
+    }
+    void add(const RenderVec3& v)
+    {
+        for (int a = 0; a < 3; ++a) add(v[a]);
+    }
+    std::string hex() const
+    {
+        char out[17];
+        std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(mHash));
+        return out;
+    }
+
+private:
+    std::uint64_t mHash = 0xcbf29ce484222325ull;
+};
+
+/// What a case's reference depends on beyond the scene settings and the sun: its grid's
+/// active values (voxels and tiles, with their extent), its transform, its camera and its
+/// extinction.
+std::string contentKey(const Case& c)
+{
+    ContentHash h;
+    for (auto v = c.grid->cbeginValueOn(); v; ++v) {
+        openvdb::CoordBBox box;
+        v.getBoundingBox(box);
+        for (const openvdb::Coord& corner : {box.min(), box.max()})
+            for (int a = 0; a < 3; ++a) h.add(corner[a]);
+        h.add(*v);
+    }
+    h.add(c.grid->transform().indexToWorld(openvdb::Vec3d(0.0)));
+    h.add(c.grid->transform().indexToWorld(openvdb::Vec3d(1.0)));
+    h.add(c.settings.camera.position);
+    h.add(c.settings.camera.lookAt);
+    h.add(c.settings.camera.up);
+    h.add(c.settings.camera.fovDegrees);
+    h.add(c.settings.medium.extinction);
+    return h.hex();
+}
+
+/// Reads a cached image; false (render it again) unless the file holds exactly its floats.
 bool readCached(const std::filesystem::path& path, cg::algo::RenderedImage& img)
 {
+    const std::size_t bytes = img.rgba.size() * sizeof(float);
+    std::error_code error;
+    if (std::filesystem::file_size(path, error) != bytes || error) return false;
     std::ifstream in(path, std::ios::binary);
-    if (!in) return false;
-    in.read(reinterpret_cast<char*>(img.rgba.data()),
-            static_cast<std::streamsize>(img.rgba.size() * sizeof(float)));
+    in.read(reinterpret_cast<char*>(img.rgba.data()), static_cast<std::streamsize>(bytes));
     return static_cast<bool>(in);
 }
 
@@ -203,6 +259,7 @@ int main(int argc, char** argv)
                 "brighter half | reference noise | fast | reference |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (Case& c : cases) {
+        const std::string content = cacheDir.empty() ? std::string() : contentKey(c);
         for (const std::string where : {"front", "beside", "behind"}) {
             cg::algo::RenderSettings s = c.settings;
             s.camera.width = width;
@@ -214,6 +271,8 @@ int main(int argc, char** argv)
             for (const auto& [key, v] : sceneSettings) {
                 if (key == "ambient") s.sky.ambient = v;
                 else if (key == "sun") s.sun.intensity = v;
+                else if (key == "haze") s.ground.hazeDistance = v;
+                else if (key == "skyRadiance") { s.sky.zenith *= v; s.sky.horizon *= v; }
                 else if (key == "ground") s.ground.enabled = v != 0.0;
                 else if (key == "groundAlbedo") s.ground.albedo = cg::algo::RenderVec3(v);
                 else if (key == "bounces") s.pathTrace.maxBounces = static_cast<int>(v);
@@ -252,7 +311,7 @@ int main(int argc, char** argv)
                     cacheDir.empty()
                         ? std::filesystem::path()
                         : std::filesystem::path(cacheDir) /
-                              (c.name + "_" + where + "_" + std::to_string(width) + "x" +
+                              (c.name + "-" + content + "_" + where + "_" + std::to_string(width) + "x" +
                                std::to_string(height) + sceneTag + "_" + std::to_string(h.pathTrace.samples) +
                                "_seed" + std::to_string(h.march.seed) + ".f32");
                 cg::algo::RenderedImage img;
