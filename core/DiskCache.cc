@@ -236,15 +236,6 @@ bool DiskCache::contains(const Key& key) const
     return fs::is_regular_file(entryPath(key), ec);
 }
 
-std::vector<unsigned char> DiskCache::encodeEntry(const Key& key, const OutputMap& outputs,
-                                                  bool& serializable)
-{
-    std::vector<unsigned char> buf;
-    serializable = encodeEntry(key, outputs, buf);
-    if (!serializable) buf.clear();
-    return buf;
-}
-
 bool DiskCache::encodeEntry(const Key& key, const OutputMap& outputs,
                             std::vector<unsigned char>& buffer)
 {

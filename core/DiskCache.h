@@ -56,11 +56,8 @@ public:
     std::optional<nlohmann::json> loadRecord(const std::string& name) const;
     void storeRecord(const std::string& name, const nlohmann::json& record) const;
 
-    /// Serialization used for entries, exposed for tests: bytes of a whole entry file.
-    static std::vector<unsigned char> encodeEntry(const Key& key, const OutputMap& outputs,
-                                                  bool& serializable);
-    /// The same into `buffer` (cleared first, its capacity kept); false if an output cannot
-    /// be serialized.
+    /// The bytes of a whole entry file into `buffer` (cleared first, its capacity kept; public
+    /// for tests and the fuzzer); false if an output cannot be serialized.
     static bool encodeEntry(const Key& key, const OutputMap& outputs,
                             std::vector<unsigned char>& buffer);
     /// Parses a whole entry file; throws std::runtime_error with the byte offset of the

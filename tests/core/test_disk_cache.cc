@@ -228,9 +228,8 @@ TEST(DiskCache, UnserializableValueStoresNothing)
 TEST(DiskCache, EntryFileLayout)
 {
     const Key k = keyOf(5);
-    bool ok = false;
-    const auto bytes = DiskCache::encodeEntry(k, allCoreTypes(), ok);
-    ASSERT_TRUE(ok);
+    std::vector<unsigned char> bytes;
+    ASSERT_TRUE(DiskCache::encodeEntry(k, allCoreTypes(), bytes));
     ASSERT_GT(bytes.size(), 56u);
     EXPECT_EQ(std::memcmp(bytes.data(), "CGCACHE1", 8), 0);
     auto u64 = [&](std::size_t at) {
@@ -336,9 +335,8 @@ TEST(DiskCache, HugeClaimedLengthsAreRejectedBeforeAllocating)
     DiskCache cache(dir.path());
     const Registry registry = coreRegistry();
     const Key k = keyOf(1);
-    bool ok = false;
-    const auto good = DiskCache::encodeEntry(k, allCoreTypes(), ok);
-    ASSERT_TRUE(ok);
+    std::vector<unsigned char> good;
+    ASSERT_TRUE(DiskCache::encodeEntry(k, allCoreTypes(), good));
 
     // Header claims an enormous payload; header checksum made consistent.
     auto bad = good;
@@ -357,7 +355,8 @@ TEST(DiskCache, HugeClaimedLengthsAreRejectedBeforeAllocating)
     // Payload claims an enormous port count / array, both checksums made consistent.
     OutputMap one;
     one["arr"] = std::make_shared<FloatArrayData>(std::vector<float>(4, 1.0f));
-    auto small = DiskCache::encodeEntry(k, one, ok);
+    std::vector<unsigned char> small;
+    ASSERT_TRUE(DiskCache::encodeEntry(k, one, small));
     auto reseal = [](std::vector<unsigned char>& e) {
         putU64(e.data() + 40, checksum64(e.data() + 56, e.size() - 56));
         putU64(e.data() + 48, checksum64(e.data(), 48));
@@ -537,9 +536,8 @@ TEST(DiskCache, KilledWriterNeverLeavesABadEntry)
     const std::size_t leftovers = filesUnder(dir.path() / "tmp").size();
     {
         DiskCache cache(dir.path());
-        bool ok = false;
-        const auto whole = DiskCache::encodeEntry(keyOf(0), generation(0, 1, 16), ok);
-        ASSERT_TRUE(ok);
+        std::vector<unsigned char> whole;
+        ASSERT_TRUE(DiskCache::encodeEntry(keyOf(0), generation(0, 1, 16), whole));
         writeFile(dir.path() / "tmp" / (keyOf(0).hex() + ".cgc"), whole);
         writeFile(dir.path() / "tmp" / "1-2-3.tmp", whole);
         fs::remove_all(dir.path() / "objects");
@@ -664,7 +662,6 @@ TEST(DiskCache, AForgedEntryWithARenamedPortOrAnotherTypeIsRecookedNotAnError)
     const Registry registry = coreRegistry();
     const std::vector<PortDecl> outputs = declaredOutputs();
     const Key k = keyOf(7);
-    bool ok = false;
     ASSERT_TRUE(cache.store(k, allCoreTypes()));
     ASSERT_TRUE(cache.load(k, registry, &outputs).has_value());
 
@@ -676,8 +673,9 @@ TEST(DiskCache, AForgedEntryWithARenamedPortOrAnotherTypeIsRecookedNotAnError)
     OutputMap extra = allCoreTypes();
     extra["z"] = std::make_shared<IntData>(1);
     for (const OutputMap& forged : {renamed, retyped, extra}) {
-        writeFile(cache.entryPath(k), DiskCache::encodeEntry(k, forged, ok));
-        ASSERT_TRUE(ok);
+        std::vector<unsigned char> entry;
+        ASSERT_TRUE(DiskCache::encodeEntry(k, forged, entry));
+        writeFile(cache.entryPath(k), entry);
         EXPECT_FALSE(cache.load(k, registry, &outputs).has_value());
         EXPECT_FALSE(fs::exists(cache.entryPath(k))) << "a forged entry stays and fails again";
     }
@@ -699,8 +697,8 @@ TEST(DiskCache, AHugeDamagedEntryIsRefusedByItsHeaderWithoutReadingIt)
 
     // A valid header claiming a payload larger than the memory there is: a miss that keeps
     // the entry (it may be valid; this machine cannot load it now).
-    bool ok = false;
-    auto entry = DiskCache::encodeEntry(k, allCoreTypes(), ok);
+    std::vector<unsigned char> entry;
+    ASSERT_TRUE(DiskCache::encodeEntry(k, allCoreTypes(), entry));
     const std::uint64_t huge = 60ull << 30;
     if (util::availableMemoryBytes() / 2 > huge) GTEST_SKIP() << "this machine could load it";
     putU64(entry.data() + 32, huge);

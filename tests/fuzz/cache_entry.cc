@@ -64,8 +64,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     // Outside the try: what was accepted must store and load again. (Bytes may differ: an
     // OpenVDB stream carries a fresh UUID each time it is written.)
-    bool serializable = false;
-    const std::vector<unsigned char> again = cg::DiskCache::encodeEntry(kKey, outputs, serializable);
-    if (serializable) cg::DiskCache::decodeEntry(kKey, again.data(), again.size(), registry());
+    std::vector<unsigned char> again;
+    if (cg::DiskCache::encodeEntry(kKey, outputs, again))
+        cg::DiskCache::decodeEntry(kKey, again.data(), again.size(), registry());
     return 0;
 }
