@@ -121,8 +121,11 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     const PhaseFunction phase = phaseOf(medium);
     const DeltaEddington split = phase.deltaEddington();
     const double peakless = 1.0 - medium.albedo * split.peak;
+    // Without a sun (its light map empty) nothing scatters sun light, and the flux limiter
+    // is taken from the sky's fluence in place of the sun's.
+    const bool sunlit = !sunMap.empty();
     const auto beamAt = [&](const RenderVec3& p) {  // the sun's beam at p, per unit irradiance
-        return std::exp(-peakless * sunMap.opticalDepth(p));
+        return sunlit ? std::exp(-peakless * sunMap.opticalDepth(p)) : 0.0;
     };
     // Each voxel's share of its cell: its extinction, and the sun light it scatters for the
     // first time (the sun's transmittance, the costly part). Leaf voxels are shared out in
@@ -390,10 +393,11 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
         mIterations = std::max(
             mIterations, solveConjugateGradient(A, columns, tolerance, kMaxIterations, cancelled));
     };
+    const int limiting = sunlit ? Sun : Sky;
     for (int pass = 0; pass < kLimiterPasses; ++pass) {
         const bool last = pass + 1 == kLimiterPasses;
-        solve(last ? kGathered : 1, kLimiterTolerance);
-        if (!last) limitFlux(solved[Sun]);
+        solve(last ? kGathered : limiting + 1, kLimiterTolerance);
+        if (!last) limitFlux(solved[limiting]);
     }
     // Then each face lets in what it sees through the clear air, the clouds' scattered light
     // of this solve included (their source radiance J = ω φ / 4π), and every light is solved

@@ -5,7 +5,8 @@
 /// where ḡ is the phase function's mean cosine and R = |∇φ| / φ is Wilson's flux limiter,
 /// which keeps the flux D |∇φ| below the fluence where light streams rather than diffuses.
 /// The equation is linear and grey once R is fixed (R comes from the sun's fluence, updated
-/// over a few solves), so it is solved once per light, each for a unit of that light:
+/// over a few solves; from the sky's where there is no sun), so it is solved once per light,
+/// each for a unit of that light:
 ///   - Sun: in the δ-Eddington split of the phase function a forward peak of weight f is no
 ///     scattering at all, so the sun's beam fades with (1 − ω f) τ; the source is the light
 ///     scattered out of it, Q0 = σ_s (1 − f) exp(−(1 − ω f) τ_sun) per unit sun irradiance,

@@ -102,5 +102,22 @@ TEST(RenderDiffusion, SunLightScatteredOnceIsCarriedOnAlongTheSun)
     EXPECT_GT(sun.at(-travel * -120.0).phi[0], 0.0);
 }
 
+TEST(RenderDiffusion, WithoutASunNoSunLightIsScattered)
+{
+    // A render without a sun has no sun light map: the solve scatters no sun light (the
+    // flux limiter then comes from the sky's fluence), while the sky still lights the cloud.
+    LitBall ball;
+    ball.medium.extinction = 0.05;
+    const algo::RenderLightMap noSun;
+    const RenderDiffusion d(*ball.grid, noSun, ball.medium, 2, {false, false});
+    ASSERT_FALSE(d.empty());
+    const algo::DiffuseLight sun = alone(d, RenderDiffusion::Sun);
+    const algo::DiffuseLight sky = alone(d, RenderDiffusion::Sky);
+    for (const double z : {-120.0, 0.0, 120.0}) {
+        EXPECT_EQ(sun.at(RenderVec3(0.0, 0.0, z)).phi[0], 0.0) << "z = " << z;
+        EXPECT_GT(sky.at(RenderVec3(0.0, 0.0, z)).phi[0], 0.0) << "z = " << z;
+    }
+}
+
 }  // namespace
 }  // namespace cg
