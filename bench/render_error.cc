@@ -17,10 +17,9 @@
 //                  (intensity), skyRadiance (scales the sky's colours, 0 = a black sky, so
 //                  a camera in the clear air sees only what the clouds send it), haze (the
 //                  ground's haze distance, m, 0 = none), ground (0 or 1), groundAlbedo
-//                  (grey), bounces (the
-//                  reference's maxBounces; with --fast octaves=1, single scattering
-//                  alone), to take the light apart;
-//                  mie=D, the Mie phase function of droplets D μm across
+//                  (grey), bounces (the reference's maxBounces; with --fast octaves=1,
+//                  single scattering alone), to take the light apart; mie=D, the Mie phase
+//                  function of droplets D μm across
 //   --cache DIR    keep reference images there and reuse them; a file's name holds what the
 //                  image depends on: the case's name and a hash of its grid's voxels,
 //                  transform, camera and extinction, the sun, the size, the scene settings,
@@ -311,9 +310,10 @@ int main(int argc, char** argv)
                     cacheDir.empty()
                         ? std::filesystem::path()
                         : std::filesystem::path(cacheDir) /
-                              (c.name + "-" + content + "_" + where + "_" + std::to_string(width) + "x" +
-                               std::to_string(height) + sceneTag + "_" + std::to_string(h.pathTrace.samples) +
-                               "_seed" + std::to_string(h.march.seed) + ".f32");
+                              (c.name + "-" + content + "_" + where + "_" +
+                               std::to_string(width) + "x" + std::to_string(height) + sceneTag +
+                               "_" + std::to_string(h.pathTrace.samples) + "_seed" +
+                               std::to_string(h.march.seed) + ".f32");
                 cg::algo::RenderedImage img;
                 img.width = width;
                 img.height = height;
