@@ -21,10 +21,10 @@
 //                  single scattering alone), to take the light apart; mie=D, the Mie phase
 //                  function of droplets D μm across
 //   --cache DIR    keep reference images there and reuse them; a file's name holds what the
-//                  image depends on: the case's name and a hash of its grid's voxels,
-//                  transform, camera and extinction, the sun, the size, the scene settings,
-//                  the sample count and the seed (so an edited .vdb under the same name is
-//                  rendered again, not read back stale)
+//                  image depends on: the case's name and a hash (core/Hash.h) of its grid's
+//                  voxels, transform, camera and extinction, the sun, the size, the scene
+//                  settings, the sample count and the seed (so an edited .vdb under the same
+//                  name is rendered again, not read back stale)
 //   --seed N       the reference's random seeds are 2N and 2N + 1 (default N = 0)
 //
 // The reference is the mean of two halves of samples/2 paths each with independent seeds;
@@ -54,6 +54,7 @@
 #include "algo/render/RenderError.h"
 #include "algo/render/RenderPathTrace.h"
 #include "algo/render/RenderVolume.h"
+#include "core/Hash.h"
 #include "formats/PngFile.h"
 
 namespace {
@@ -125,51 +126,27 @@ Case fileCase(const std::string& spec)
     return out;
 }
 
-/// FNV-1a, 64 bits, over the bytes of the values added.
-class ContentHash {
-public:
-    template <class T>
-    void add(const T& value)
-    {
-        const auto* bytes = reinterpret_cast<const unsigned char*>(&value);
-        for (std::size_t i = 0; i < sizeof(T); ++i) mHash = (mHash ^ bytes[i]) * 0x100000001b3ull;
-    }
-    void add(const RenderVec3& v)
-    {
-        for (int a = 0; a < 3; ++a) add(v[a]);
-    }
-    std::string hex() const
-    {
-        char out[17];
-        std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(mHash));
-        return out;
-    }
-
-private:
-    std::uint64_t mHash = 0xcbf29ce484222325ull;
-};
-
 /// What a case's reference depends on beyond the scene settings and the sun: its grid's
 /// active values (voxels and tiles, with their extent), its transform, its camera and its
 /// extinction.
 std::string contentKey(const Case& c)
 {
-    ContentHash h;
+    cg::Hasher h;
+    const auto vec3 = [&](const openvdb::Vec3d& v) { h.f64(v[0]).f64(v[1]).f64(v[2]); };
     for (auto v = c.grid->cbeginValueOn(); v; ++v) {
         openvdb::CoordBBox box;
         v.getBoundingBox(box);
         for (const openvdb::Coord& corner : {box.min(), box.max()})
-            for (int a = 0; a < 3; ++a) h.add(corner[a]);
-        h.add(*v);
+            for (int a = 0; a < 3; ++a) h.i64(corner[a]);
+        h.f64(*v);
     }
-    h.add(c.grid->transform().indexToWorld(openvdb::Vec3d(0.0)));
-    h.add(c.grid->transform().indexToWorld(openvdb::Vec3d(1.0)));
-    h.add(c.settings.camera.position);
-    h.add(c.settings.camera.lookAt);
-    h.add(c.settings.camera.up);
-    h.add(c.settings.camera.fovDegrees);
-    h.add(c.settings.medium.extinction);
-    return h.hex();
+    vec3(c.grid->transform().indexToWorld(openvdb::Vec3d(0.0)));
+    vec3(c.grid->transform().indexToWorld(openvdb::Vec3d(1.0)));
+    vec3(c.settings.camera.position);
+    vec3(c.settings.camera.lookAt);
+    vec3(c.settings.camera.up);
+    h.f64(c.settings.camera.fovDegrees).f64(c.settings.medium.extinction);
+    return h.finish().hex().substr(0, 16);
 }
 
 /// Reads a cached image; false (render it again) unless the file holds exactly its floats.
