@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 
 #include <tbb/blocked_range.h>
@@ -85,11 +86,22 @@ public:
         mStep = 1.0 / std::abs(u[mA]);
         mShift[0] = u[mB] * mStep;
         mShift[1] = u[mC] * mStep;
+        // The upstream point of every cell of a slice lies the same fraction of a cell away
+        // from a cell of the slice before: its four cells and their weights are shared.
+        for (int a = 0; a < 2; ++a) {
+            const double whole = std::floor(mShift[a]);
+            mOffset[a] = static_cast<int>(whole);
+            mFraction[a] = mShift[a] - whole;
+        }
         const int s = u[mA] > 0.0 ? 1 : -1;
+        // Cells in memory order within a slice where one of its axes is the lattice's last.
+        const bool alongB = mStride[mB] < mStride[mC];
+        const int outer = L.n[alongB ? mC : mB], inner = L.n[alongB ? mB : mC];
         for (int t = 0; t < L.n[mA]; ++t) {
             const int i = s > 0 ? L.n[mA] - 1 - t : t;
-            tbb::parallel_for(0, L.n[mB], [&](int j) {
-                for (int k = 0; k < L.n[mC]; ++k) fill(i, j, k, i + s);
+            tbb::parallel_for(0, outer, [&](int o) {
+                for (int n = 0; n < inner; ++n)
+                    alongB ? fill(i, n, o, i + s) : fill(i, o, n, i + s);
             });
             spread(i);
         }
@@ -186,9 +198,8 @@ private:
         double up[kLanes] = {0.0, 0.0, 0.0, 0.0, 0.0};
         double sigmaUp = 0.0, glowUp[kUnits] = {0.0, 0.0, 0.0, 0.0};
         const bool slice = upstream >= 0 && upstream < L.n[mA];
-        const double y = j + mShift[0], z = k + mShift[1];
-        const int j0 = static_cast<int>(std::floor(y)), k0 = static_cast<int>(std::floor(z));
-        const double fy = y - j0, fz = z - k0;
+        const int j0 = j + mOffset[0], k0 = k + mOffset[1];
+        const double fy = mFraction[0], fz = mFraction[1];
         for (int corner = 0; corner < 4; ++corner) {
             const int jj = j0 + (corner & 1), kk = k0 + (corner >> 1);
             const double w = ((corner & 1) ? fy : 1.0 - fy) * ((corner >> 1) ? fz : 1.0 - fz);
@@ -226,6 +237,8 @@ private:
     int mVertical = 2;              ///< the lattice axis nearest the world's z
     double mStep = 1.0;             ///< m travelled from one slice to the next
     double mShift[2] = {0.0, 0.0};  ///< cells moved across (b, c) from one slice to the next
+    int mOffset[2] = {0, 0};          ///< mShift's whole cells
+    double mFraction[2] = {0.0, 0.0};  ///< and the rest
 };
 
 /// The lattice's clouds in blocks of stride^3 cells: mean extinction, extinction-weighted
@@ -381,6 +394,20 @@ Gathered gatherOn(const GatherLattice& fine, Blocks& lattice, const std::vector<
     const auto cellOf = [&](const RenderVec3& world) {
         return lattice.cellsPerMetre * (world - lattice.origin);
     };
+    // The faces by the air cell they open onto: what a direction's lookup reads, and the
+    // ground point it reaches, depend on the air cell alone, so its faces share them.
+    std::vector<std::size_t> byAir(faces.size());
+    std::iota(byAir.begin(), byAir.end(), std::size_t(0));
+    const auto airOf = [&](std::size_t f) {
+        const std::array<int, 3>& a = faces[f].air;
+        return fine.cell(a[0], a[1], a[2]);
+    };
+    std::stable_sort(byAir.begin(), byAir.end(),
+                     [&](std::size_t x, std::size_t y) { return airOf(x) < airOf(y); });
+    std::vector<std::size_t> firstOfAir;
+    for (std::size_t i = 0; i < byAir.size(); ++i)
+        if (i == 0 || airOf(byAir[i]) != airOf(byAir[i - 1])) firstOfAir.push_back(i);
+    firstOfAir.push_back(byAir.size());
     std::vector<float> field(kLanes * lattice.cells());
     Sweep sweep(lattice, field);
     bool mapDone = false;
@@ -415,28 +442,40 @@ Gathered gatherOn(const GatherLattice& fine, Blocks& lattice, const std::vector<
                 for (int l = 0; l < kUnits; ++l) g.emitted[l] += d.z() * seen[1 + l];
             });
         const double reach = clearance / std::abs(u[sweep.dominantAxis()]);
-        tbb::parallel_for(std::size_t(0), faces.size(), [&](std::size_t f) {
-            const GatherFace& face = faces[f];
-            const double c = d.dot(fine.normal[face.kind]);
-            if (!(c > 0.0)) return;
+        double facing[6];
+        for (int kind = 0; kind < 6; ++kind) facing[kind] = d.dot(fine.normal[kind]);
+        tbb::parallel_for(std::size_t(0), firstOfAir.size() - 1, [&](std::size_t a) {
+            const std::size_t begin = firstOfAir[a], end = firstOfAir[a + 1];
+            bool seenBy = false;
+            for (std::size_t i = begin; i < end; ++i) seenBy |= facing[faces[byAir[i]].kind] > 0.0;
+            if (!seenBy) return;
+            const std::array<int, 3>& cell = faces[byAir[begin]].air;
             double seen[kLanes];
-            const RenderVec3 air =
-                (RenderVec3(face.air[0], face.air[1], face.air[2]) + RenderVec3(0.5)) /
-                    double(stride) -
-                RenderVec3(0.5);
+            const RenderVec3 air = (RenderVec3(cell[0], cell[1], cell[2]) + RenderVec3(0.5)) /
+                                       double(stride) -
+                                   RenderVec3(0.5);
             sweep.lookup(air + u * reach, seen);
-            GatheredView& v = out.faces[f];
-            v.transmittance[side] += c * seen[0];
-            for (int l = 0; l < kUnits; ++l) v.emitted[side][l] += c * seen[1 + l];
-            if (side == 0 || !ground.present) return;
-            // The ground point this direction reaches, and what it sends back.
-            const RenderVec3 from = lattice.origin + metresPerCell * air;
-            const double down = std::max(0.0, from.z()) / -d.z();
+            // Below the horizon, the ground point this direction reaches and what it sends back.
             double sends[GatheredView::kGroundUnits];
-            groundSends(ground, out.ground,
-                        RenderVec3(from.x() + d.x() * down, from.y() + d.y() * down, 0.0), sends);
-            for (int g = 0; g < GatheredView::kGroundUnits; ++g)
-                v.ground[g] += c * seen[0] * sends[g];
+            const bool toGround = side == 1 && ground.present;
+            if (toGround) {
+                const RenderVec3 from = lattice.origin + metresPerCell * air;
+                const double down = std::max(0.0, from.z()) / -d.z();
+                groundSends(ground, out.ground,
+                            RenderVec3(from.x() + d.x() * down, from.y() + d.y() * down, 0.0),
+                            sends);
+            }
+            for (std::size_t i = begin; i < end; ++i) {
+                const std::size_t f = byAir[i];
+                const double c = facing[faces[f].kind];
+                if (!(c > 0.0)) continue;
+                GatheredView& v = out.faces[f];
+                v.transmittance[side] += c * seen[0];
+                for (int l = 0; l < kUnits; ++l) v.emitted[side][l] += c * seen[1 + l];
+                if (toGround)
+                    for (int g = 0; g < GatheredView::kGroundUnits; ++g)
+                        v.ground[g] += c * seen[0] * sends[g];
+            }
         });
     }
     tbb::parallel_for(std::size_t(0), faces.size(), [&](std::size_t f) {
