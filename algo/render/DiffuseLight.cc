@@ -1,6 +1,7 @@
 #include "algo/render/DiffuseLight.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace cg::algo {
 
@@ -14,12 +15,24 @@ double diffuseScattered(double phi, const RenderVec3& flux, const RenderVec3& to
                         const DeltaEddington& split)
 {
     if (!(phi > 0.0)) return 0.0;
-    const double f = flux.length();
-    if (!(f > 0.0)) return phi * kInvFourPi;
-    const double k = std::min(f / phi, kMaxFluxRatio);
-    const double cosine = flux.dot(toward) / f;
-    return phi * (split.peak * henyeyGreenstein(cosine, k) +
-                  (1.0 - split.peak) * henyeyGreenstein(cosine, split.g * k));
+    // Both lobes, HG(cos θ, g) with g = k and g = g' k, need only k² and k cos θ = F·ω / φ:
+    // no |F| unless k is capped (the camera calls this three times a sample).
+    const double squared = flux.lengthSqr(), along = flux.dot(toward);
+    const double cap = kMaxFluxRatio * phi;
+    double k2 = 0.0, kc = 0.0;
+    if (squared < cap * cap) {
+        const double inverse = 1.0 / phi;
+        k2 = squared * inverse * inverse;
+        kc = along * inverse;
+    } else {
+        k2 = kMaxFluxRatio * kMaxFluxRatio;
+        kc = kMaxFluxRatio * along / std::sqrt(squared);
+    }
+    const auto lobe = [&](double g) {  // HG(cos θ, g k) × 4π
+        const double gg = g * g * k2, d = 1.0 + gg - 2.0 * g * kc;
+        return (1.0 - gg) / (d * std::sqrt(d));
+    };
+    return phi * kInvFourPi * (split.peak * lobe(1.0) + (1.0 - split.peak) * lobe(split.g));
 }
 
 DiffuseLight::Sample DiffuseLight::at(const RenderVec3& p) const

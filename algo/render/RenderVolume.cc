@@ -1,6 +1,7 @@
 #include "algo/render/RenderVolume.h"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -50,7 +51,10 @@ void marchRay(const RenderOccupancy& occ, TrilinearDensity& sampler, const Index
 {
     spans.clear();
     occ.spans(ray.o, ray.d, 0.0, tMax, spans);
-    const auto alignedTo = [](double k, int stride) { return std::fmod(k, stride) == 0.0; };
+    // k is a whole number and the strides powers of two: a mask in place of fmod.
+    const auto alignedTo = [](double k, int stride) {
+        return (static_cast<std::int64_t>(k) & (stride - 1)) == 0;
+    };
     int stride = 1, wanted = 1;
     for (const Span& s : spans) {
         for (double k = std::ceil(s.t0 / dt - offset); (k + offset) * dt < s.t1;) {

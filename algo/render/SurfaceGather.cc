@@ -53,6 +53,14 @@ struct Blocks : CellBox {
     std::vector<std::array<float, kUnits>> source;
 };
 
+/// Cells of a slice per parallel task, at least (our choice): a slice of a small lattice
+/// (Figure 6's has under a thousand blocks) is cheaper swept by one thread than shared out,
+/// and a sweep is a few thousand slices a frame.
+constexpr int kCellsPerTask = 1024;
+
+/// Rows of `length` cells per task.
+int grainFor(int length) { return std::max(1, kCellsPerTask / std::max(1, length)); }
+
 class Sweep {
 public:
     Sweep(const Blocks& lattice, std::vector<float>& field) : L(lattice), mField(field)
@@ -88,10 +96,17 @@ public:
         mShift[1] = u[mC] * mStep;
         // The upstream point of every cell of a slice lies the same fraction of a cell away
         // from a cell of the slice before: its four cells and their weights are shared.
+        double fraction[2];
         for (int a = 0; a < 2; ++a) {
             const double whole = std::floor(mShift[a]);
             mOffset[a] = static_cast<int>(whole);
-            mFraction[a] = mShift[a] - whole;
+            fraction[a] = mShift[a] - whole;
+        }
+        for (int corner = 0; corner < 4; ++corner) {
+            const int b = corner & 1, c = corner >> 1;
+            mWeight[corner] =
+                (b ? fraction[0] : 1.0 - fraction[0]) * (c ? fraction[1] : 1.0 - fraction[1]);
+            mCorner[corner] = (b ? mStride[mB] : 0) + (c ? mStride[mC] : 0);
         }
         const int s = u[mA] > 0.0 ? 1 : -1;
         // Cells in memory order within a slice where one of its axes is the lattice's last.
@@ -99,10 +114,12 @@ public:
         const int outer = L.n[alongB ? mC : mB], inner = L.n[alongB ? mB : mC];
         for (int t = 0; t < L.n[mA]; ++t) {
             const int i = s > 0 ? L.n[mA] - 1 - t : t;
-            tbb::parallel_for(0, outer, [&](int o) {
-                for (int n = 0; n < inner; ++n)
-                    alongB ? fill(i, n, o, i + s) : fill(i, o, n, i + s);
-            });
+            tbb::parallel_for(tbb::blocked_range<int>(0, outer, grainFor(inner)),
+                              [&](const tbb::blocked_range<int>& rows) {
+                                  for (int o = rows.begin(); o != rows.end(); ++o)
+                                      for (int n = 0; n < inner; ++n)
+                                          alongB ? fill(i, n, o, i + s) : fill(i, o, n, i + s);
+                              });
             spread(i);
         }
     }
@@ -118,6 +135,23 @@ public:
             frac[a] = q[a] - f;
         }
         std::fill(out, out + kLanes, 0.0);
+        if (base[0] >= 0 && base[1] >= 0 && base[2] >= 0 && base[0] + 1 < L.n[0] &&
+            base[1] + 1 < L.n[1] && base[2] + 1 < L.n[2]) {  // all eight inside, as mostly
+            const float* first = &mField[kLanes * L.cell(base[0], base[1], base[2])];
+            for (int corner = 0; corner < 8; ++corner) {
+                double w = 1.0;
+                std::size_t offset = 0;
+                for (int a = 0; a < 3; ++a) {
+                    const int bit = (corner >> a) & 1;
+                    w *= bit ? frac[a] : 1.0 - frac[a];
+                    offset += bit ? mStride[a] : 0;
+                }
+                if (w == 0.0) continue;
+                const float* cell = first + kLanes * offset;
+                for (int l = 0; l < kLanes; ++l) out[l] += w * cell[l];
+            }
+            return;
+        }
         for (int corner = 0; corner < 8; ++corner) {
             double w = 1.0;
             int at[3];
@@ -172,22 +206,24 @@ private:
     {
         const int length = L.n[alongB ? mB : mC], lines = L.n[alongB ? mC : mB];
         constexpr float a = static_cast<float>(kSpreadPerSlice), keep = 1.0f - 2.0f * a;
-        tbb::parallel_for(tbb::blocked_range<int>(0, lines), [&](const tbb::blocked_range<int>& r) {
-            std::vector<float> copy(kLanes * static_cast<std::size_t>(length));
-            for (int line = r.begin(); line != r.end(); ++line) {
-                const auto at = [&](int x) {
-                    return &mField[kLanes * (alongB ? swept(i, x, line) : swept(i, line, x))];
-                };
-                for (int x = 0; x < length; ++x) std::copy_n(at(x), kLanes, &copy[kLanes * x]);
-                for (int x = 0; x < length; ++x) {
-                    const float* m = &copy[kLanes * std::max(0, x - 1)];
-                    const float* c = &copy[kLanes * x];
-                    const float* p = &copy[kLanes * std::min(length - 1, x + 1)];
-                    float* out = at(x);
-                    for (int l = 0; l < kLanes; ++l) out[l] = keep * c[l] + a * (m[l] + p[l]);
+        tbb::parallel_for(
+            tbb::blocked_range<int>(0, lines, grainFor(length)),
+            [&](const tbb::blocked_range<int>& r) {
+                std::vector<float> copy(kLanes * static_cast<std::size_t>(length));
+                for (int line = r.begin(); line != r.end(); ++line) {
+                    const auto at = [&](int x) {
+                        return &mField[kLanes * (alongB ? swept(i, x, line) : swept(i, line, x))];
+                    };
+                    for (int x = 0; x < length; ++x) std::copy_n(at(x), kLanes, &copy[kLanes * x]);
+                    for (int x = 0; x < length; ++x) {
+                        const float* m = &copy[kLanes * std::max(0, x - 1)];
+                        const float* c = &copy[kLanes * x];
+                        const float* p = &copy[kLanes * std::min(length - 1, x + 1)];
+                        float* out = at(x);
+                        for (int l = 0; l < kLanes; ++l) out[l] = keep * c[l] + a * (m[l] + p[l]);
+                    }
                 }
-            }
-        });
+            });
     }
 
     /// One cell from the slice upstream: the segment to it is optically τ = σ̄ Δs thick and
@@ -199,16 +235,20 @@ private:
         double sigmaUp = 0.0, glowUp[kUnits] = {0.0, 0.0, 0.0, 0.0};
         const bool slice = upstream >= 0 && upstream < L.n[mA];
         const int j0 = j + mOffset[0], k0 = k + mOffset[1];
-        const double fy = mFraction[0], fz = mFraction[1];
+        const bool inside = slice && j0 >= 0 && k0 >= 0 && j0 + 1 < L.n[mB] && k0 + 1 < L.n[mC];
+        const std::size_t first = inside ? swept(upstream, j0, k0) : 0;
         for (int corner = 0; corner < 4; ++corner) {
-            const int jj = j0 + (corner & 1), kk = k0 + (corner >> 1);
-            const double w = ((corner & 1) ? fy : 1.0 - fy) * ((corner >> 1) ? fz : 1.0 - fz);
+            const double w = mWeight[corner];
             if (w == 0.0) continue;
-            if (!slice || jj < 0 || kk < 0 || jj >= L.n[mB] || kk >= L.n[mC]) {
-                up[0] += w;
-                continue;
+            std::size_t other = first + mCorner[corner];
+            if (!inside) {
+                const int jj = j0 + (corner & 1), kk = k0 + (corner >> 1);
+                if (!slice || jj < 0 || kk < 0 || jj >= L.n[mB] || kk >= L.n[mC]) {
+                    up[0] += w;
+                    continue;
+                }
+                other = swept(upstream, jj, kk);
             }
-            const std::size_t other = swept(upstream, jj, kk);
             const float* lanes = &mField[kLanes * other];
             for (int l = 0; l < kLanes; ++l) up[l] += w * lanes[l];
             const double sigma = L.extinction[other];
@@ -237,8 +277,9 @@ private:
     int mVertical = 2;              ///< the lattice axis nearest the world's z
     double mStep = 1.0;             ///< m travelled from one slice to the next
     double mShift[2] = {0.0, 0.0};  ///< cells moved across (b, c) from one slice to the next
-    int mOffset[2] = {0, 0};          ///< mShift's whole cells
-    double mFraction[2] = {0.0, 0.0};  ///< and the rest
+    int mOffset[2] = {0, 0};        ///< mShift's whole cells
+    double mWeight[4] = {};         ///< bilinear, of the four upstream cells (b, c bits)
+    std::size_t mCorner[4] = {};    ///< their offsets in the field from the first
 };
 
 /// The lattice's clouds in blocks of stride^3 cells: mean extinction, extinction-weighted
@@ -386,8 +427,6 @@ Gathered gatherOn(const GatherLattice& fine, Blocks& lattice, const std::vector<
     for (const RenderVec3& d : dirs) groundWeight += std::max(0.0, d.z());
 
     Gathered out;
-    out.faces.resize(faces.size());
-    for (GatheredView& v : out.faces) v.transmittance[0] = v.transmittance[1] = 0.0;
     if (ground.present)
         out.ground.assign(ground.map.points(), GroundView{0.0, {0.0, 0.0, 0.0, 0.0}});
     const openvdb::Mat3d metresPerCell = lattice.cellsPerMetre.inverse();
@@ -395,7 +434,8 @@ Gathered gatherOn(const GatherLattice& fine, Blocks& lattice, const std::vector<
         return lattice.cellsPerMetre * (world - lattice.origin);
     };
     // The faces by the air cell they open onto: what a direction's lookup reads, and the
-    // ground point it reaches, depend on the air cell alone, so its faces share them.
+    // ground point it reaches, depend on the air cell alone, so its faces share them. Their
+    // views are summed in that order and put back in the faces' order at the end.
     std::vector<std::size_t> byAir(faces.size());
     std::iota(byAir.begin(), byAir.end(), std::size_t(0));
     const auto airOf = [&](std::size_t f) {
@@ -404,10 +444,29 @@ Gathered gatherOn(const GatherLattice& fine, Blocks& lattice, const std::vector<
     };
     std::stable_sort(byAir.begin(), byAir.end(),
                      [&](std::size_t x, std::size_t y) { return airOf(x) < airOf(y); });
-    std::vector<std::size_t> firstOfAir;
-    for (std::size_t i = 0; i < byAir.size(); ++i)
-        if (i == 0 || airOf(byAir[i]) != airOf(byAir[i - 1])) firstOfAir.push_back(i);
-    firstOfAir.push_back(byAir.size());
+    struct Air {
+        std::size_t first = 0;  ///< its first face in byAir
+        unsigned kinds = 0;     ///< bit k: it has a face of kind k
+        RenderVec3 at{0.0};     ///< its centre in the swept lattice's cells
+    };
+    std::vector<Air> airs;
+    for (std::size_t i = 0; i < byAir.size(); ++i) {
+        const GatherFace& face = faces[byAir[i]];
+        if (i == 0 || airOf(byAir[i]) != airOf(byAir[i - 1])) {
+            Air air;
+            air.first = i;
+            air.at = (RenderVec3(face.air[0], face.air[1], face.air[2]) + RenderVec3(0.5)) /
+                         double(stride) -
+                     RenderVec3(0.5);
+            airs.push_back(air);
+        }
+        airs.back().kinds |= 1u << face.kind;
+    }
+    std::vector<int> kindOf(byAir.size());
+    for (std::size_t i = 0; i < byAir.size(); ++i) kindOf[i] = faces[byAir[i]].kind;
+    std::vector<GatheredView> views(byAir.size());
+    for (GatheredView& v : views) v.transmittance[0] = v.transmittance[1] = 0.0;
+
     std::vector<float> field(kLanes * lattice.cells());
     Sweep sweep(lattice, field);
     bool mapDone = false;
@@ -443,33 +502,31 @@ Gathered gatherOn(const GatherLattice& fine, Blocks& lattice, const std::vector<
             });
         const double reach = clearance / std::abs(u[sweep.dominantAxis()]);
         double facing[6];
-        for (int kind = 0; kind < 6; ++kind) facing[kind] = d.dot(fine.normal[kind]);
-        tbb::parallel_for(std::size_t(0), firstOfAir.size() - 1, [&](std::size_t a) {
-            const std::size_t begin = firstOfAir[a], end = firstOfAir[a + 1];
-            bool seenBy = false;
-            for (std::size_t i = begin; i < end; ++i) seenBy |= facing[faces[byAir[i]].kind] > 0.0;
-            if (!seenBy) return;
-            const std::array<int, 3>& cell = faces[byAir[begin]].air;
+        unsigned facingKinds = 0;
+        for (int kind = 0; kind < 6; ++kind) {
+            facing[kind] = d.dot(fine.normal[kind]);
+            if (facing[kind] > 0.0) facingKinds |= 1u << kind;
+        }
+        const bool toGround = side == 1 && ground.present;
+        tbb::parallel_for(std::size_t(0), airs.size(), [&](std::size_t a) {
+            const Air& air = airs[a];
+            if (!(air.kinds & facingKinds)) return;
             double seen[kLanes];
-            const RenderVec3 air = (RenderVec3(cell[0], cell[1], cell[2]) + RenderVec3(0.5)) /
-                                       double(stride) -
-                                   RenderVec3(0.5);
-            sweep.lookup(air + u * reach, seen);
+            sweep.lookup(air.at + u * reach, seen);
             // Below the horizon, the ground point this direction reaches and what it sends back.
             double sends[GatheredView::kGroundUnits];
-            const bool toGround = side == 1 && ground.present;
             if (toGround) {
-                const RenderVec3 from = lattice.origin + metresPerCell * air;
+                const RenderVec3 from = lattice.origin + metresPerCell * air.at;
                 const double down = std::max(0.0, from.z()) / -d.z();
                 groundSends(ground, out.ground,
                             RenderVec3(from.x() + d.x() * down, from.y() + d.y() * down, 0.0),
                             sends);
             }
-            for (std::size_t i = begin; i < end; ++i) {
-                const std::size_t f = byAir[i];
-                const double c = facing[faces[f].kind];
+            const std::size_t end = a + 1 < airs.size() ? airs[a + 1].first : byAir.size();
+            for (std::size_t i = air.first; i < end; ++i) {
+                const double c = facing[kindOf[i]];
                 if (!(c > 0.0)) continue;
-                GatheredView& v = out.faces[f];
+                GatheredView& v = views[i];
                 v.transmittance[side] += c * seen[0];
                 for (int l = 0; l < kUnits; ++l) v.emitted[side][l] += c * seen[1 + l];
                 if (toGround)
@@ -478,10 +535,12 @@ Gathered gatherOn(const GatherLattice& fine, Blocks& lattice, const std::vector<
             }
         });
     }
-    tbb::parallel_for(std::size_t(0), faces.size(), [&](std::size_t f) {
-        GatheredView& v = out.faces[f];
+    out.faces.resize(faces.size());
+    tbb::parallel_for(std::size_t(0), byAir.size(), [&](std::size_t i) {
+        GatheredView& v = out.faces[byAir[i]];
+        v = views[i];
         for (int side = 0; side < 2; ++side) {
-            const double w = weight[faces[f].kind][side];
+            const double w = weight[kindOf[i]][side];
             if (!(w > 0.0)) {
                 v.transmittance[side] = 1.0;
                 continue;
