@@ -11,28 +11,39 @@ constexpr double kMaxFluxRatio = 0.95;  ///< |F| / φ kept below 1, a fully coll
 
 }  // namespace
 
+DiffuseLobe diffuseLobe(double phi, const RenderVec3& flux)
+{
+    DiffuseLobe out;
+    if (!(phi > 0.0)) return out;
+    out.scale = phi * kInvFourPi;
+    // Both of its HG lobes need only k² and k cos θ = F·ω / φ: no |F| unless k is capped.
+    const double squared = flux.lengthSqr(), cap = kMaxFluxRatio * phi;
+    if (squared < cap * cap) {
+        const double inverse = 1.0 / phi;
+        out.k2 = squared * inverse * inverse;
+        out.axis = flux * inverse;
+    } else {
+        out.k2 = kMaxFluxRatio * kMaxFluxRatio;
+        out.axis = flux * (kMaxFluxRatio / std::sqrt(squared));
+    }
+    return out;
+}
+
+double diffuseScattered(const DiffuseLobe& lobe, const RenderVec3& toward,
+                        const DeltaEddington& split)
+{
+    const double kc = lobe.axis.dot(toward);
+    const auto hg = [&](double g) {  // HG(cos θ, g k) × 4π
+        const double gg = g * g * lobe.k2, d = 1.0 + gg - 2.0 * g * kc;
+        return (1.0 - gg) / (d * std::sqrt(d));
+    };
+    return lobe.scale * (split.peak * hg(1.0) + (1.0 - split.peak) * hg(split.g));
+}
+
 double diffuseScattered(double phi, const RenderVec3& flux, const RenderVec3& toward,
                         const DeltaEddington& split)
 {
-    if (!(phi > 0.0)) return 0.0;
-    // Both lobes, HG(cos θ, g) with g = k and g = g' k, need only k² and k cos θ = F·ω / φ:
-    // no |F| unless k is capped (the camera calls this three times a sample).
-    const double squared = flux.lengthSqr(), along = flux.dot(toward);
-    const double cap = kMaxFluxRatio * phi;
-    double k2 = 0.0, kc = 0.0;
-    if (squared < cap * cap) {
-        const double inverse = 1.0 / phi;
-        k2 = squared * inverse * inverse;
-        kc = along * inverse;
-    } else {
-        k2 = kMaxFluxRatio * kMaxFluxRatio;
-        kc = kMaxFluxRatio * along / std::sqrt(squared);
-    }
-    const auto lobe = [&](double g) {  // HG(cos θ, g k) × 4π
-        const double gg = g * g * k2, d = 1.0 + gg - 2.0 * g * kc;
-        return (1.0 - gg) / (d * std::sqrt(d));
-    };
-    return phi * kInvFourPi * (split.peak * lobe(1.0) + (1.0 - split.peak) * lobe(split.g));
+    return diffuseScattered(diffuseLobe(phi, flux), toward, split);
 }
 
 DiffuseLight::Sample DiffuseLight::at(const RenderVec3& p) const

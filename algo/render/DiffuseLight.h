@@ -28,6 +28,17 @@ namespace cg::algo {
 double diffuseScattered(double phi, const RenderVec3& flux, const RenderVec3& toward,
                         const DeltaEddington& split);
 
+/// The same lobe taken apart, for light scattered toward many directions (the surface
+/// gather): what does not depend on the direction, once.
+struct DiffuseLobe {
+    double scale = 0.0;           ///< φ / 4π
+    double k2 = 0.0;              ///< k²
+    RenderVec3 axis{0.0};         ///< k times F's direction
+};
+DiffuseLobe diffuseLobe(double phi, const RenderVec3& flux);
+double diffuseScattered(const DiffuseLobe& lobe, const RenderVec3& toward,
+                        const DeltaEddington& split);
+
 class DiffuseLight {
 public:
     /// Fluence and net flux F per colour channel.

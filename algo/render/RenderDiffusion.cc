@@ -37,15 +37,20 @@ constexpr double kFeedTolerance = 0.1;
 /// cost. It is read 4 blocks (8 cells) out along each direction, and run twice, each time
 /// followed by a solve of every light: against the path tracer on Figure 9 one block out and
 /// one gather were 14-18% off, a gather more alone 15-18%, both 10-13%; 2 and 6 blocks were
-/// worse than 4, a third gather moved 0.5 point at most; 3, 5 and 6 still worse with 32
-/// directions. 32 directions, with the sweeps' sideways spread: turned about z, 16
-/// directions without it moved Figure 9's error by up to 5 points, 32 with it by 1.8; 64
-/// and 128 were 0.5-1 point better at 2 and 4 times the gather's cost. The first gather
-/// only feeds the second's clouds: 8 directions give the same error as 16, 4 a little more.
-constexpr int kGatherDirections = 32;
-constexpr int kFirstGatherDirections = 8;
+/// worse than 4, a third gather moved 0.5 point at most. The last gather's directions decide
+/// how well a face sees a neighbouring cloud: Figure 9 with the sun beside the camera was
+/// 11.1% off at 32 (9.7-11.5% as the directions turned about z), 10.0% at 64, 9.7-10.0% at
+/// 80, 9.6-9.7% at 128 (docs/rendering.md, Renderer version 19). The first gather only
+/// feeds the second's clouds, so it runs on blocks of 4^3 cells read 2 blocks out (the same
+/// reach; an eighth of the blocks to sweep): with 64 last directions, 16 first directions
+/// on them gave 8.2 / 10.0 / 7.3% (front / beside / behind), 8 on them 8.2 / 10.2 / 7.8%,
+/// 16 on 2^3 blocks 8.4 / 10.1 / 7.8%.
+constexpr int kGatherDirections = 80;
 constexpr int kGatherStride = 2;
 constexpr double kGatherClearance = 4.0;
+constexpr int kFirstGatherDirections = 16;
+constexpr int kFirstGatherStride = 4;
+constexpr double kFirstGatherClearance = 2.0;
 constexpr int kGatherPasses = 2;
 constexpr double kPi = 3.14159265358979323846;
 /// The ground's map (our choice): at most this many points a side, no closer than the
@@ -455,7 +460,8 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
         const bool last = pass + 1 == kGatherPasses;
         gathered = gatherSurfaceLight(lattice, faces, seen,
                                       last ? kGatherDirections : kFirstGatherDirections,
-                                      kGatherClearance, kGatherStride, cancelled);
+                                      last ? kGatherClearance : kFirstGatherClearance,
+                                      last ? kGatherStride : kFirstGatherStride, cancelled);
         letIn(gathered.faces);
         solve(kLights, last ? kTolerance : kFeedTolerance);
     }

@@ -48,7 +48,8 @@ struct Blocks : CellBox {
     RenderVec3 origin{0.0};
     std::vector<double> extinction;  ///< mean σ_t, 1/m (0: clear air)
     std::vector<float> beam;
-    std::vector<std::array<float, kMoments>> moments;
+    /// Per unit, the lobe of its diffuse light, from the extinction-weighted means of φ and F.
+    std::vector<std::array<DiffuseLobe, kUnits>> lobes;
     /// J per unit light toward the current sweep's −v, radiance.
     std::vector<std::array<float, kUnits>> source;
 };
@@ -293,7 +294,7 @@ Blocks blocksOf(const GatherLattice& fine, int stride)
     const std::size_t cells = out.cells();
     out.extinction.assign(cells, 0.0);
     out.beam.assign(cells, 0.0f);
-    out.moments.assign(cells, {});
+    out.lobes.assign(cells, {});
     out.source.assign(cells, {0.0f, 0.0f, 0.0f, 0.0f});
     std::vector<std::array<double, 1 + Blocks::kMoments>> sum(cells);  // beam, then moments
     for (auto& s : sum) s.fill(0.0);
@@ -319,8 +320,10 @@ Blocks blocksOf(const GatherLattice& fine, int stride)
         const double sigma = out.extinction[b];
         if (!(sigma > 0.0)) continue;
         out.beam[b] = static_cast<float>(sum[b][0] / sigma);
-        for (int m = 0; m < Blocks::kMoments; ++m)
-            out.moments[b][m] = static_cast<float>(sum[b][1 + m] / sigma);
+        for (int l = 0; l < kUnits; ++l) {
+            const double* m = &sum[b][1 + 4 * l];
+            out.lobes[b][l] = diffuseLobe(m[0] / sigma, RenderVec3(m[1], m[2], m[3]) / sigma);
+        }
         out.extinction[b] = sigma * perCell;
     }
     return out;
@@ -333,13 +336,9 @@ void sourcesToward(const GatherLattice& lattice, Blocks& blocks, const RenderVec
     const double beamLobe = henyeyGreenstein(lattice.travel.dot(toward), lattice.split.g);
     tbb::parallel_for(std::size_t(0), blocks.cells(), [&](std::size_t b) {
         if (!(blocks.extinction[b] > 0.0)) return;
-        const std::array<float, Blocks::kMoments>& m = blocks.moments[b];
-        for (int l = 0; l < kUnits; ++l) {
-            const float* f = &m[4 * l];
-            const RenderVec3 flux(f[1], f[2], f[3]);
+        for (int l = 0; l < kUnits; ++l)
             blocks.source[b][l] = static_cast<float>(
-                lattice.albedo * diffuseScattered(f[0], flux, toward, lattice.split));
-        }
+                lattice.albedo * diffuseScattered(blocks.lobes[b][l], toward, lattice.split));
         blocks.source[b][0] += static_cast<float>(blocks.beam[b] * beamLobe);
     });
 }

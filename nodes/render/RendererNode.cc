@@ -101,7 +101,7 @@ void registerRendererNode(Registry& registry)
     const auto v3 = [](const algo::RenderVec3& v) { return Vec3{v.x(), v.y(), v.z()}; };
     NodeDecl d;
     d.type = "Renderer";
-    d.version = 18;  // 2: the image carries its background; 3: the diffusion sees sky and ground
+    d.version = 19;  // 2: the image carries its background; 3: the diffusion sees sky and ground
                      // apart; 4: δ-Eddington sun, flux-limited diffusion, one radiance lobe;
                      // 5: sparse sun light map, one voxel a texel in large sparse fields;
                      // 6: the limiter's sun solves to 1e-2 (the image within 0.01%);
@@ -118,7 +118,8 @@ void registerRendererNode(Registry& registry)
                      // gather read 4 blocks out, and run twice (first on 8 directions);
                      // 17: its last on 32 directions, each sweep spread sideways as a cone
                      // (along the horizontal), the solve between the gathers to 0.1;
-                     // 18: without a sun, no sun light scattered, the limiter from the sky
+                     // 18: without a sun, no sun light scattered, the limiter from the sky;
+                     // 19: the last gather on 80 directions, the first on 16 of 4^3 blocks
     d.category = "render";
     d.framesInAnyOrder = true;
     d.doc =
