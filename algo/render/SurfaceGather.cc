@@ -54,10 +54,12 @@ struct Blocks : CellBox {
     std::vector<std::array<float, kUnits>> source;
 };
 
-/// Cells of a slice per parallel task, at least (our choice): a slice of a small lattice
-/// (Figure 6's has under a thousand blocks) is cheaper swept by one thread than shared out,
-/// and a sweep is a few thousand slices a frame.
-constexpr int kCellsPerTask = 1024;
+/// Cells of a slice per parallel task, at least (our choice): a sweep is thousands of
+/// slices a frame, and a small lattice's (Figure 6's: under a thousand blocks) shared out a
+/// row per task spent more on the tasks than on the cells. 256 rendered the 640 x 480
+/// cumulus of bench/render_bench.cc in 632-646 ms, 1024 in 651-674 ms, one row a task in
+/// 670-686 ms.
+constexpr int kCellsPerTask = 256;
 
 /// Rows of `length` cells per task.
 int grainFor(int length) { return std::max(1, kCellsPerTask / std::max(1, length)); }
