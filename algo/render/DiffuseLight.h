@@ -31,9 +31,9 @@ double diffuseScattered(double phi, const RenderVec3& flux, const RenderVec3& to
 /// The same lobe taken apart, for light scattered toward many directions (the surface
 /// gather): what does not depend on the direction, once.
 struct DiffuseLobe {
-    double scale = 0.0;           ///< φ / 4π
-    double k2 = 0.0;              ///< k²
-    RenderVec3 axis{0.0};         ///< k times F's direction
+    double scale = 0.0;    ///< φ / 4π
+    double k2 = 0.0;       ///< k²
+    RenderVec3 axis{0.0};  ///< k times F's direction
 };
 DiffuseLobe diffuseLobe(double phi, const RenderVec3& flux);
 double diffuseScattered(const DiffuseLobe& lobe, const RenderVec3& toward,
