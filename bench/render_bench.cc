@@ -20,6 +20,7 @@
 #include "algo/render/RenderVolume.h"
 #include "algo/render/SyntheticCumulus.h"
 #include "algo/volume/Voxelize.h"
+#include "util/FreedMemory.h"
 
 namespace {
 
@@ -136,6 +137,7 @@ BENCHMARK(BM_Voxelize5MParticles)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 int main(int argc, char** argv)
 {
+    cg::util::keepFreedMemoryForReuse();  // as the CLI renders
     openvdb::initialize();
     if (const char* path = std::getenv("CG_RENDER_BENCH_VDB")) {
         openvdb::io::File file(path);

@@ -1,7 +1,5 @@
 // cloudgraph: cook node graphs that grow cumulus clouds. See --help.
 
-#include <malloc.h>
-
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -9,6 +7,7 @@
 
 #include "cli/Commands.h"
 #include "cli/Common.h"
+#include "util/FreedMemory.h"
 
 namespace {
 
@@ -56,17 +55,6 @@ Plugins are also loaded from the absolute directories in CLOUDGRAPH_PLUGIN_PATH 
 Exit codes: 0 ok, 2 bad input (graph, parameter, file), 1 internal failure.
 )";
 
-/// glibc gives every block above its mmap threshold back to the kernel when it is freed and
-/// maps it anew on the next allocation, so the renderer's and the voxelizer's per-frame
-/// buffers were faulted in and zeroed by the kernel again every frame. Blocks up to glibc's
-/// largest threshold come from the heap instead, and freed memory stays there for the next
-/// frame: the default run's late frames render in 0.89 of the time (docs/benchmarks.md).
-void keepFreedMemoryForReuse()
-{
-    mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's maximum on 64-bit systems
-    mallopt(M_TRIM_THRESHOLD, 1 << 30);
-}
-
 }  // namespace
 
 int main(int argc, char** argv)
@@ -82,7 +70,7 @@ int main(int argc, char** argv)
         return kExitOk;
     }
     configureLogging();
-    keepFreedMemoryForReuse();
+    cg::util::keepFreedMemoryForReuse();
     const std::string command = args[0];
     args.erase(args.begin());
     if (command == "run") return runCommand(args);
