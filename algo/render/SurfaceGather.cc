@@ -61,8 +61,20 @@ struct Blocks : CellBox {
 /// 670-686 ms.
 constexpr int kCellsPerTask = 256;
 
-/// Rows of `length` cells per task.
-int grainFor(int length) { return std::max(1, kCellsPerTask / std::max(1, length)); }
+/// fn(begin, end) over `rows` rows of `length` cells, at least kCellsPerTask cells a task;
+/// on the calling thread alone, without the scheduler, when there are not two tasks' worth
+/// (the early frames of a run: thousands of slices of a few hundred cells a frame).
+template <class Fn>
+void forRows(int rows, int length, Fn&& fn)
+{
+    const int grain = std::max(1, kCellsPerTask / std::max(1, length));
+    if (rows < 2 * grain) {
+        fn(0, rows);
+        return;
+    }
+    tbb::parallel_for(tbb::blocked_range<int>(0, rows, grain),
+                      [&](const tbb::blocked_range<int>& r) { fn(r.begin(), r.end()); });
+}
 
 class Sweep {
 public:
@@ -117,12 +129,11 @@ public:
         const int outer = L.n[alongB ? mC : mB], inner = L.n[alongB ? mB : mC];
         for (int t = 0; t < L.n[mA]; ++t) {
             const int i = s > 0 ? L.n[mA] - 1 - t : t;
-            tbb::parallel_for(tbb::blocked_range<int>(0, outer, grainFor(inner)),
-                              [&](const tbb::blocked_range<int>& rows) {
-                                  for (int o = rows.begin(); o != rows.end(); ++o)
-                                      for (int n = 0; n < inner; ++n)
-                                          alongB ? fill(i, n, o, i + s) : fill(i, o, n, i + s);
-                              });
+            forRows(outer, inner, [&](int begin, int end) {
+                for (int o = begin; o != end; ++o)
+                    for (int n = 0; n < inner; ++n)
+                        alongB ? fill(i, n, o, i + s) : fill(i, o, n, i + s);
+            });
             spread(i);
         }
     }
@@ -209,24 +220,22 @@ private:
     {
         const int length = L.n[alongB ? mB : mC], lines = L.n[alongB ? mC : mB];
         constexpr float a = static_cast<float>(kSpreadPerSlice), keep = 1.0f - 2.0f * a;
-        tbb::parallel_for(
-            tbb::blocked_range<int>(0, lines, grainFor(length)),
-            [&](const tbb::blocked_range<int>& r) {
-                std::vector<float> copy(kLanes * static_cast<std::size_t>(length));
-                for (int line = r.begin(); line != r.end(); ++line) {
-                    const auto at = [&](int x) {
-                        return &mField[kLanes * (alongB ? swept(i, x, line) : swept(i, line, x))];
-                    };
-                    for (int x = 0; x < length; ++x) std::copy_n(at(x), kLanes, &copy[kLanes * x]);
-                    for (int x = 0; x < length; ++x) {
-                        const float* m = &copy[kLanes * std::max(0, x - 1)];
-                        const float* c = &copy[kLanes * x];
-                        const float* p = &copy[kLanes * std::min(length - 1, x + 1)];
-                        float* out = at(x);
-                        for (int l = 0; l < kLanes; ++l) out[l] = keep * c[l] + a * (m[l] + p[l]);
-                    }
+        forRows(lines, length, [&](int begin, int end) {
+            std::vector<float> copy(kLanes * static_cast<std::size_t>(length));
+            for (int line = begin; line != end; ++line) {
+                const auto at = [&](int x) {
+                    return &mField[kLanes * (alongB ? swept(i, x, line) : swept(i, line, x))];
+                };
+                for (int x = 0; x < length; ++x) std::copy_n(at(x), kLanes, &copy[kLanes * x]);
+                for (int x = 0; x < length; ++x) {
+                    const float* m = &copy[kLanes * std::max(0, x - 1)];
+                    const float* c = &copy[kLanes * x];
+                    const float* p = &copy[kLanes * std::min(length - 1, x + 1)];
+                    float* out = at(x);
+                    for (int l = 0; l < kLanes; ++l) out[l] = keep * c[l] + a * (m[l] + p[l]);
                 }
-            });
+            }
+        });
     }
 
     /// One cell from the slice upstream: the segment to it is optically τ = σ̄ Δs thick and
