@@ -149,37 +149,27 @@ public:
             frac[a] = q[a] - f;
         }
         std::fill(out, out + kLanes, 0.0);
-        if (base[0] >= 0 && base[1] >= 0 && base[2] >= 0 && base[0] + 1 < L.n[0] &&
-            base[1] + 1 < L.n[1] && base[2] + 1 < L.n[2]) {  // all eight inside, as mostly
-            const float* first = &mField[kLanes * L.cell(base[0], base[1], base[2])];
-            for (int corner = 0; corner < 8; ++corner) {
-                double w = 1.0;
-                std::size_t offset = 0;
-                for (int a = 0; a < 3; ++a) {
-                    const int bit = (corner >> a) & 1;
-                    w *= bit ? frac[a] : 1.0 - frac[a];
-                    offset += bit ? mStride[a] : 0;
-                }
-                if (w == 0.0) continue;
-                const float* cell = first + kLanes * offset;
-                for (int l = 0; l < kLanes; ++l) out[l] += w * cell[l];
-            }
-            return;
-        }
+        // All eight corners inside, as mostly: their offsets from the first, unchecked.
+        const bool allInside =
+            inside(base[0], base[1], base[2]) && inside(base[0] + 1, base[1] + 1, base[2] + 1);
+        const std::size_t first = allInside ? L.cell(base[0], base[1], base[2]) : 0;
         for (int corner = 0; corner < 8; ++corner) {
             double w = 1.0;
             int at[3];
+            std::size_t offset = 0;
             for (int a = 0; a < 3; ++a) {
                 const int bit = (corner >> a) & 1;
                 at[a] = base[a] + bit;
                 w *= bit ? frac[a] : 1.0 - frac[a];
+                offset += bit ? mStride[a] : 0;
             }
             if (w == 0.0) continue;
-            if (!inside(at[0], at[1], at[2])) {
+            if (!allInside && !inside(at[0], at[1], at[2])) {
                 out[0] += w;
                 continue;
             }
-            const float* cell = &mField[kLanes * L.cell(at[0], at[1], at[2])];
+            const float* cell =
+                &mField[kLanes * (allInside ? first + offset : L.cell(at[0], at[1], at[2]))];
             for (int l = 0; l < kLanes; ++l) out[l] += w * cell[l];
         }
     }
