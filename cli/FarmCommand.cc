@@ -29,11 +29,12 @@ namespace {
 namespace fs = std::filesystem;
 
 /// The arguments of `run` that both jobs share: the graph, its edits, the shared folders.
-std::vector<std::string> sharedRunArgs(const OptionParser& opts, const fs::path& cache, const fs::path& out,
-                                       const std::string& token)
+std::vector<std::string> sharedRunArgs(const OptionParser& opts, const fs::path& cache,
+                                       const fs::path& out)
 {
-    std::vector<std::string> args = {fs::absolute(opts.positionals()[0]).lexically_normal().string(),
-                                     "--cache", cache.string(), "--out", out.string(), "--farm-token", token};
+    std::vector<std::string> args = {
+        fs::absolute(opts.positionals()[0]).lexically_normal().string(), "--cache", cache.string(),
+        "--out", out.string()};
     for (const std::string& s : opts.values("--set")) args.insert(args.end(), {"--set", s});
     for (const char* o : {"--plugin", "--python-nodes"})
         for (const std::string& p : opts.values(o))
@@ -66,8 +67,9 @@ void submit(const fs::path& script)
         if (errno != EINTR) throw std::runtime_error("waitpid failed for " + path);
     }
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-        throw std::runtime_error("submitting failed (is Slurm's sbatch on PATH?); the scripts are in " +
-                                 script.parent_path().string() + ", run " + path + " again to retry");
+        throw std::runtime_error(
+            "submitting failed (is Slurm's sbatch on PATH?); the scripts are in " +
+            script.parent_path().string() + ", run " + path + " again to retry");
 }
 
 }  // namespace
@@ -83,42 +85,52 @@ int farmCommand(const Args& args)
     return guarded([&] {
         opts.parse();
         if (const auto s = opts.value("--scheduler"); s && *s != "slurm")
-            throw InputError("--scheduler", "'" + *s + "' is not supported; the one scheduler is slurm");
+            throw InputError("--scheduler",
+                             "'" + *s + "' is not supported; the one scheduler is slurm");
         const auto chunkText = opts.value("--chunk");
-        if (!chunkText) throw InputError("--chunk", "farm needs --chunk N, the frames of one array task");
+        if (!chunkText)
+            throw InputError("--chunk", "farm needs --chunk N, the frames of one array task");
         const auto cacheDir = opts.value("--cache");
-        if (!cacheDir) throw InputError("--cache", "farm needs --cache DIR on a file system every node shares");
+        if (!cacheDir)
+            throw InputError("--cache",
+                             "farm needs --cache DIR on a file system every node shares");
         for (const std::string& option : opts.values("--sbatch"))
-            if (option.find('\n') != std::string::npos || option.rfind("--", 0) != 0)
-                throw InputError("--sbatch " + option, "must be one sbatch option such as --partition=render");
+            if (option.rfind("--", 0) != 0)
+                throw InputError("--sbatch " + option,
+                                 "must be one sbatch option such as --partition=render");
 
         Registry registry;
         const Graph graph = loadGraphFromOptions(opts, registry, "farm");
-        const FrameRange range =
-            opts.value("--frames") ? parseFrameRange(*opts.value("--frames"), graph.frames) : graph.frames;
+        const FrameRange range = opts.value("--frames")
+                                     ? parseFrameRange(*opts.value("--frames"), graph.frames)
+                                     : graph.frames;
         FarmJob job;
         job.chunk = parseChunkSize(*chunkText);
         job.chunks = chunkCount(range, job.chunk);
 
         const fs::path cache = fs::absolute(*cacheDir).lexically_normal();
-        const DiskCache diskCache(cache);  // refuses a directory it cannot write
         const fs::path out = fs::absolute(opts.value("--out").value_or("out")).lexically_normal();
         job.farmDir = out / "slurm";
         job.workDir = fs::current_path();
         job.name = fs::path(opts.positionals()[0]).stem().string();
         job.cloudgraph = fs::read_symlink("/proc/self/exe").string();
-        job.runArgs = sharedRunArgs(opts, cache, out, leaveFarmToken(diskCache));
+        job.runArgs = sharedRunArgs(opts, cache, out);
         job.sbatchOptions = opts.values("--sbatch");
+        // A value the scripts cannot carry is refused before the cache or --out is touched.
+        checkFarmJob(job);
 
+        const DiskCache diskCache(cache);  // refuses a directory it cannot write
+        const std::string token = leaveFarmToken(diskCache);
+        job.runArgs.insert(job.runArgs.end(), {"--farm-token", token});
+        const FarmScripts scripts = slurmScripts(job);
         fs::create_directories(job.farmDir / "logs");
         fs::create_directories(job.farmDir / "reports");
-        const FarmScripts scripts = slurmScripts(job);
         writeScript(job.farmDir / "simulate.sbatch", scripts.simulate);
         writeScript(job.farmDir / "frames.sbatch", scripts.frames);
         writeScript(job.farmDir / "finish.sbatch", scripts.finish);
         writeScript(job.farmDir / "submit.sh", scripts.submit);
-        spdlog::info("frames {}..{} in {} array tasks of {} frames; scripts in {}", range.start, range.end,
-                     job.chunks, job.chunk, job.farmDir.string());
+        spdlog::info("frames {}..{} in {} array tasks of {} frames; scripts in {}", range.start,
+                     range.end, job.chunks, job.chunk, job.farmDir.string());
         if (opts.has("--submit")) {
             submit(job.farmDir / "submit.sh");
         } else {

@@ -12,14 +12,14 @@
 namespace cg::cli {
 
 struct FarmJob {
-    std::string name;                       ///< job name stem (the graph file's stem)
-    std::string cloudgraph;                 ///< the executable, absolute
-    std::vector<std::string> runArgs;       ///< `run` arguments both jobs share (absolute paths)
-    std::filesystem::path farmDir;          ///< scripts here; logs/ and reports/ below it
-    std::filesystem::path workDir;          ///< the jobs' working directory
-    int chunk = 1;                          ///< frames per array task
-    int chunks = 1;                         ///< array tasks: 0 .. chunks-1
-    std::vector<std::string> sbatchOptions; ///< extra "#SBATCH" lines, e.g. --partition=render
+    std::string name;                        ///< job name stem (the graph file's stem)
+    std::string cloudgraph;                  ///< the executable, absolute
+    std::vector<std::string> runArgs;        ///< `run` arguments both jobs share (absolute paths)
+    std::filesystem::path farmDir;           ///< scripts here; logs/ and reports/ below it
+    std::filesystem::path workDir;           ///< the jobs' working directory
+    int chunk = 1;                           ///< frames per array task
+    int chunks = 1;                          ///< array tasks: 0 .. chunks-1
+    std::vector<std::string> sbatchOptions;  ///< extra "#SBATCH" lines, e.g. --partition=render
 };
 
 struct FarmScripts {
@@ -29,6 +29,16 @@ struct FarmScripts {
     std::string submit;    ///< submit.sh
 };
 
+/// Throws InputError, naming the option or file a value came from, when a value of `job` cannot
+/// be written into a script as it is. The scripts run with the submitting user's rights on
+/// every node, and #SBATCH lines are shell comments that a newline ends, so no value may hold
+/// a control character (C0 or DEL); a value inside a #SBATCH line (the graph file's name, --out,
+/// the working directory) may also not hold a backslash, which sbatch reads as an escape even
+/// inside quotes. A '%' is kept: it is written as "%%" in --output, where sbatch reads patterns
+/// such as %j, and as it is in --job-name and --chdir, which take it literally.
+void checkFarmJob(const FarmJob& job);
+
+/// The scripts for `job`; calls checkFarmJob first, so nothing unsafe is ever returned.
 FarmScripts slurmScripts(const FarmJob& job);
 
 /// `text` as one POSIX shell word.

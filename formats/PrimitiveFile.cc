@@ -13,6 +13,7 @@
 #include "util/AtomicFile.h"
 #include "util/InputFile.h"
 #include "util/LittleEndian.h"
+#include "util/SystemMemory.h"
 
 namespace cg::formats {
 
@@ -33,6 +34,8 @@ using util::getU64;
 std::uint64_t checksum64(const void* data, std::size_t size) { return XXH3_64bits(data, size); }
 
 }  // namespace
+
+std::uint64_t maxPrimitiveFileBytes() { return util::nodeAllocationLimitBytes(); }
 
 void writePrimitiveFile(const std::filesystem::path& path, double frameTime,
                         const std::vector<std::uint32_t>& counts,
@@ -108,7 +111,7 @@ void writePrimitiveFile(const std::filesystem::path& path, double frameTime,
 
 PrimitiveFileReader::PrimitiveFileReader(const std::filesystem::path& path) : mPath(path)
 {
-    if (const std::string problem = util::inputFileProblem(path, kMaxPrimitiveFileBytes);
+    if (const std::string problem = util::inputFileProblem(path, maxPrimitiveFileBytes());
         !problem.empty())
         throw FormatError(path.string(), "cannot read the primitive file: it " + problem);
     std::error_code ec;
@@ -229,7 +232,7 @@ std::vector<float> PrimitiveFileReader::readAll()
 std::uint64_t primitiveFileContentHash(const std::filesystem::path& path)
 {
     // Streamed: the same value as checksum64 of the whole file.
-    return fileContentHash(path, kMaxPrimitiveFileBytes, "primitive file");
+    return fileContentHash(path, maxPrimitiveFileBytes(), "primitive file");
 }
 
 }  // namespace cg::formats

@@ -32,8 +32,11 @@ constexpr std::uint32_t kPrimitiveFileVersion = 1;
 constexpr std::uint32_t kPrimitiveUnitsMetres = 1;
 constexpr std::size_t kPrimitiveHeaderBytes = 64;
 constexpr std::size_t kPrimitiveIndexEntryBytes = 16;
-/// Larger files are refused before reading: a primitive set of the paper's size is ~100 MB.
-constexpr std::uint64_t kMaxPrimitiveFileBytes = 16ull << 30;
+/// The largest primitive file any reader opens (`info`, PrimitiveLoad, the content hash):
+/// util::nodeAllocationLimitBytes(), the machine-relative limit of one node's value, because
+/// reading a frame allocates up to the file's size. Larger files are refused before anything
+/// is allocated; a primitive set of the paper's size is ~100 MB.
+std::uint64_t maxPrimitiveFileBytes();
 
 /// Writes a primitive set atomically (temporary file beside `path`, then rename). `counts` and
 /// `positions` as in PrimitiveSetData. Throws std::invalid_argument on inconsistent sizes and
@@ -46,7 +49,8 @@ void writePrimitiveFile(const std::filesystem::path& path, double frameTime,
 /// formats::FormatError whose place is "<file>:<byte offset>".
 class PrimitiveFileReader {
 public:
-    /// Opens `path` and validates the header and the frame index against the file size.
+    /// Opens `path` and validates the header and the frame index against the file size; a file
+    /// over maxPrimitiveFileBytes() is refused before anything is read.
     explicit PrimitiveFileReader(const std::filesystem::path& path);
 
     int frames() const { return static_cast<int>(mCounts.size()); }
