@@ -310,9 +310,12 @@ const Descriptor* findGrid(const Layout& layout, const std::string& gridName)
     return nullptr;
 }
 
-/// The grid's metadata and transform, without its tree.
+/// The grid's metadata and transform, without its tree; with `background`, also the tree's
+/// background value, which opens the tree's topology (a buffer count, then the root's
+/// background as a full float or double, in every format version), so that a grid whose
+/// background is not 0 is refused before its voxels are read.
 openvdb::GridBase::Ptr readHeaderOf(const Layout& layout, const Descriptor& d,
-                                    const std::string& what)
+                                    const std::string& what, double* background = nullptr)
 {
     // The lengths OpenVDB trusts: the metadata's and the transform's map type name.
     Cursor check(layout.path, what, layout.fd.fd, d.gridPos, d.blockPos);
@@ -336,6 +339,17 @@ openvdb::GridBase::Ptr readHeaderOf(const Layout& layout, const Descriptor& d,
         grid->readMeta(is);
         grid->removeMeta(G::META_FILE_DELAYED_LOAD);
         grid->readTransform(is);
+        if (background) {
+            std::int32_t buffers = 0;
+            is.read(reinterpret_cast<char*>(&buffers), sizeof buffers);
+            if (d.valueType() == "double") {
+                is.read(reinterpret_cast<char*>(background), sizeof(double));
+            } else {
+                float value = 0.0f;
+                is.read(reinterpret_cast<char*>(&value), sizeof value);
+                *background = value;
+            }
+        }
         return grid;
     });
 }
@@ -416,6 +430,12 @@ void checkHeader(const std::filesystem::path& path, const std::string& what,
              " this node may take");
 }
 
+std::string backgroundProblem(double background)
+{
+    return "has background " + std::to_string(background) +
+           "; a fog volume's is 0 (a level set saved without its class has its band width)";
+}
+
 /// Sets negative values to 0 and finds a value that is not finite, leaf by leaf in parallel.
 /// Returns a message naming the first such voxel in leaf order, or empty.
 std::string cleanValues(openvdb::FloatGrid& grid)
@@ -491,6 +511,14 @@ VdbGridSummary summaryOf(const Descriptor& d, const openvdb::GridBase& grid)
     s.halfFloat = d.half;
     s.activeVoxels = recorded(grid, G::META_FILE_VOXEL_COUNT);
     s.memoryBytes = recorded(grid, G::META_FILE_MEM_BYTES);
+    const auto lo = grid.getMetadata<openvdb::Vec3IMetadata>(G::META_FILE_BBOX_MIN);
+    const auto hi = grid.getMetadata<openvdb::Vec3IMetadata>(G::META_FILE_BBOX_MAX);
+    if (lo && hi) {
+        const openvdb::Coord min(lo->value()), max(hi->value());
+        // An empty grid is recorded with min > max: no box.
+        if (min.x() <= max.x() && min.y() <= max.y() && min.z() <= max.z())
+            s.activeBox = openvdb::CoordBBox(min, max);
+    }
     return s;
 }
 
@@ -542,7 +570,10 @@ Inspected inspect(const std::filesystem::path& path, const std::string& gridName
                                " values; a fog volume is a grid of float (or double) densities");
     if (r.grid->instance)
         refuse(path, what, "is an instance sharing another grid's voxels; save it on its own");
-    r.header = readHeaderOf(*r.layout, *r.grid, what);
+    double background = 0.0;
+    r.header = readHeaderOf(*r.layout, *r.grid, what, &background);
+    // The same words as when the voxels are read: `validate` and `run` refuse alike.
+    if (background != 0.0) refuse(path, what, backgroundProblem(background));
     // Guarded too: a forged matrix makes OpenVDB throw when asked for its affine map.
     guarded(path, what, [&] {
         checkHeader(path, what, *r.header, maxBytes);
@@ -583,9 +614,7 @@ openvdb::FloatGrid::Ptr readVdbFogVolume(const std::filesystem::path& path,
         if (grid->memUsage() > maxBytes)
             fail("takes " + bytesText(grid->memUsage()) + " of memory, more than the " +
                  bytesText(maxBytes) + " this node may take");
-        if (grid->background() != 0.0f)
-            fail("has background " + std::to_string(grid->background()) +
-                 "; a fog volume's is 0 (a level set saved without its class has its band width)");
+        if (grid->background() != 0.0f) fail(backgroundProblem(grid->background()));
         if (const std::string problem = cleanValues(*grid); !problem.empty()) fail(problem);
         // Removed first: a forged file can give "name" or "class" a type that refuses a string.
         grid->removeMeta(G::META_GRID_NAME);

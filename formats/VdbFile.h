@@ -35,6 +35,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,9 @@ struct VdbGridSummary {
     bool halfFloat = false;    ///< stored as 16-bit floats
     std::uint64_t activeVoxels = 0;  ///< as the file records it (0 when it does not)
     std::uint64_t memoryBytes = 0;   ///< the tree's memory as recorded (0 when not recorded)
+    /// The active voxels' bounding box as recorded ("file_bbox_min", "file_bbox_max"), when
+    /// recorded and not empty; nothing checks it against the voxels.
+    std::optional<openvdb::CoordBBox> activeBox;
 };
 
 /// The grids of the VDB file `path`, in file order, from its header and grid metadata only.
@@ -58,7 +62,8 @@ std::vector<VdbGridSummary> listVdbGrids(const std::filesystem::path& path,
                                          std::uint64_t maxBytes);
 
 /// Checks everything readVdbFogVolume checks before reading the voxels: the file, the grid's
-/// presence, value type, class, transform and recorded size. Throws FormatError.
+/// presence, value type, class, transform, recorded size and background (read from the start
+/// of the tree). Throws FormatError.
 VdbGridSummary inspectVdbFogVolume(const std::filesystem::path& path,
                                    const std::string& gridName, std::uint64_t maxBytes);
 

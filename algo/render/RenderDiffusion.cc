@@ -12,6 +12,7 @@
 #include "algo/render/ConjugateGradient.h"
 #include "algo/render/Phase.h"
 #include "algo/render/SurfaceGather.h"
+#include "util/CheckedSize.h"
 
 namespace cg::algo {
 
@@ -94,16 +95,21 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     }
 
     // Cells of c^3 voxels with one empty cell around the cloud, c grown until they fit.
-    const openvdb::Coord dim = active.dim();
-    const auto cellsFor = [&](int c) {
-        std::size_t n = 1;
-        for (int a = 0; a < 3; ++a) n *= static_cast<std::size_t>((dim[a] + c - 1) / c + 2);
-        return n;
+    // In 64 bits: the voxels of a sparse volume may lie 2^31 apart, and the cell count of
+    // a fine cell over such a span overflows 64 bits, wrapping to a count that passes.
+    std::int64_t dim[3];
+    for (int a = 0; a < 3; ++a)
+        dim[a] = std::int64_t(active.max()[a]) - std::int64_t(active.min()[a]) + 1;
+    const auto cellsAlong = [&](int a, int c) { return (dim[a] + c - 1) / c + 2; };
+    const auto fits = [&](int c) {
+        return util::productWithin({cellsAlong(0, c), cellsAlong(1, c), cellsAlong(2, c)},
+                                   kMaxCells)
+            .has_value();
     };
     mVoxels = std::max(1, cellVoxels);
-    while (cellsFor(mVoxels) > kMaxCells) ++mVoxels;
+    while (!fits(mVoxels)) ++mVoxels;
     const int c = mVoxels;
-    for (int a = 0; a < 3; ++a) mN[a] = (dim[a] + c - 1) / c + 2;
+    for (int a = 0; a < 3; ++a) mN[a] = static_cast<int>(cellsAlong(a, c));
     mFirstVoxel = active.min() - openvdb::Coord(c);
     const openvdb::Vec3d voxel = grid.voxelSize();
     const double h[3] = {voxel.x() * c, voxel.y() * c, voxel.z() * c};

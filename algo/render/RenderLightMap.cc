@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <optional>
 #include <stdexcept>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "algo/render/TrilinearDensity.h"
+#include "util/CheckedSize.h"
 
 namespace cg::algo {
 
@@ -61,11 +64,17 @@ RenderLightMap::RenderLightMap(const openvdb::FloatGrid& grid, const RenderOccup
     const double voxel = xform.voxelSize().x();
     mH = texelVoxels * voxel;
     for (;; mH *= 1.25) {
-        for (int a = 0; a < 3; ++a)
-            mN[a] = static_cast<int>(std::ceil((rmax[a] - rmin[a]) / mH)) + 1;
-        const std::size_t columns =
-            static_cast<std::size_t>(mN[0]) * static_cast<std::size_t>(mN[1]);
-        if (columns > maxTexels / 4) continue;
+        // Texels along each axis in doubles first: over voxels far apart, a fine texel's
+        // count need not fit an int. Past maxTexels along an axis, the columns cannot fit
+        // either (along the light, a column could hold no more).
+        double along[3];
+        for (int a = 0; a < 3; ++a) along[a] = std::ceil((rmax[a] - rmin[a]) / mH) + 1.0;
+        if (!(std::max({along[0], along[1], along[2]}) <= double(maxTexels))) continue;
+        for (int a = 0; a < 3; ++a) mN[a] = static_cast<int>(along[a]);
+        const std::optional<std::uint64_t> fitting =
+            util::productWithin({mN[0], mN[1]}, maxTexels / 4);
+        if (!fitting) continue;
+        const auto columns = static_cast<std::size_t>(*fitting);
         mColumns.assign(columns, Column{});
         const double length = mH * (mN[2] - 1);
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, columns, 64),

@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include <tbb/parallel_for.h>
+
+#include "util/CheckedSize.h"
 
 namespace cg::algo {
 
@@ -14,8 +17,30 @@ namespace {
 /// Domains of more blocks keep no brick masks (8 bytes a block): 128 MB at most.
 constexpr std::uint64_t kMostBrickBlocks = std::uint64_t(1) << 24;
 
-/// Floor division by the block size for possibly negative coordinates.
-int blockOf(int voxel) { return voxel >= 0 ? voxel / 8 : -((-voxel + 7) / 8); }
+/// The most blocks a domain may have: 128 MB of occupancy bytes.
+constexpr std::uint64_t kMostBlocks = std::uint64_t(1) << 27;
+
+/// Floor division by the block size for possibly negative coordinates. In 64 bits: a voxel
+/// one past the int range (an active voxel at its edge, widened by the sampling margin) must
+/// not wrap to the other end of it.
+int blockOf(std::int64_t voxel)
+{
+    return static_cast<int>(voxel >= 0 ? voxel / 8 : -((-voxel + 7) / 8));
+}
+
+/// The blocks of the voxels next to `voxel` below and above it: a trilinear sample's reach.
+int blockBelow(int voxel) { return blockOf(std::int64_t(voxel) - 1); }
+int blockAbove(int voxel) { return blockOf(std::int64_t(voxel) + 1); }
+
+/// Why a domain of n[0] x n[1] x n[2] blocks cannot be rendered, or empty. The extents, not
+/// their product, are checked and named: the product of far-apart voxels' extents can wrap.
+std::string blocksProblem(const std::int64_t (&n)[3])
+{
+    if (util::productWithin({n[0], n[1], n[2]}, kMostBlocks)) return "";
+    return "fog volume spans too large a domain to render (" +
+           util::extentsText({n[0], n[1], n[2]}) +
+           " blocks of 8^3 voxels, more than 2^27; its active voxels lie too far apart)";
+}
 
 /// Visits the index bounding box of every active tile and of every leaf with an active voxel.
 template <class Fn>
@@ -46,38 +71,50 @@ RenderOccupancy::RenderOccupancy(const openvdb::FloatTree& tree, bool majorants)
     forEachActiveBox(tree, [&](const openvdb::CoordBBox& b) {
         any = true;
         for (int a = 0; a < 3; ++a) {
-            lo[a] = std::min(lo[a], blockOf(b.min()[a] - 1));
-            hi[a] = std::max(hi[a], blockOf(b.max()[a] + 1));
+            lo[a] = std::min(lo[a], blockBelow(b.min()[a]));
+            hi[a] = std::max(hi[a], blockAbove(b.max()[a]));
         }
     });
     if (!any) return;
 
-    std::uint64_t total = 1;
+    // Blocks lie within +-2^28 of the origin, so an extent fits an int; their product need
+    // not fit 64 bits (two voxels 2^25 apart on every axis make 2^66 blocks).
+    const std::int64_t n[3] = {std::int64_t(hi[0]) - lo[0] + 1, std::int64_t(hi[1]) - lo[1] + 1,
+                               std::int64_t(hi[2]) - lo[2] + 1};
+    if (const std::string problem = blocksProblem(n); !problem.empty())
+        throw std::invalid_argument(problem);
+    const auto total = static_cast<std::uint64_t>(n[0] * n[1] * n[2]);  // checked just above
     for (int a = 0; a < 3; ++a) {
         mMin[a] = lo[a];
-        mN[a] = hi[a] - lo[a] + 1;
-        total *= static_cast<std::uint64_t>(mN[a]);
+        mN[a] = static_cast<int>(n[a]);
     }
-    if (total > (std::uint64_t(1) << 27))
-        throw std::invalid_argument("fog volume spans too large a domain to render (" +
-                                    std::to_string(total) + " blocks of 8^3 voxels)");
     mOcc.assign(static_cast<std::size_t>(total), 0);
     forEachActiveBox(tree, [&](const openvdb::CoordBBox& b) {
         int b0[3], b1[3];
         for (int a = 0; a < 3; ++a) {
-            b0[a] = blockOf(b.min()[a] - 1) - mMin[a];
-            b1[a] = blockOf(b.max()[a] + 1) - mMin[a];
+            b0[a] = blockBelow(b.min()[a]) - mMin[a];
+            b1[a] = blockAbove(b.max()[a]) - mMin[a];
         }
         for (int i = b0[0]; i <= b1[0]; ++i)
             for (int j = b0[1]; j <= b1[1]; ++j)
-                for (int k = b0[2]; k <= b1[2]; ++k)
-                    mOcc[blockIndex(i, j, k)] = 1;
+                for (int k = b0[2]; k <= b1[2]; ++k) mOcc[blockIndex(i, j, k)] = 1;
     });
     if (majorants) recordMajorants(tree);
     if (total <= kMostBrickBlocks) {
         recordBricks(tree);
         trimToBricks();
     }
+}
+
+std::string RenderOccupancy::domainProblem(const openvdb::CoordBBox& activeBox)
+{
+    if (activeBox.empty()) return "";
+    // Leaves and tiles are aligned to the block size, so the constructor's domain runs from
+    // the block below the first active voxel's block to the one above the last's.
+    std::int64_t n[3];
+    for (int a = 0; a < 3; ++a)
+        n[a] = std::int64_t(blockOf(activeBox.max()[a])) - blockOf(activeBox.min()[a]) + 3;
+    return blocksProblem(n);
 }
 
 void RenderOccupancy::trimToBricks()
@@ -177,9 +214,9 @@ void RenderOccupancy::recordBricks(const openvdb::FloatTree& tree)
         it.getBoundingBox(box);
         // Every brick of the blocks it touches, and of those whose samples reach its first
         // voxels: more than needed at its edges, never less.
-        for (int i = blockOf(box.min().x() - 1); i <= blockOf(box.max().x()); ++i)
-            for (int j = blockOf(box.min().y() - 1); j <= blockOf(box.max().y()); ++j)
-                for (int k = blockOf(box.min().z() - 1); k <= blockOf(box.max().z()); ++k)
+        for (int i = blockBelow(box.min().x()); i <= blockOf(box.max().x()); ++i)
+            for (int j = blockBelow(box.min().y()); j <= blockOf(box.max().y()); ++j)
+                for (int k = blockBelow(box.min().z()); k <= blockOf(box.max().z()); ++k)
                     mBricks[blockIndex(i - mMin[0], j - mMin[1], k - mMin[2])] = ~std::uint64_t(0);
     }
 }
@@ -230,9 +267,9 @@ void RenderOccupancy::recordMajorants(const openvdb::FloatTree& tree)
         if (!(value > 0.0f)) continue;
         openvdb::CoordBBox box;
         it.getBoundingBox(box);
-        for (int i = blockOf(box.min().x() - 1); i <= blockOf(box.max().x() + 1); ++i)
-            for (int j = blockOf(box.min().y() - 1); j <= blockOf(box.max().y() + 1); ++j)
-                for (int k = blockOf(box.min().z() - 1); k <= blockOf(box.max().z() + 1); ++k)
+        for (int i = blockBelow(box.min().x()); i <= blockAbove(box.max().x()); ++i)
+            for (int j = blockBelow(box.min().y()); j <= blockAbove(box.max().y()); ++j)
+                for (int k = blockBelow(box.min().z()); k <= blockAbove(box.max().z()); ++k)
                     raise(i, j, k, value);
     }
 }

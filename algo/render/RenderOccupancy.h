@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include <openvdb/openvdb.h>
@@ -35,10 +36,17 @@ public:
     /// Marks every block within one voxel of an active leaf voxel or active tile; with
     /// `majorants`, also records each block's largest reachable value (negative values count
     /// as zero). Throws std::invalid_argument when the occupied blocks' bounding box exceeds
-    /// 2^27 blocks (about 6e10 voxels), which no single cloud needs.
+    /// 2^27 blocks (about 6e10 voxels), which no single cloud needs, however far apart its
+    /// voxels lie (the block count is formed without overflow).
     explicit RenderOccupancy(const openvdb::FloatTree& tree, bool majorants = false);
 
     bool empty() const { return mOcc.empty(); }
+
+    /// Why a tree whose active voxels span `activeBox` (as evalActiveVoxelBoundingBox gives
+    /// it, or a VDB file records it) is too large a domain for the constructor, in the words
+    /// it throws; empty when it is not. Lets a reader refuse such a volume before its voxels
+    /// are read.
+    static std::string domainProblem(const openvdb::CoordBBox& activeBox);
 
     /// The block (in block units) holding voxel ijk.
     static openvdb::Coord blockOfVoxel(const openvdb::Coord& ijk)

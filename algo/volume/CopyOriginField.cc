@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -10,6 +11,7 @@
 #include "algo/CounterRandom.h"
 #include "algo/volume/CoordKey.h"
 #include "algo/volume/RecentLookup.h"
+#include "util/CheckedSize.h"
 
 namespace cg::algo {
 
@@ -144,7 +146,10 @@ CopyOriginField::Block CopyOriginField::block(const double lo[3], const double h
         b.mLo[a] = static_cast<int>(std::floor(lo[a] / mCellSize - 0.5));
         b.mDim[a] = static_cast<int>(std::floor(hi[a] / mCellSize - 0.5)) + 2 - b.mLo[a];
     }
-    b.mCells.resize(static_cast<std::size_t>(b.mDim[0]) * b.mDim[1] * b.mDim[2]);
+    const std::optional<std::uint64_t> cells =
+        util::checkedProduct({b.mDim[0], b.mDim[1], b.mDim[2]});
+    if (!cells) throw std::invalid_argument("copy origin field: the block has too many cells");
+    b.mCells.resize(static_cast<std::size_t>(*cells));
     std::size_t n = 0;
     for (int i = 0; i < b.mDim[0]; ++i)
         for (int j = 0; j < b.mDim[1]; ++j)

@@ -3,6 +3,7 @@
 #include <memory>
 #include <string>
 
+#include "algo/render/RenderOccupancy.h"
 #include "core/Error.h"
 #include "core/Hash.h"
 #include "core/Node.h"
@@ -35,7 +36,34 @@ public:
     }
 };
 
+std::string boxText(const openvdb::CoordBBox& box)
+{
+    const auto coord = [](const openvdb::Coord& c) {
+        return "(" + std::to_string(c.x()) + ", " + std::to_string(c.y()) + ", " +
+               std::to_string(c.z()) + ")";
+    };
+    return "its active voxels span " + coord(box.min()) + " to " + coord(box.max());
+}
+
 }  // namespace
+
+void checkReadVdbVoxels(const ParamSet& params, const std::string& nodeLocation,
+                        std::uint64_t maxBytes)
+{
+    const std::string& file = params.getString("file");
+    if (file.empty()) return;  // refused when the graph loads
+    const std::string& grid = params.getString("grid");
+    try {
+        const openvdb::FloatGrid::Ptr volume = formats::readVdbFogVolume(file, grid, maxBytes);
+        // The box the voxels span, where the file recorded none (or a false one).
+        const openvdb::CoordBBox box = volume->evalActiveVoxelBoundingBox();
+        if (const std::string problem = algo::RenderOccupancy::domainProblem(box); !problem.empty())
+            throw formats::FormatError(file,
+                                       "grid '" + grid + "': " + boxText(box) + ": " + problem);
+    } catch (const formats::FormatError& e) {
+        throw InputError(nodeLocation + "/params/file", e.what());
+    }
+}
 
 void registerReadVdbNode(Registry& registry)
 {
@@ -50,9 +78,11 @@ void registerReadVdbNode(Registry& registry)
         "above 1 are kept (the renderer multiplies density by its extinction); negative values "
         "are set to 0; NaN or infinity is refused. Refused with the file and grid named (exit "
         "2): a missing grid (the message lists the file's grids), a level set, a vector or "
-        "integer grid, a frustum transform, a damaged or truncated file, and a grid whose "
-        "recorded size exceeds the memory one node may take (checked before its voxels are "
-        "read). The output is named 'density', class fog volume, with the file's plain metadata "
+        "integer grid, a frustum transform, a damaged or truncated file, a grid whose "
+        "recorded size exceeds the memory one node may take, and one whose recorded bounding "
+        "box spans more than the Renderer can hold (2^27 blocks of 8^3 voxels), all checked "
+        "before its voxels are read; `validate` also reads the voxels. The output is named "
+        "'density', class fog volume, with the file's plain metadata "
         "(bool, integer, float, string). The key holds the file's content, not its path or time "
         "stamp.";
     d.outputs = {port("volume", "FogVolume", "the grid, as a fog volume named 'density'")};
@@ -80,8 +110,17 @@ void registerReadVdbNode(Registry& registry)
         if (p.getString("grid").empty()) check.fail("grid", "the grid name is empty");
         const std::string& file = p.getString("file");
         if (file.empty()) return;
+        const std::string& grid = p.getString("grid");
         try {
-            formats::inspectVdbFogVolume(file, p.getString("grid"), check.allocationLimitBytes);
+            const formats::VdbGridSummary s =
+                formats::inspectVdbFogVolume(file, grid, check.allocationLimitBytes);
+            // The Renderer refuses a domain its occupancy grid cannot hold; the box the file
+            // records shows that now rather than after the voxels are read.
+            if (s.activeBox)
+                if (const std::string problem = algo::RenderOccupancy::domainProblem(*s.activeBox);
+                    !problem.empty())
+                    throw formats::FormatError(
+                        file, "grid '" + grid + "': " + boxText(*s.activeBox) + ": " + problem);
         } catch (const formats::FormatError& e) {
             check.fail("file", e.what());
         }

@@ -2,6 +2,9 @@
 // and blocks where no sample can be positive (the margin around a leaf) are left out.
 
 #include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -9,6 +12,8 @@
 
 #include "algo/CounterRandom.h"
 #include "algo/render/RenderOccupancy.h"
+#include "algo/render/RenderPathTrace.h"
+#include "algo/render/RenderVolume.h"
 
 namespace cg {
 namespace {
@@ -86,6 +91,82 @@ TEST(RenderOccupancy, BlocksWhereNoSampleCanBePositiveAreLeftOut)
                     spans);
     ASSERT_FALSE(spans.empty());
     EXPECT_TRUE(inside(spans, 24.5));
+}
+
+/// Two active voxels, at the origin and at `far`.
+openvdb::FloatGrid::Ptr twoVoxels(const openvdb::Coord& far)
+{
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    grid->tree().setValue(openvdb::Coord(0, 0, 0), 0.5f);
+    grid->tree().setValue(far, 0.5f);
+    return grid;
+}
+
+TEST(RenderOccupancy, ADomainWhoseBlockCountWrapsIsRefusedWithItsExtents)
+{
+    // The domain runs from the block below the first leaf to the one above the last: with the
+    // far voxel's leaf 2^22 - 3 blocks out (2^21 - 3 on y and z) that is 2^22 x 2^21 x 2^21
+    // blocks, 2^64, whose 64-bit product is 0.
+    const openvdb::Coord far((1 << 25) - 24, (1 << 24) - 24, (1 << 24) - 24);
+    const openvdb::FloatGrid::Ptr grid = twoVoxels(far);
+    const std::string extents = "4194304 x 2097152 x 2097152 blocks";
+    for (const bool majorants : {false, true}) {
+        try {
+            const algo::RenderOccupancy occupancy(grid->tree(), majorants);
+            ADD_FAILURE() << "a domain of 2^64 blocks was accepted";
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find(extents), std::string::npos) << e.what();
+        }
+    }
+    // The box a VDB file records gives the same answer before the voxels are read.
+    const std::string problem =
+        algo::RenderOccupancy::domainProblem(grid->evalActiveVoxelBoundingBox());
+    EXPECT_NE(problem.find(extents), std::string::npos) << problem;
+    // Both renderers refuse it as bad input.
+    algo::RenderSettings settings;
+    settings.camera.width = 8;
+    settings.camera.height = 6;
+    EXPECT_THROW(algo::renderFogVolume(*grid, settings), std::invalid_argument);
+    EXPECT_THROW(algo::renderPathTraced(*grid, settings, {}), std::invalid_argument);
+}
+
+TEST(RenderOccupancy, VoxelsAtTheEndsOfTheIndexRangeAreRefusedWithoutOverflow)
+{
+    // The sampling margin takes these one voxel past the int range on each side.
+    constexpr int kMin = std::numeric_limits<int>::min(), kMax = std::numeric_limits<int>::max();
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    grid->tree().setValue(openvdb::Coord(kMin, kMin, 0), 0.5f);
+    grid->tree().setValue(openvdb::Coord(kMax, kMax, 0), 0.5f);
+    const std::string extents = "536870914 x 536870914 x 3 blocks";
+    try {
+        const algo::RenderOccupancy occupancy(grid->tree());
+        ADD_FAILURE() << "a domain of 2^58 blocks was accepted";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find(extents), std::string::npos) << e.what();
+    }
+    EXPECT_NE(
+        algo::RenderOccupancy::domainProblem(grid->evalActiveVoxelBoundingBox()).find(extents),
+        std::string::npos);
+}
+
+TEST(RenderOccupancy, TheRecordedBoxPredictsTheDomainOfAVolumeThatFits)
+{
+    // Unaligned boxes, negative coordinates, a tile: the box-based answer agrees with the
+    // constructor's on both sides of the limit.
+    for (const int far : {4000, -4000, 40000, -70000}) {
+        auto grid = twoVoxels(openvdb::Coord(far, 3 * far / 4 + 5, 1000 + 3));
+        grid->tree().addTile(1, openvdb::Coord(128, 128, 128), 0.25f, true);
+        const std::string problem =
+            algo::RenderOccupancy::domainProblem(grid->evalActiveVoxelBoundingBox());
+        bool refused = false;
+        try {
+            const algo::RenderOccupancy occupancy(grid->tree());
+        } catch (const std::invalid_argument& e) {
+            refused = true;
+            EXPECT_EQ(problem, e.what());
+        }
+        EXPECT_EQ(refused, !problem.empty()) << far;
+    }
 }
 
 }  // namespace
