@@ -2,6 +2,8 @@
 engine."""
 
 import json
+import math
+import operator
 import os
 import tempfile
 from collections.abc import MutableMapping
@@ -12,7 +14,9 @@ from .types import node_types
 
 
 def _plain(value):
-    """A NumPy value or array as plain Python, for JSON."""
+    """A NumPy value or array, or a list holding NumPy values, as plain Python, for JSON."""
+    if isinstance(value, (list, tuple)):
+        return [_plain(item) for item in value]
     return value.tolist() if hasattr(value, "tolist") else value
 
 
@@ -57,6 +61,38 @@ def _checked(call, graph_dict, types):
         raise converted from None
 
 
+def _non_finite(value, path=()):
+    """(keys, value) of the first NaN or infinity in a plain value, or None."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return path, value
+    items = value.items() if isinstance(value, dict) else \
+        enumerate(value) if isinstance(value, (list, tuple)) else ()
+    for key, item in items:
+        found = _non_finite(item, path + (key,))
+        if found:
+            return found
+    return None
+
+
+def _dumps(d, name):
+    """A graph dict as JSON text. JSON cannot carry a NaN or infinity, so one is refused here
+    by its place, as the loader words it (a ParameterError in a node's parameters), rather
+    than as text that does not parse."""
+    found = _non_finite(d)
+    if found is None:
+        return json.dumps(d)
+    path, value = found
+    node = path[1] if len(path) > 1 and path[0] == "nodes" else None
+    pointer = "".join("/" + str(key).replace("~", "~0").replace("/", "~1") for key in path)
+    where = f"{name}:{pointer}"
+    text = "nan" if math.isnan(value) else "inf" if value > 0 else "-inf"
+    in_params = node is not None and len(path) > 3 and path[2] == "params"
+    error = (ParameterError if in_params else GraphError)(
+        f"{where}: value {text} is not finite" + (f" (node '{node}')" if node else ""))
+    error.where, error.node = where, node
+    raise error
+
+
 def _split(ref, what):
     node, dot, port = ref.partition(".")
     if not dot or not node or not port:
@@ -84,8 +120,8 @@ class Params(MutableMapping):
 
     def __setitem__(self, name, value):
         graph = self._graph
-        _checked(lambda: graph._doc.set_param(self._id, name, json.dumps(_plain(value))),
-                 graph.to_dict, graph._types)
+        _checked(lambda: graph._doc.set_param(self._id, name, _plain(value)), graph.to_dict,
+                 graph._types)
 
     def __delitem__(self, name):
         self[name] = self._declared()[name].default
@@ -149,8 +185,9 @@ class Graph:
     def from_dict(cls, d, name="<dict>", base_dir="."):
         """A graph from a dict in the file format; `name` prefixes error locations and
         relative input files are found under `base_dir`."""
-        return cls(_checked(lambda: _cloudgraph.Document.parse(json.dumps(d), name, os.fspath(base_dir)),
-                            lambda: d, node_types()))
+        return cls(_checked(
+            lambda: _cloudgraph.Document.parse(_dumps(d, name), name, os.fspath(base_dir)),
+            lambda: d, node_types()))
 
     def to_dict(self):
         """The graph in the file format (every parameter that differs from its default)."""
@@ -223,9 +260,17 @@ class Graph:
         cooks; cancel() from another thread, or Ctrl-C, stops it with nothing partial
         cached."""
         node, port = _split(output, "output")
+        first, last = self._doc.first_frame, self._doc.last_frame
         if frame is None:
-            frame = self._doc.first_frame
-        value = self._doc.cook(node, port, int(frame), os.fspath(cache) if cache else "", os.fspath(out))
+            frame = first
+        elif isinstance(frame, bool) or not hasattr(type(frame), "__index__"):
+            # int() would truncate 1.5 to frame 1 and read "3" as 3 without a word.
+            raise TypeError(f"frame must be an integer, not {frame!r}")
+        frame = operator.index(frame)
+        if not first <= frame <= last:
+            raise ValueError(f"frame {frame} is outside the graph's frames {first}:{last}")
+        value = self._doc.cook(node, port, frame, os.fspath(cache) if cache else "",
+                               os.fspath(out))
         return _with_pyopenvdb(value) if isinstance(value, _cloudgraph.FogVolume) else value
 
     def cancel(self):
@@ -239,7 +284,7 @@ class Graph:
 
     # Internal helpers for Node and Params.
     def _replace(self, d):
-        _checked(lambda: self._doc.replace(json.dumps(d)), lambda: d, self._types)
+        _checked(lambda: self._doc.replace(_dumps(d, self._doc.name)), lambda: d, self._types)
 
     def _node_dict(self, node_id):
         return self.to_dict()["nodes"][node_id]

@@ -27,14 +27,14 @@ void defineModule(py::module_& m)
         .def_static("parse", &Document::parse, py::arg("text"), py::arg("name"),
                     py::arg("base_dir"))
         .def("to_json", &Document::toJson)
-        .def("set_param", &Document::setParam, py::arg("node"), py::arg("param"),
-             py::arg("value_json"))
+        .def("set_param", &Document::setParam, py::arg("node"), py::arg("param"), py::arg("value"))
         .def("replace", &Document::replace, py::arg("text"))
         .def("save", &Document::save, py::arg("path"))
         .def("cook", &Document::cook, py::arg("node"), py::arg("port"), py::arg("frame"),
              py::arg("cache"), py::arg("out"))
         .def("cancel", &Document::cancel)
         .def("last_report", &Document::lastReport)
+        .def_property_readonly("name", &Document::name)
         .def_property_readonly("first_frame", &Document::firstFrame)
         .def_property_readonly("last_frame", &Document::lastFrame);
 }

@@ -29,19 +29,23 @@ public:
                                            const std::string& baseDir);
 
     std::string toJson() const { return mDoc->toJson(); }
-    /// Sets one parameter from its JSON text, checked as loading checks it.
-    void setParam(const std::string& node, const std::string& param, const std::string& valueJson);
+    /// Sets one parameter to a plain Python value (None, bool, int, float, str, list, tuple,
+    /// dict), checked as loading checks it. A NaN or infinity reaches those checks, which
+    /// refuse it as not finite (JSON text could not carry it); another type is a TypeError.
+    void setParam(const std::string& node, const std::string& param, const pybind11::handle& value);
     void replace(const std::string& text) { mDoc->replace(text); }
     void save(const std::string& path) { mDoc->save(path); }
 
     /// Cooks output `port` of `node` at `frame` with the GIL released (GraphDocument::cook),
-    /// and converts it to a Python value. Ctrl-C, or cancel() from another thread, cancels
-    /// it: nothing partial is cached.
+    /// and converts it to a Python value. A frame outside the graph's frames is a ValueError.
+    /// Ctrl-C, or cancel() from another thread, cancels it: nothing partial is cached.
     pybind11::object cook(const std::string& node, const std::string& port, int frame,
                           const std::string& cache, const std::string& out);
     void cancel() { mDoc->cancel(); }
     std::string lastReport() const { return mDoc->lastReport(); }
 
+    /// The name that prefixes the graph's error locations (its file, or from_dict's name).
+    const std::string& name() const { return mDoc->graph().sourceName(); }
     int firstFrame() const { return mDoc->graph().frames.start; }
     int lastFrame() const { return mDoc->graph().frames.end; }
 

@@ -249,14 +249,27 @@ DataPtr fromPython(const py::handle& value, const std::string& type, const std::
     }
     if (type == "Float") {
         if (!py::hasattr(value, "__float__")) refuse(what, type, "needs a number");
-        const double v = py::float_(py::reinterpret_borrow<py::object>(value));
+        const double v = PyFloat_AsDouble(value.ptr());
+        if (v == -1.0 && PyErr_Occurred()) {
+            // An int past a double's range (OverflowError), or a __float__ that raised.
+            const py::error_already_set error;
+            refuse(what, type, "cannot be a float: " + std::string(error.what()));
+        }
         if (!std::isfinite(v)) refuse(what, type, "is not finite");
         return std::make_shared<FloatData>(v);
     }
     if (type == "Int") {
         if (!py::hasattr(value, "__index__")) refuse(what, type, "needs an integer");
-        return std::make_shared<IntData>(
-            py::int_(py::reinterpret_borrow<py::object>(value)).cast<std::int64_t>());
+        const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
+        if (!index) throw py::error_already_set();
+        int overflow = 0;
+        const long long v = PyLong_AsLongLongAndOverflow(index.ptr(), &overflow);
+        if (overflow != 0)
+            refuse(what, type,
+                   "an integer of " + std::string(py::str(index.attr("bit_length")())) +
+                       " bits is outside the signed 64-bit range");
+        if (v == -1 && PyErr_Occurred()) throw py::error_already_set();
+        return std::make_shared<IntData>(static_cast<std::int64_t>(v));
     }
     if (type == "Text") {
         if (!py::isinstance<py::str>(value)) refuse(what, type, "needs a str");

@@ -149,3 +149,17 @@ def test_a_bad_input_file_raises_file_error_with_the_node_id(tmp_path):
         g["read"].params["file"] = "broken.vdb"
     assert error.value.node == "read"
     assert "broken.vdb" in str(error.value)
+
+
+def test_cook_refuses_a_fractional_or_out_of_range_frame(small_figure6):
+    frames = small_figure6.frames
+    for frame in (1.5, 2.0, "3", True):
+        with pytest.raises(TypeError, match="frame"):
+            small_figure6.cook("noise.map", frame=frame)
+    for frame in (frames.start - 1, frames.stop, 2**32 + frames.start, 2**63, -2**70):
+        with pytest.raises(ValueError, match="frame") as error:
+            small_figure6.cook("noise.map", frame=frame)
+        assert f"{frames.start}:{frames.stop - 1}" in str(error.value)
+    # NumPy integers are integers; the last frame is in the range.
+    small_figure6.cook("noise.map", frame=np.int64(frames.start))
+    small_figure6.cook("noise.map", frame=frames.stop - 1)

@@ -3,6 +3,7 @@
 import json
 import subprocess
 
+import numpy as np
 import pytest
 
 import cloudgraph
@@ -101,3 +102,29 @@ def test_errors_have_their_own_types(tmp_path):
     with pytest.raises(cloudgraph.FileError) as error:
         g.add_node("read", "ReadVDB", {"file": "nowhere.vdb"})
     assert error.value.node == "read"
+
+
+@pytest.mark.parametrize("bad", [float("nan"), float("inf"), -float("inf"), np.float32("nan")])
+def test_a_non_finite_parameter_is_refused_as_not_finite(small_figure6, bad):
+    # A number, and a number inside a vector, assigned; then a new node's parameters.
+    for node, name, value, pointer in [
+            ("voxelize", "voxelSize", bad, "/nodes/voxelize/params/voxelSize"),
+            ("render", "sunDirection", [1, bad, 0.5], "/nodes/render/params/sunDirection/1")]:
+        params = small_figure6[node].params
+        before = params[name]
+        with pytest.raises(cloudgraph.ParameterError, match="is not finite") as error:
+            params[name] = value
+        assert error.value.node == node
+        assert error.value.where.endswith(pointer)
+        assert f"(node '{node}')" in str(error.value)
+        assert params[name] == before
+    with pytest.raises(cloudgraph.ParameterError, match="is not finite") as error:
+        small_figure6.add_node("cloud2", "SyntheticCumulus", {"voxelSize": bad})
+    assert error.value.node == "cloud2"
+    assert error.value.where.endswith("/nodes/cloud2/params/voxelSize")
+    assert "cloud2" not in small_figure6
+    d = small_figure6.to_dict()
+    d["nodes"]["voxelize"]["params"]["voxelSize"] = float(bad)
+    with pytest.raises(cloudgraph.ParameterError, match="is not finite") as error:
+        cloudgraph.Graph.from_dict(d, name="edited")
+    assert error.value.where == "edited:/nodes/voxelize/params/voxelSize"

@@ -2,7 +2,9 @@
 node, from Python and from JSON graphs the CLI runs with --python-nodes."""
 
 import json
+import os
 import subprocess
+import sys
 import textwrap
 from pathlib import Path
 
@@ -229,3 +231,63 @@ def test_an_input_file_s_content_keys_the_node(tmp_path):
     assert statuses(g.last_report(), 0)["read"] == "memory-hit"
     (tmp_path / "b.txt").write_text("2.5")
     assert g.cook("read.value", cache=tmp_path / "cache") == 2.5
+
+
+def test_an_output_out_of_its_type_s_range_names_the_node_and_output():
+    @cloudgraph.node
+    class HugeI:
+        """Returns numbers no Int or Float holds."""
+        outputs = {"count": cloudgraph.Output("Int", "a count"),
+                   "size": cloudgraph.Output("Float", "a size")}
+        params = {"huge": cloudgraph.Param(str, "count", choices=["count", "size"], doc="which")}
+
+        def cook(self, inputs, params, context):
+            big = 2**64 if params["huge"] == "count" else 10**400
+            return {"count": big if params["huge"] == "count" else 1,
+                    "size": float(big) if params["huge"] == "count" else big}
+
+    g = cloudgraph.Graph.from_dict({"cloudgraph": 1, "frames": {"start": 0, "end": 0},
+                                    "nodes": {"huge": {"type": "HugeI"}}})
+    for which, output in [("count", "count"), ("size", "size")]:
+        g["huge"].params["huge"] = which
+        with pytest.raises(cloudgraph.CookError) as error:
+            g.cook(f"huge.{output}")
+        assert error.value.node == "huge"
+        message = str(error.value)
+        assert "'huge'" in message and f"output '{output}'" in message
+        assert "Unable to cast" not in message
+
+
+HOSTILE_MODULE = '''
+import pathlib
+pathlib.Path({marker!r}).joinpath({name!r}).write_text("imported")
+'''
+
+
+@pytest.mark.parametrize("source", ["working directory", "PYTHONPATH", "user site"])
+def test_the_cli_s_python_imports_nothing_from_the_working_directory_or_environment(
+        tmp_path, cli, source):
+    """The embedded interpreter is isolated: a module in the directory the CLI runs from, on
+    PYTHONPATH or in the user's site directory neither shadows the standard library (nor
+    NumPy) nor runs at start-up."""
+    markers, work, home = tmp_path / "markers", tmp_path / "work", tmp_path / "home"
+    for folder in markers, work, home:
+        folder.mkdir()
+    version = f"python{sys.version_info[0]}.{sys.version_info[1]}"
+    folder = {"working directory": work, "PYTHONPATH": tmp_path / "path",
+              "user site": home / ".local" / "lib" / version / "site-packages"}[source]
+    folder.mkdir(parents=True, exist_ok=True)
+    for name in ["json", "typing", "hashlib", "inspect", "numpy", "sitecustomize",
+                 "usercustomize"]:
+        (folder / f"{name}.py").write_text(HOSTILE_MODULE.format(marker=str(markers), name=name))
+    (home / "startup.py").write_text(HOSTILE_MODULE.format(marker=str(markers), name="startup"))
+    nodes = Path(register(tmp_path, "ScaleJ").__file__)
+    env = {k: v for k, v in os.environ.items() if not k.startswith("PYTHON")}
+    env.update(HOME=str(home), PYTHONSTARTUP=str(home / "startup.py"))
+    if source == "PYTHONPATH":
+        env["PYTHONPATH"] = str(folder)
+    result = subprocess.run([cli, "nodes", "ScaleJ", "--python-nodes", str(nodes)], cwd=work,
+                            env=env, capture_output=True, text=True)
+    assert sorted(p.name for p in markers.iterdir()) == []
+    assert result.returncode == 0, result.stderr
+    assert "ScaleJ" in result.stdout
