@@ -102,7 +102,7 @@ std::string GraphDocument::save(const std::filesystem::path& path)
     completeGraph();
     std::string text = graphFileText(mGraph, mLayout);
     try {
-        util::writeFileAtomically(path, text);
+        util::saveFileAtomically(path, text);
     } catch (const std::exception& e) {
         throw InputError(path.string(), std::string("cannot write the graph: ") + e.what());
     }
@@ -152,39 +152,46 @@ DataPtr GraphDocument::cook(const Graph& graph, const std::string& node, const s
         mProgress.cooking = true;
         mCookStart = std::chrono::steady_clock::now();
     }
+    // Ends the cook on every way out, a cache that cannot be made included: a mark left set
+    // would refuse every later cook of this graph.
+    struct EndCook {
+        GraphDocument& doc;
+        Evaluator* evaluator = nullptr;
+        ~EndCook() { doc.endCook(evaluator); }
+    } end{*this};
     Evaluator& evaluator = evaluatorFor(cache, out);
+    end.evaluator = &evaluator;
     evaluator.setCancelToken(token);
     evaluator.report().clear();
     OutputsPtr outputs;
-    std::exception_ptr failure;
-    try {
-        if (alsoCook.empty()) {
-            outputs = evaluator.pull(graph, node, frame);
-        } else {
-            std::vector<std::string> targets = alsoCook;
-            targets.push_back(node);
-            const std::size_t index = graph.indexOf(node);
-            evaluator.cookFrames(graph, frame, frame, targets,
-                                 [&](int, const Evaluator::FrameOutputs& cooked) {
-                                     outputs = cooked[index];
-                                 });
-            // Writers whose files still verify are skipped with what only they read: the
-            // node was not needed, so pull it on its own (a cache hit, most often).
-            if (!outputs) outputs = evaluator.pull(graph, node, frame);
-        }
-    } catch (...) {
-        failure = std::current_exception();
+    if (alsoCook.empty()) {
+        outputs = evaluator.pull(graph, node, frame);
+    } else {
+        std::vector<std::string> targets = alsoCook;
+        targets.push_back(node);
+        const std::size_t index = graph.indexOf(node);
+        evaluator.cookFrames(
+            graph, frame, frame, targets,
+            [&](int, const Evaluator::FrameOutputs& cooked) { outputs = cooked[index]; });
+        // Writers whose files still verify are skipped with what only they read: the
+        // node was not needed, so pull it on its own (a cache hit, most often).
+        if (!outputs) outputs = evaluator.pull(graph, node, frame);
     }
-    {
-        std::lock_guard<std::mutex> lock(mCookMutex);
-        mCancel.reset();
-        mLastReport = evaluator.report().toJson().dump();
-        mProgress.cooking = false;
-        mProgress.seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - mCookStart).count();
-    }
-    if (failure) std::rethrow_exception(failure);
     return outputs->at(port);
+}
+
+void GraphDocument::endCook(Evaluator* evaluator) noexcept
+{
+    std::lock_guard<std::mutex> lock(mCookMutex);
+    mCancel.reset();
+    mProgress.cooking = false;
+    mProgress.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - mCookStart).count();
+    try {
+        mLastReport = evaluator ? evaluator->report().toJson().dump() : "{}";
+    } catch (...) {
+        mLastReport = "{}";  // out of memory: the cook's own error says more than its report
+    }
 }
 
 void GraphDocument::cancel()

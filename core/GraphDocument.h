@@ -80,7 +80,8 @@ public:
     const Graph& completeGraph() const;
     /// Writes the graph to `path` atomically, after checking the graph is complete, in the
     /// layout of the file it was loaded from (graphFileText: its key order and spelling, so
-    /// a diff shows the edit); returns the bytes written.
+    /// a diff shows the edit); returns the bytes written. A symbolic link is written through
+    /// to its target, whose mode and owner are kept (util::saveFileAtomically).
     std::string save(const std::filesystem::path& path);
     /// The file's text as last loaded, reloaded or saved (empty for a parsed document).
     const std::string& fileText() const { return mLayout; }
@@ -90,7 +91,9 @@ public:
     /// empty) is a disk cache directory shared with the CLI, `out` where writer nodes write.
     /// `alsoCook` names more nodes to cook at the frame (writers, say), in the same cook and
     /// report. One cook at a time: a second one throws CookInProgress while the first runs.
-    /// cancel() from another thread stops it (Cancelled): nothing partial is cached.
+    /// cancel() from another thread stops it (Cancelled): nothing partial is cached. Whatever
+    /// it throws (a `cache` that cannot be made: InputError), the cook is over: the next
+    /// one may start.
     DataPtr cook(const Graph& graph, const std::string& node, const std::string& port,
                  int frame, const std::string& cache, const std::string& out,
                  const std::vector<std::string>& alsoCook = {});
@@ -104,6 +107,8 @@ public:
 private:
     GraphDocument(Graph graph, const Registry& registry);
     Evaluator& evaluatorFor(const std::string& cache, const std::string& out);
+    /// Marks the cook over and keeps its report (`evaluator` null: none was made).
+    void endCook(Evaluator* evaluator) noexcept;
 
     Graph mGraph;  ///< loaded with requireComplete off
     mutable std::optional<Graph> mComplete;  ///< completeGraph() until the next edit

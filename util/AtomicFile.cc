@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -71,6 +72,32 @@ bool isOrphan(const std::string& name, fs::file_time_type written)
     return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
 }
 
+/// Writes `bytes` into the new temp file `fd` and closes it; "" or why it failed.
+std::string writeAndClose(int fd, std::string_view bytes)
+{
+    std::string why;
+    if (const int error = writeAllAt(fd, bytes.data(), bytes.size(), 0))
+        why = std::string("write failed: ") + std::strerror(error);
+    if (::close(fd) != 0 && why.empty()) why = std::string("close failed: ") + std::strerror(errno);
+    return why;
+}
+
+/// The file `path` names once the symbolic links of its last component are followed (the
+/// directories above may be links too: the kernel follows those when it renames).
+fs::path followFinalLinks(const fs::path& path)
+{
+    fs::path p = path;
+    for (int depth = 0; depth < 40; ++depth) {  // the kernel's own limit on nested links
+        struct stat st {};
+        if (::lstat(p.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return p;
+        std::error_code ec;
+        const fs::path target = fs::read_symlink(p, ec);
+        if (ec) fail(path, ec.message());
+        p = target.is_absolute() ? target : p.parent_path() / target;
+    }
+    fail(path, std::strerror(ELOOP));
+}
+
 }  // namespace
 
 AtomicOutput::AtomicOutput(fs::path target, fs::path tempDir) : mTarget(std::move(target))
@@ -126,12 +153,36 @@ void writeFileAtomically(const fs::path& target, std::string_view bytes, const f
     AtomicOutput out(target, tempDir);
     const int fd = ::open(out.tempPath().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     if (fd < 0) fail(target, std::strerror(errno));
-    std::string why;
-    if (const int error = writeAllAt(fd, bytes.data(), bytes.size(), 0))
-        why = std::string("write failed: ") + std::strerror(error);
-    if (::close(fd) != 0 && why.empty()) why = std::string("close failed: ") + std::strerror(errno);
-    if (!why.empty()) fail(target, why);
+    if (const std::string why = writeAndClose(fd, bytes); !why.empty()) fail(target, why);
     out.commit(flush);
+}
+
+void saveFileAtomically(const fs::path& path, std::string_view bytes)
+{
+    // Renaming onto the link itself would leave its target without the edit and put a
+    // regular file in place of the link.
+    const fs::path target = followFinalLinks(path);
+    struct stat old {};
+    const bool replacing = ::stat(target.c_str(), &old) == 0;
+    AtomicOutput out(target);
+    const int fd = ::open(out.tempPath().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0) fail(path, std::strerror(errno));
+    if (replacing) {
+        // The new file is this process's, with the umask's mode: a 0600 graph would become
+        // readable by all. The owner first, as chown clears the set-ID bits; only root may
+        // give a file away, but an owner may still keep the group, so each is tried alone.
+        if (old.st_uid != ::geteuid() || old.st_gid != ::getegid()) {
+            if (::fchown(fd, old.st_uid, old.st_gid) != 0)
+                static_cast<void>(::fchown(fd, static_cast<uid_t>(-1), old.st_gid));
+        }
+        if (::fchmod(fd, old.st_mode & 07777) != 0) {
+            const std::string why = std::string("cannot keep its mode: ") + std::strerror(errno);
+            ::close(fd);
+            fail(path, why);
+        }
+    }
+    if (const std::string why = writeAndClose(fd, bytes); !why.empty()) fail(path, why);
+    out.commit();
 }
 
 std::size_t removeOrphanedTemporaries(const fs::path& dir)

@@ -55,6 +55,13 @@ void writeFileAtomically(const std::filesystem::path& target, std::string_view b
                          const std::filesystem::path& tempDir = {},
                          AtomicOutput::Flush flush = AtomicOutput::Flush::ToDisk);
 
+/// Saves `bytes` as the file `path` names, atomically, as an editor saves a document: through
+/// symbolic links to the file they finally name (the link stays a link and its target gets
+/// the bytes), keeping that file's permission bits and, where this process may set them, its
+/// owner and group. A file that does not exist yet is made with mode 0666 less the umask.
+/// Throws std::runtime_error naming `path`.
+void saveFileAtomically(const std::filesystem::path& path, std::string_view bytes);
+
 /// Removes the temp files in `dir` (not below it) that no live writer owns: those of this
 /// host whose process has ended, and any older than a day (a writer on another host that
 /// shares the directory finishes within minutes). Returns how many were removed; errors
