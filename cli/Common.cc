@@ -4,6 +4,11 @@
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <set>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -12,11 +17,95 @@
 #include "core/Plugin.h"
 #include "formats/FormatError.h"
 #include "nodes/Builtin.h"
+#include "util/AtomicFile.h"
+#include "util/Beneath.h"
+#include "util/FramePattern.h"
 #ifdef CLOUDGRAPH_WITH_PYTHON
 #include "EmbeddedPython.h"
 #endif
 
 namespace cg::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Writes a byte into a new file in `out` and removes it: a read-only or full file system is
+/// found now instead of at the first write.
+void checkWritable(const fs::path& out)
+{
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    if (ec) throw InputError("--out " + out.string(), "cannot create it: " + ec.message());
+    const util::AtomicOutput probe(out / ".write-check");  // never committed: removed
+    const int fd = ::open(probe.tempPath().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    int error = fd < 0 ? errno : util::writeAllAt(fd, "x", 1, 0);
+    if (fd >= 0 && ::close(fd) != 0 && error == 0) error = errno;
+    if (error != 0)
+        throw InputError("--out " + out.string(),
+                         std::string("cannot write there: ") + std::strerror(error));
+}
+
+/// `targets` (the sinks when empty) and every node they read from, directly or not.
+std::vector<std::size_t> closureOf(const Graph& graph, const std::vector<std::string>& targets)
+{
+    std::vector<std::size_t> stack;
+    if (targets.empty()) stack = graph.sinks();
+    for (const std::string& id : targets) stack.push_back(graph.indexOf(id));
+    std::vector<bool> seen(graph.nodes().size(), false);
+    std::vector<std::size_t> nodes;
+    while (!stack.empty()) {
+        const std::size_t idx = stack.back();
+        stack.pop_back();
+        if (seen[idx]) continue;
+        seen[idx] = true;
+        nodes.push_back(idx);
+        for (std::size_t up : graph.upstream()[idx]) stack.push_back(up);
+    }
+    return nodes;
+}
+
+}  // namespace
+
+void checkOutputPlaces(const Graph& graph, const std::vector<std::string>& targets,
+                       FrameRange frames, const fs::path& out)
+{
+    const bool confined = !graph.limits.allowPathsOutsideOut;
+    bool checkedOut = false;
+    for (std::size_t idx : closureOf(graph, targets)) {
+        const GraphNode& node = graph.nodes()[idx];
+        for (std::size_t i = 0; i < node.decl->params.size(); ++i) {
+            const ParamDecl& decl = node.decl->params[i];
+            if (decl.role != ParamRole::OutputPath) continue;
+            const fs::path pattern(std::get<std::string>(node.params.valueAt(i)));
+            if (pattern.is_relative() && !checkedOut) {
+                checkWritable(out);
+                checkedOut = true;
+            }
+            const auto refuse = [&](const fs::path& file, const std::string& problem) {
+                throw InputError(graph.locate(node.pointer + "/params/" + decl.name),
+                                 "cannot write '" + file.string() + "': " + problem + " (node '" +
+                                     node.id + "')");
+            };
+            // '#' is only in the file name: one walk finds what is in the way of the
+            // directories; the file names of the other frames need one lstat each.
+            const bool numbered = util::firstHashRun(pattern.filename().string()).has_value();
+            const int last = numbered ? frames.end : frames.start;
+            const fs::path first = util::framePath(pattern, frames.start);
+            if (confined) {
+                if (const std::string problem = util::outputPlaceProblem(out, first);
+                    !problem.empty())
+                    refuse(out / first, problem);
+            }
+            for (int frame = frames.start; frame <= last; ++frame) {
+                const fs::path file = util::framePath(pattern, frame);
+                const fs::path at = file.is_relative() ? out / file : file;
+                std::error_code ec;
+                if (fs::is_directory(fs::symlink_status(at, ec))) refuse(at, "it is a directory");
+            }
+        }
+    }
+}
 
 void OptionParser::parse()
 {

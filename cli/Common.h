@@ -2,6 +2,7 @@
 /// What the subcommands share: option parsing, the registry with plugins, error reporting.
 
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -64,6 +65,15 @@ LoadOptions graphLoadOptions(const OptionParser& opts);
 /// Builds the registry (with --plugin), loads the one positional graph file and applies
 /// every --set. Throws InputError on any bad input.
 Graph loadGraphFromOptions(const OptionParser& opts, Registry& registry, const char* command);
+
+/// Refuses (InputError, exit 2), before anything cooks, what would otherwise fail only at the
+/// first write, after minutes of cooking: an `out` that cannot be created or written (read
+/// only, full) and, for every output path of `targets` and the nodes they need (the graph's
+/// sinks when empty) at each frame of `frames`, a directory where the file goes or a
+/// directory of its path that leads out of `out` through a symbolic link (unless the graph
+/// allows paths outside it). The error names the node's parameter and the file.
+void checkOutputPlaces(const Graph& graph, const std::vector<std::string>& targets,
+                       FrameRange frames, const std::filesystem::path& out);
 
 /// Runs `body`, turning exceptions into a message on stderr and an exit code.
 int guarded(const std::function<int()>& body);

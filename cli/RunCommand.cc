@@ -150,6 +150,9 @@ int runCommand(const Args& args)
                                                 *m, "--cache-memory-mb", "a size in MiB", 0,
                                                 kMaxCacheMemoryMiB))
                                             << 20;
+        // After every option is checked: a refused option creates no --out.
+        if (!(opts.has("--simulations-only") && targets.empty()))
+            checkOutputPlaces(graph, targets, frames, evalOptions.outDir);
         gCancel = evalOptions.cancel;
         std::signal(SIGINT, onInterrupt);
         std::signal(SIGTERM, onInterrupt);

@@ -29,6 +29,9 @@ struct EvalContext {
     int startFrame = 0;        ///< simulations start here (the graph's first frame)
     double timeStep = 1.0;     ///< seconds per frame
     std::uint64_t seed = 0;    ///< the graph's global seed
+    /// Output paths may leave the output directory (--allow-outside-out): then they are not
+    /// resolved beneath it either, and a symbolic link in it is followed where it leads.
+    bool allowOutsideOut = false;
     std::shared_ptr<CancelToken> cancel = std::make_shared<CancelToken>();
 };
 

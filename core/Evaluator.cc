@@ -309,6 +309,7 @@ private:
         eval.startFrame = mGraph.frames.start;
         eval.timeStep = mGraph.timeStep;
         eval.seed = mGraph.seed;
+        eval.allowOutsideOut = mGraph.limits.allowPathsOutsideOut;
         eval.cancel = mEv.mOptions.cancel;
         CookContext ctx(decl, node.id, node.params, eval, mEv.mOptions.outDir);
         nlohmann::json inputKeys = nlohmann::json::object();

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "core/Error.h"
+#include "util/Beneath.h"
 #include "util/FramePattern.h"
 
 namespace cg {
@@ -52,10 +53,21 @@ void CookContext::setOutput(const std::string& port, DataPtr value)
 
 std::filesystem::path CookContext::outputPath(const std::string& param) const
 {
-    std::filesystem::path p = util::framePath(mParams.getString(param), mEval.frame);
-    if (p.is_relative()) p = mOutDir / p;
-    std::filesystem::create_directories(p.parent_path());
-    return p;
+    const std::filesystem::path file = util::framePath(mParams.getString(param), mEval.frame);
+    if (mEval.allowOutsideOut) {
+        const std::filesystem::path p = file.is_relative() ? mOutDir / file : file;
+        std::filesystem::create_directories(p.parent_path());
+        return p;
+    }
+    // Loading refused absolute paths and "..": only a symbolic link inside the output
+    // directory could lead out of it now.
+    if (const std::string problem = util::makeOutputPlace(mOutDir, file); !problem.empty()) {
+        const bool leaves = problem.find("leads outside") != std::string::npos;
+        throw InputError(mNodeId + "/params/" + param,
+                         "cannot write '" + (mOutDir / file).string() + "': " + problem +
+                             (leaves ? " (use --allow-outside-out to permit)" : ""));
+    }
+    return mOutDir / file;
 }
 
 }  // namespace cg

@@ -60,7 +60,10 @@ public:
     void setOutput(const std::string& port, DataPtr value);
 
     /// Resolves an OutputPath parameter under the run's output directory, with a ####
-    /// pattern replaced by the zero-padded frame. The parent directory is created.
+    /// pattern replaced by the zero-padded frame. The parent directory is created. Unless
+    /// the graph allows paths outside the output directory, each directory of the path is
+    /// resolved beneath it: InputError (naming the parameter) when one leads out of it
+    /// through a symbolic link, is not a directory, or a directory sits where the file goes.
     std::filesystem::path outputPath(const std::string& param) const;
 
     // Engine side.

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -216,6 +217,102 @@ TEST(CliHardening, ReadVdbRefusesFilesThatAreNotFogVolumesWithExitCode2)
         "read": {"type": "ReadVDB", "params": {"file": "good.vdb"}}}})");
     const auto r = runCli({"run", (dir / "g.json").string(), "--out", (dir / "out").string()});
     EXPECT_EQ(r.exitCode, 0) << r.errors;
+}
+
+namespace {
+
+/// Writes RandomField values to `file` (relative to --out) on frames 0 and 1.
+std::string graphWriting(const std::string& file)
+{
+    return R"({"cloudgraph": 1, "frames": {"start": 0, "end": 1}, "nodes": {
+        "a": {"type": "RandomField", "params": {"width": 3, "height": 1}},
+        "w": {"type": "WriteArray", "params": {"file": ")" +
+           file + R"("}, "inputs": {"values": "a.values"}}}})";
+}
+
+}  // namespace
+
+TEST(CliHardening, WritersDoNotFollowASymbolicLinkOutOfOut)
+{
+    TempDir dir;
+    const fs::path out = dir / "out";
+    fs::create_directories(out);
+    fs::create_directories(dir / "elsewhere");
+    test::writeFile(dir / "elsewhere/a.0000.txt", "not yours to replace");
+    fs::create_symlink(dir / "elsewhere", out / "demo");
+    fs::create_symlink("../elsewhere", out / "up");
+
+    for (const std::string file : {"demo/a.####.txt", "up/a.####.txt", "demo/sub/a.####.txt"}) {
+        test::writeFile(dir / "g.json", graphWriting(file));
+        const auto r = runCli({"run", (dir / "g.json").string(), "--out", out.string(), "-q"});
+        EXPECT_EQ(r.exitCode, 2) << file << ": " << r.errors;
+        EXPECT_NE(r.errors.find("g.json:/nodes/w/params/file"), std::string::npos) << r.errors;
+        EXPECT_NE(r.errors.find("'w'"), std::string::npos) << r.errors;
+        EXPECT_NE(r.errors.find("leads outside the output directory"), std::string::npos)
+            << r.errors;
+        EXPECT_EQ(test::readFile(dir / "elsewhere/a.0000.txt"), "not yours to replace");
+        EXPECT_FALSE(fs::exists(dir / "elsewhere/a.0001.txt"));
+        EXPECT_FALSE(fs::exists(dir / "elsewhere/sub"));
+    }
+    // A link that stays inside --out is followed; --allow-outside-out follows any link.
+    fs::create_directories(out / "shots/s1");
+    fs::create_symlink("shots/s1", out / "current");
+    test::writeFile(dir / "g.json", graphWriting("current/a.####.txt"));
+    auto r = runCli({"run", (dir / "g.json").string(), "--out", out.string(), "-q"});
+    EXPECT_EQ(r.exitCode, 0) << r.errors;
+    EXPECT_TRUE(fs::exists(out / "shots/s1/a.0001.txt"));
+    test::writeFile(dir / "g.json", graphWriting("demo/a.####.txt"));
+    r = runCli(
+        {"run", (dir / "g.json").string(), "--out", out.string(), "-q", "--allow-outside-out"});
+    EXPECT_EQ(r.exitCode, 0) << r.errors;
+    EXPECT_NE(test::readFile(dir / "elsewhere/a.0000.txt"), "not yours to replace");
+}
+
+TEST(CliHardening, AnOutThatCannotBeWrittenIsRefusedBeforeCooking)
+{
+    TempDir dir;
+    test::writeFile(dir / "g.json", graphWriting("a.####.txt"));
+    const std::string graph = (dir / "g.json").string();
+    // /proc is a directory in which nothing can be created, even by root.
+    for (const std::string out : {"/proc", "/proc/cloudgraph-out"}) {
+        const auto r = runCli({"run", graph, "--out", out, "-q"});
+        EXPECT_EQ(r.exitCode, 2) << out << ": " << r.errors;
+        EXPECT_NE(r.errors.find("--out " + out), std::string::npos) << r.errors;
+        EXPECT_EQ(r.errors.find("internal error"), std::string::npos) << r.errors;
+    }
+    if (::geteuid() != 0) {  // root writes into a read-only directory
+        fs::create_directories(dir / "read-only");
+        fs::permissions(dir / "read-only", fs::perms::owner_read | fs::perms::owner_exec);
+        const auto r = runCli({"run", graph, "--out", (dir / "read-only").string(), "-q"});
+        EXPECT_EQ(r.exitCode, 2) << r.errors;
+        EXPECT_NE(r.errors.find("--out"), std::string::npos) << r.errors;
+        fs::permissions(dir / "read-only", fs::perms::owner_all);
+    }
+    // A graph that writes nothing needs no --out.
+    test::writeFile(dir / "quiet.json", R"({"cloudgraph": 1, "nodes": {
+        "a": {"type": "RandomField", "params": {"width": 3, "height": 1}}}})");
+    const auto quiet = runCli({"run", (dir / "quiet.json").string(), "--out", "/proc", "-q"});
+    EXPECT_EQ(quiet.exitCode, 0) << quiet.errors;
+}
+
+TEST(CliHardening, ADirectoryWhereAnOutputFileGoesIsRefusedBeforeCooking)
+{
+    TempDir dir;
+    const fs::path out = dir / "out";
+    test::writeFile(dir / "g.json", graphWriting("a.####.txt"));
+    fs::create_directories(out / "a.0001.txt");  // the last frame's file
+    const auto r = runCli({"run", (dir / "g.json").string(), "--out", out.string(), "-q"});
+    EXPECT_EQ(r.exitCode, 2) << r.errors;
+    EXPECT_NE(r.errors.find("g.json:/nodes/w/params/file"), std::string::npos) << r.errors;
+    EXPECT_NE(r.errors.find("a.0001.txt"), std::string::npos) << r.errors;
+    EXPECT_NE(r.errors.find("is a directory"), std::string::npos) << r.errors;
+    EXPECT_FALSE(fs::exists(out / "a.0000.txt")) << "cooked before refusing";
+
+    // Frames outside the range cooked are not in the way.
+    const auto first =
+        runCli({"run", (dir / "g.json").string(), "--out", out.string(), "-q", "--frames", "0:0"});
+    EXPECT_EQ(first.exitCode, 0) << first.errors;
+    EXPECT_TRUE(fs::exists(out / "a.0000.txt"));
 }
 
 }  // namespace cg
