@@ -1,13 +1,13 @@
 #include "cli/GraphServer.h"
 
-#include <httplib.h>
-#include <sys/socket.h>
-
 #include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <climits>
 #include <exception>
 #include <fstream>
 #include <optional>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -17,6 +17,7 @@
 #include "algo/render/Display.h"
 #include "cli/PreviewPicture.h"
 #include "core/Error.h"
+#include "core/JsonParse.h"
 #include "core/NodeDeclJson.h"
 #include "formats/PngFile.h"
 #include "nodes/render/ImageFile.h"
@@ -25,73 +26,119 @@ namespace cg::cli {
 
 namespace {
 
-/// Request bodies are small JSON edits; anything larger is refused (413) before it is read.
-constexpr std::size_t kMaxBodyBytes = 1u << 20;
 /// How often the graph file is looked at for a change made outside the page.
 constexpr std::chrono::milliseconds kWatchInterval{300};
-/// How often stop() looks whether the server has begun to run.
-constexpr std::chrono::milliseconds kStopPoll{5};
+/// The page's files are small; a larger one in the web folder is not served.
+constexpr std::uintmax_t kMaxPageFileBytes = 16u << 20;
+/// The text of index.html that the session's token replaces.
+constexpr std::string_view kTokenPlaceholder = "{{CLOUDGRAPH_TOKEN}}";
 
-void replyJson(httplib::Response& res, int status, const nlohmann::json& body)
+using http::Request;
+using http::Response;
+
+Response jsonReply(int status, const nlohmann::json& body)
 {
+    Response res;
     res.status = status;
-    res.set_content(body.dump(), "application/json");
+    res.body = body.dump();
+    return res;
 }
 
-void replyError(httplib::Response& res, int status, const std::string& message)
+Response errorReply(int status, const std::string& message)
 {
-    replyJson(res, status, {{"error", message}});
+    return jsonReply(status, {{"error", message}});
 }
 
-/// The request's body as a JSON object; nullopt after replying 400 when it is not one.
-std::optional<nlohmann::json> jsonBody(const httplib::Request& req, httplib::Response& res)
+/// Thrown by the request readers below with the reply to send instead.
+struct Refused {
+    Response response;
+};
+
+/// The request's body as a JSON object, read with the graph loader's strict, depth-limited
+/// parser (a deeply nested body is refused, never recursed into).
+nlohmann::json jsonBody(const Request& req, int maxDepth)
 {
-    nlohmann::json body = nlohmann::json::parse(req.body, nullptr, /*allow_exceptions=*/false);
-    if (body.is_discarded() || !body.is_object()) {
-        replyError(res, 400, "the request body must be a JSON object");
-        return std::nullopt;
+    nlohmann::json body;
+    try {
+        body = parseJsonStrict(req.body, "request body", maxDepth);
+    } catch (const InputError& e) {
+        throw Refused{errorReply(400, e.what())};
     }
+    if (!body.is_object()) throw Refused{errorReply(400, "the request body must be a JSON object")};
     return body;
 }
 
-/// body[key] as a string; nullopt after replying 400 when it is missing or not one.
-std::optional<std::string> stringField(const nlohmann::json& body, const char* key,
-                                       httplib::Response& res)
+/// body[key] as a string.
+std::string stringField(const nlohmann::json& body, const char* key)
 {
     const auto it = body.find(key);
-    if (it == body.end() || !it->is_string()) {
-        replyError(res, 400, std::string("'") + key + "' must be a string");
-        return std::nullopt;
-    }
+    if (it == body.end() || !it->is_string())
+        throw Refused{errorReply(400, std::string("'") + key + "' must be a string")};
     return it->get<std::string>();
 }
 
-/// Why a request may not come from this server's own page, or "" when it may. Any web page
-/// the user opens could send requests to a server on 127.0.0.1 (cross-site request forgery)
-/// or reach it through a name of its own that resolves there (DNS rebinding); the page's
-/// edits, cooks and saves must come from the page itself, as development servers such as
-/// Vite's and Jupyter's require:
-/// - the Host header names this server (a loopback name and the port) when it listens on a
-///   loopback address;
-/// - a POST is JSON (a cross-site JSON POST needs a CORS preflight, which is never granted)
-///   and, when it says where it comes from (Origin), it comes from this server.
-std::string refusal(const httplib::Request& req, const std::string& host, int port)
+/// body["frame"] as a frame of `frames`, checked before it is narrowed to an int.
+int frameField(const nlohmann::json& body, const FrameRange& frames)
 {
-    const std::string hostHeader = req.get_header_value("Host");
-    const std::string suffix = ":" + std::to_string(port);
-    const bool loopback = host == "127.0.0.1" || host == "localhost" || host == "::1";
-    if (loopback) {
-        bool named = false;
-        for (const char* name : {"127.0.0.1", "localhost", "[::1]"})
-            named = named || hostHeader == name + suffix;
-        if (!named) return "Host '" + hostHeader + "' is not this server";
+    const auto it = body.find("frame");
+    if (it == body.end() || !it->is_number_integer())
+        throw Refused{errorReply(400, "'frame' must be an integer")};
+    // nlohmann keeps integers above INT64_MAX unsigned: no frame is that large.
+    const bool fits = !it->is_number_unsigned() || it->get<std::uint64_t>() <= INT64_MAX;
+    const std::int64_t f = fits ? it->get<std::int64_t>() : 0;
+    if (!fits || f < frames.start || f > frames.end)
+        throw Refused{errorReply(400, "frame " + it->dump() + " is outside the graph's frames " +
+                                          std::to_string(frames.start) + ":" +
+                                          std::to_string(frames.end))};
+    return static_cast<int>(f);
+}
+
+/// body[key] as a boolean, `fallback` when absent.
+bool boolField(const nlohmann::json& body, const char* key, bool fallback)
+{
+    const auto it = body.find(key);
+    if (it == body.end()) return fallback;
+    if (!it->is_boolean())
+        throw Refused{errorReply(400, std::string("'") + key + "' must be true or false")};
+    return it->get<bool>();
+}
+
+std::string lowerCase(std::string s)
+{
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+/// A name as it appears in a URL and a Host header: an IPv6 address in brackets.
+std::string urlHost(const std::string& host)
+{
+    return host.find(':') != std::string::npos ? "[" + host + "]" : host;
+}
+
+/// 128 random bits as hex, from the system's entropy source.
+std::string randomToken()
+{
+    std::random_device entropy;  // libstdc++ reads getrandom() / /dev/urandom
+    std::string hex;
+    for (int i = 0; i < 4; ++i) {
+        char word[9];
+        std::snprintf(word, sizeof word, "%08x", static_cast<unsigned>(entropy()));
+        hex += word;
     }
-    if (req.method != "POST") return "";
-    if (req.get_header_value("Content-Type").rfind("application/json", 0) != 0)
-        return "a POST must be JSON (Content-Type: application/json)";
-    if (req.has_header("Origin") && req.get_header_value("Origin") != "http://" + hostHeader)
-        return "Origin '" + req.get_header_value("Origin") + "' is not this server's page";
-    return "";
+    return hex;
+}
+
+/// The media type of a page file, by its extension.
+std::string contentType(const std::filesystem::path& file)
+{
+    const std::string ext = file.extension().string();
+    if (ext == ".html") return "text/html; charset=utf-8";
+    if (ext == ".js") return "text/javascript; charset=utf-8";
+    if (ext == ".css") return "text/css; charset=utf-8";
+    if (ext == ".png") return "image/png";
+    if (ext == ".svg") return "image/svg+xml";
+    if (ext == ".json") return "application/json";
+    return "application/octet-stream";
 }
 
 /// The files beside the graph file (in its folder and up to kFileListDepth folders below,
@@ -157,55 +204,45 @@ algo::DisplaySettings previewDisplay(const Graph& graph, const std::string& node
 }  // namespace
 
 GraphServer::GraphServer(const Registry& registry, ServeOptions options)
-    : mOptions(std::move(options)), mRegistry(registry),
-      mServer(std::make_unique<httplib::Server>()),
+    : mOptions(std::move(options)),
+      mRegistry(registry),
+      mToken(randomToken()),
+      mServer([this](const Request& req) { return handle(req); }),
       mDoc(GraphDocument::load(mOptions.graphFile, registry, mOptions.load))
 {
     for (const std::string& assignment : mOptions.sets) mDoc->applySetOverride(assignment);
     mDoc->completeGraph();  // a graph the CLI would refuse is refused here too
-    mFileText = mDoc->fileText();
-    mServer->set_payload_max_length(kMaxBodyBytes);
-    // One request a connection: a browser that reuses a kept-alive connection the server has
-    // just timed out sees its POST fail ("Failed to fetch"); on this machine's loopback a new
-    // connection costs nothing.
-    mServer->set_keep_alive_max_count(1);
-    mServer->set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-        const std::string why = refusal(req, mOptions.host, mPort.load());
-        if (why.empty()) return httplib::Server::HandlerResponse::Unhandled;
-        replyError(res, 403, why);
-        return httplib::Server::HandlerResponse::Handled;
-    });
-    mServer->set_socket_options([this](socket_t sock) {
-        httplib::default_socket_options(sock);
-        mListenSocket = sock;
-    });
-    routes();
+    mFileText = mBaseText = mDoc->fileText();
+    if (!std::filesystem::is_directory(mOptions.webDir))
+        throw InputError(mOptions.webDir.string(), "the page's folder does not exist");
+    mRoutes["/api/graph"] = {{"GET", &GraphServer::getGraph}, {"POST", &GraphServer::postGraph}};
+    mRoutes["/api/version"] = {{"GET", &GraphServer::getVersion}};
+    mRoutes["/api/files"] = {{"GET", &GraphServer::getFiles}};
+    mRoutes["/api/param"] = {{"POST", &GraphServer::postParam}};
+    mRoutes["/api/cook"] = {{"POST", &GraphServer::postCook}};
+    mRoutes["/api/progress"] = {{"GET", &GraphServer::getProgress}};
+    mRoutes["/api/cancel"] = {{"POST", &GraphServer::postCancel}};
+    mRoutes["/api/preview"] = {{"GET", &GraphServer::getPreview}};
+    mRoutes["/api/save"] = {{"POST", &GraphServer::postSave}};
 }
 
 GraphServer::~GraphServer() = default;
 
 int GraphServer::bind()
 {
-    const int port = mOptions.port == 0 ? mServer->bind_to_any_port(mOptions.host)
-                                        : (mServer->bind_to_port(mOptions.host, mOptions.port)
-                                               ? mOptions.port
-                                               : -1);
-    if (port < 0)
-        throw InputError("--port " + std::to_string(mOptions.port),
-                         "cannot listen on " + mOptions.host + ":" +
-                             std::to_string(mOptions.port) + " (in use?)");
-    // Debian's built cpp-httplib listens with a backlog of 5: a page's burst of requests
-    // beyond it waits a second for a SYN retry, or fails. Listening again sets a longer one.
-    if (mListenSocket >= 0) ::listen(mListenSocket, SOMAXCONN);
-    mPort = port;
-    return port;
+    try {
+        mPort = mServer.bind(mOptions.host, mOptions.port);
+    } catch (const std::runtime_error& e) {
+        throw InputError("--host " + mOptions.host + " --port " + std::to_string(mOptions.port),
+                         std::string("cannot listen there: ") + e.what());
+    }
+    return mPort;
 }
 
 void GraphServer::listen()
 {
     std::thread watcher([this] { watchFile(); });
-    mServer->listen_after_bind();
-    mListenEnded = true;
+    mServer.run();
     {
         std::lock_guard<std::mutex> lock(mStopMutex);
         mStopping = true;
@@ -217,22 +254,94 @@ void GraphServer::listen()
 void GraphServer::stop()
 {
     mDoc->cancel();
-    // httplib's stop() does nothing until the server runs: a signal that comes between bind()
-    // and listen() would be lost and listen() would never return. Wait for it to run.
-    while (!mServer->is_running() && !mListenEnded) std::this_thread::sleep_for(kStopPoll);
-    mServer->stop();
+    mServer.stop();
 }
 
-void GraphServer::edit(httplib::Response& res, const std::function<void(GraphDocument&)>& change)
+std::string GraphServer::refusal(const Request& req) const
+{
+    // Any web page the user opens can send requests to this server (cross-site request
+    // forgery) or reach it under a name of its own that resolves here (DNS rebinding). The
+    // Host header must name this server, whatever --host is; a POST must be JSON (a
+    // cross-site JSON POST needs a CORS preflight, never granted), come from this server's
+    // page when it says where it comes from (Origin), and carry the session's token, which
+    // only a page of this origin can read.
+    const std::string hostHeader = lowerCase(req.headerOr("host"));
+    const std::string suffix = ":" + std::to_string(mPort.load());
+    std::vector<std::string> names = {"127.0.0.1", "localhost", "[::1]"};
+    if (mOptions.host != "0.0.0.0" && mOptions.host != "::")
+        names.push_back(lowerCase(urlHost(mOptions.host)));
+    bool named = false;
+    for (const std::string& name : names) named = named || hostHeader == name + suffix;
+    for (const std::string& name : mOptions.allowedHosts)
+        named = named || hostHeader == lowerCase(name) || hostHeader == lowerCase(name) + suffix;
+    if (!named) return "Host '" + hostHeader + "' is not this server (see serve --allow-host)";
+    if (req.method != "POST") return "";
+    if (req.headerOr("content-type").rfind("application/json", 0) != 0)
+        return "a POST must be JSON (Content-Type: application/json)";
+    if (const std::string* origin = req.header("origin");
+        origin && *origin != "http://" + req.headerOr("host"))
+        return "Origin '" + *origin + "' is not this server's page";
+    if (req.headerOr("x-cloudgraph-token") != mToken)
+        return "a POST must carry this session's X-CloudGraph-Token (reload the page)";
+    return "";
+}
+
+Response GraphServer::handle(const Request& req)
+{
+    if (const std::string why = refusal(req); !why.empty()) return errorReply(403, why);
+    const auto route = mRoutes.find(req.path);
+    if (route == mRoutes.end()) {
+        if (req.path.rfind("/api/", 0) == 0) return errorReply(404, "no such route");
+        if (req.method != "GET") return errorReply(405, "the page's files are read with GET");
+        return staticFile(req);
+    }
+    const auto method = route->second.find(req.method);
+    if (method == route->second.end())
+        return errorReply(405, req.method + " is not allowed on " + req.path);
+    try {
+        return (this->*method->second)(req);
+    } catch (const Refused& r) {
+        return r.response;
+    }
+}
+
+Response GraphServer::staticFile(const Request& req) const
+{
+    namespace fs = std::filesystem;
+    const fs::path relative = fs::path(req.path == "/" ? "/index.html" : req.path).relative_path();
+    for (const fs::path& part : relative)
+        if (part.empty() || part.string().front() == '.')  // "..", ".", hidden files
+            return errorReply(404, "not found");
+    const fs::path file = mOptions.webDir / relative;
+    std::error_code ec;
+    const auto size = fs::file_size(file, ec);
+    if (!fs::is_regular_file(file, ec) || ec || size > kMaxPageFileBytes)
+        return errorReply(404, "not found");
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    Response res;
+    res.contentType = contentType(file);
+    res.body = text.str();
+    if (file.extension() == ".html") {
+        for (std::size_t at = res.body.find(kTokenPlaceholder); at != std::string::npos;
+             at = res.body.find(kTokenPlaceholder, at))
+            res.body.replace(at, kTokenPlaceholder.size(), mToken);
+        res.headers.emplace_back("Cache-Control", "no-store");
+    }
+    return res;
+}
+
+Response GraphServer::edit(const std::function<void(GraphDocument&)>& change)
 {
     try {
         std::lock_guard<std::mutex> lock(mDocMutex);
         change(*mDoc);
     } catch (const InputError& e) {
-        return replyError(res, 400, e.what());
+        return errorReply(400, e.what());
     }
     changed();
-    replyJson(res, 200, {{"version", mVersion.load()}});
+    return jsonReply(200, {{"version", mVersion.load()}});
 }
 
 void GraphServer::watchFile()
@@ -256,6 +365,7 @@ void GraphServer::watchFile()
             mFileText = *text;
             try {
                 mDoc->reload(*text);
+                mBaseText = *text;
             } catch (const InputError& e) {
                 error = e.what();
             }
@@ -268,159 +378,173 @@ void GraphServer::watchFile()
     }
 }
 
-void GraphServer::routes()
+// The graph, the declarations of the node types it uses, and every type's name.
+Response GraphServer::getGraph(const Request&)
 {
-    httplib::Server& s = *mServer;
-    if (!s.set_mount_point("/", mOptions.webDir.string()))
-        throw InputError(mOptions.webDir.string(), "the page's folder does not exist");
-
-    // The graph, the declarations of the node types it uses, and every type's name.
-    s.Get("/api/graph", [this](const httplib::Request&, httplib::Response& res) {
-        nlohmann::json types = nlohmann::json::object();
-        nlohmann::json graph;
-        std::string fileError;
-        {
-            std::lock_guard<std::mutex> lock(mDocMutex);
-            graph = mDoc->json();
-            fileError = mFileError;
-            for (const GraphNode& n : mDoc->graph().nodes())
-                types[n.decl->type] = nodeDeclToJson(*n.decl);
-        }
-        nlohmann::json all = nlohmann::json::array();
-        for (const NodeDecl* d : mRegistry.nodes()) all.push_back(d->type);
-        replyJson(res, 200,
-                  {{"file", mOptions.graphFile.filename().string()},
-                   {"graph", graph},
-                   {"types", types},
-                   {"registry", all},
-                   {"version", mVersion.load()},
-                   {"fileError", fileError}});
-    });
-
-    s.Get("/api/version", [this](const httplib::Request&, httplib::Response& res) {
+    nlohmann::json types = nlohmann::json::object();
+    nlohmann::json graph;
+    std::string fileError;
+    {
         std::lock_guard<std::mutex> lock(mDocMutex);
-        replyJson(res, 200, {{"version", mVersion.load()}, {"fileError", mFileError}});
-    });
+        graph = mDoc->json();
+        fileError = mFileError;
+        for (const GraphNode& n : mDoc->graph().nodes())
+            types[n.decl->type] = nodeDeclToJson(*n.decl);
+    }
+    nlohmann::json all = nlohmann::json::array();
+    for (const NodeDecl* d : mRegistry.nodes()) all.push_back(d->type);
+    return jsonReply(200, {{"file", mOptions.graphFile.filename().string()},
+                           {"graph", graph},
+                           {"types", types},
+                           {"registry", all},
+                           {"version", mVersion.load()},
+                           {"fileError", fileError}});
+}
 
-    // The files an input-file parameter may name, relative to the graph.
-    s.Get("/api/files", [this](const httplib::Request&, httplib::Response& res) {
-        replyJson(res, 200, {{"files", filesBeside(mOptions.graphFile)}});
-    });
+Response GraphServer::getVersion(const Request&)
+{
+    std::lock_guard<std::mutex> lock(mDocMutex);
+    return jsonReply(200, {{"version", mVersion.load()}, {"fileError", mFileError}});
+}
 
-    // Wiring edits (nodes added or deleted, inputs connected or not): the page sends the
-    // whole edited graph, loaded with the same type checks as a file.
-    s.Post("/api/graph", [this](const httplib::Request& req, httplib::Response& res) {
-        const auto body = jsonBody(req, res);
-        if (!body) return;
-        if (!body->contains("graph") || !body->at("graph").is_object())
-            return replyError(res, 400, "'graph' must be a graph's JSON object");
-        edit(res, [&](GraphDocument& doc) { doc.replace(body->at("graph").dump()); });
-    });
+// The files an input-file parameter may name, relative to the graph.
+Response GraphServer::getFiles(const Request&)
+{
+    return jsonReply(200, {{"files", filesBeside(mOptions.graphFile)}});
+}
 
-    // One parameter, checked as `--set` and loading check it: 400 with the CLI's message.
-    s.Post("/api/param", [this](const httplib::Request& req, httplib::Response& res) {
-        const auto body = jsonBody(req, res);
-        if (!body) return;
-        const auto node = stringField(*body, "node", res);
-        if (!node) return;
-        const auto param = stringField(*body, "param", res);
-        if (!param) return;
-        if (!body->contains("value")) return replyError(res, 400, "'value' is missing");
-        edit(res, [&](GraphDocument& doc) { doc.setParam(*node, *param, body->at("value")); });
-    });
+// Wiring edits (nodes added or deleted, inputs connected or not): the page sends the whole
+// edited graph, loaded with the same type checks as a file.
+Response GraphServer::postGraph(const Request& req)
+{
+    const nlohmann::json body = jsonBody(req, mOptions.load.maxJsonDepth);
+    if (!body.contains("graph") || !body.at("graph").is_object())
+        return errorReply(400, "'graph' must be a graph's JSON object");
+    return edit([&](GraphDocument& doc) { doc.replace(body.at("graph").dump()); });
+}
 
-    // Cooks one output at a frame, with what it needs that the last cooks did not make.
-    s.Post("/api/cook", [this](const httplib::Request& req, httplib::Response& res) {
-        const auto body = jsonBody(req, res);
-        if (!body) return;
-        const auto node = stringField(*body, "node", res);
-        if (!node) return;
-        const auto port = body->contains("port") ? stringField(*body, "port", res)
-                                                  : std::optional<std::string>("image");
-        if (!port) return;
-        const auto frame = body->find("frame");
-        if (frame == body->end() || !frame->is_number_integer())
-            return replyError(res, 400, "'frame' must be an integer");
-        // With "write": true the writers below the node write this frame's files too.
-        const auto write = body->find("write");
-        if (write != body->end() && !write->is_boolean())
-            return replyError(res, 400, "'write' must be true or false");
-        Graph graph;
-        try {
-            std::lock_guard<std::mutex> lock(mDocMutex);
-            graph = mDoc->completeGraph();
-        } catch (const InputError& e) {
-            return replyError(res, 400, e.what());
-        }
-        const int f = frame->get<int>();
-        if (f < graph.frames.start || f > graph.frames.end)
-            return replyError(res, 400,
-                              "frame " + std::to_string(f) + " is outside the graph's frames " +
-                                  std::to_string(graph.frames.start) + ":" +
-                                  std::to_string(graph.frames.end));
-        const auto started = std::chrono::steady_clock::now();
-        DataPtr value;
-        try {
-            const bool writes = write != body->end() && write->get<bool>() && graph.find(*node);
-            value = mDoc->cook(graph, *node, *port, f, mOptions.cacheDir, mOptions.outDir,
-                               writes ? writersBelow(graph, *node) : std::vector<std::string>{});
-        } catch (const InputError& e) {
-            return replyError(res, 400, e.what());
-        } catch (const CookError& e) {
-            return replyError(res, e.inputFault() ? 400 : 500, e.what());
-        } catch (const Cancelled&) {
-            return replyError(res, 409, "cancelled; nothing partial was cached");
-        } catch (const CookInProgress& e) {
-            return replyError(res, 409, e.what());
-        }
-        const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-        nlohmann::json reply = {{"report", nlohmann::json::parse(mDoc->lastReport())},
-                                {"seconds", seconds}};
-        if (auto picture = previewPicture(value, previewDisplay(graph, *node, *port, f))) {
-            std::string png = formats::encodePngRgb8(picture->width, picture->height, picture->rgb);
-            std::lock_guard<std::mutex> lock(mPreviewMutex);
-            mPreviews[*node + "." + *port] = std::move(png);
-            reply["preview"] = "/api/preview?node=" + *node + "&port=" + *port;
-        }
-        replyJson(res, 200, reply);
-    });
+// One parameter, checked as `--set` and loading check it: 400 with the CLI's message.
+Response GraphServer::postParam(const Request& req)
+{
+    const nlohmann::json body = jsonBody(req, mOptions.load.maxJsonDepth);
+    const std::string node = stringField(body, "node");
+    const std::string param = stringField(body, "param");
+    if (!body.contains("value")) return errorReply(400, "'value' is missing");
+    return edit([&](GraphDocument& doc) { doc.setParam(node, param, body.at("value")); });
+}
 
-    // Where the cook under way stands: the page's progress bar polls it.
-    s.Get("/api/progress", [this](const httplib::Request&, httplib::Response& res) {
-        const CookProgress p = mDoc->progress();
-        replyJson(res, 200,
-                  {{"cooking", p.cooking},
-                   {"done", p.done},
-                   {"total", p.total},
-                   {"seconds", p.seconds},
-                   {"finished", p.finished}});
-    });
-
-    s.Post("/api/cancel", [this](const httplib::Request&, httplib::Response& res) {
-        mDoc->cancel();
-        replyJson(res, 200, {{"ok", true}});
-    });
-
-    s.Get("/api/preview", [this](const httplib::Request& req, httplib::Response& res) {
+// Cooks one output at a frame, with what it needs that the last cooks did not make.
+Response GraphServer::postCook(const Request& req)
+{
+    const nlohmann::json body = jsonBody(req, mOptions.load.maxJsonDepth);
+    const std::string node = stringField(body, "node");
+    const std::string port = body.contains("port") ? stringField(body, "port") : "image";
+    // With "write": true the writers below the node write this frame's files too.
+    const bool write = boolField(body, "write", false);
+    Graph graph;
+    try {
+        std::lock_guard<std::mutex> lock(mDocMutex);
+        graph = mDoc->completeGraph();
+    } catch (const InputError& e) {
+        return errorReply(400, e.what());
+    }
+    const int f = frameField(body, graph.frames);
+    const auto started = std::chrono::steady_clock::now();
+    DataPtr value;
+    try {
+        const bool writes = write && graph.find(node);
+        value = mDoc->cook(graph, node, port, f, mOptions.cacheDir, mOptions.outDir,
+                           writes ? writersBelow(graph, node) : std::vector<std::string>{});
+    } catch (const InputError& e) {
+        return errorReply(400, e.what());
+    } catch (const CookError& e) {
+        return errorReply(e.inputFault() ? 400 : 500, e.what());
+    } catch (const Cancelled&) {
+        return errorReply(409, "cancelled; nothing partial was cached");
+    } catch (const CookInProgress& e) {
+        return errorReply(409, e.what());
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    nlohmann::json reply = {{"report", nlohmann::json::parse(mDoc->lastReport())},
+                            {"seconds", seconds}};
+    if (auto picture = previewPicture(value, previewDisplay(graph, node, port, f))) {
+        std::string png = formats::encodePngRgb8(picture->width, picture->height, picture->rgb);
         std::lock_guard<std::mutex> lock(mPreviewMutex);
-        const std::string port = req.has_param("port") ? req.get_param_value("port") : "image";
-        const auto it = mPreviews.find(req.get_param_value("node") + "." + port);
-        if (it == mPreviews.end()) return replyError(res, 404, "no preview of that node yet");
-        res.set_header("Cache-Control", "no-store");
-        res.set_content(it->second, "image/png");
-    });
-
-    // Writes the edited graph back to its file, atomically.
-    s.Post("/api/save", [this](const httplib::Request&, httplib::Response& res) {
-        try {
-            std::lock_guard<std::mutex> lock(mDocMutex);
-            mFileText = mDoc->save(mOptions.graphFile);  // not a change from outside
-        } catch (const InputError& e) {
-            return replyError(res, 400, e.what());
+        mPreviews[node + "." + port] = std::move(png);
+        std::string query;
+        for (const auto& [name, text] : {std::pair{"node", node}, std::pair{"port", port}}) {
+            query += query.empty() ? "?" : "&";
+            query += std::string(name) + "=" + http::percentEncode(text);
         }
-        replyJson(res, 200, {{"saved", mOptions.graphFile.string()}});
-    });
+        reply["preview"] = "/api/preview" + query;
+    }
+    return jsonReply(200, reply);
+}
+
+// Where the cook under way stands: the page's progress bar polls it.
+Response GraphServer::getProgress(const Request&)
+{
+    const CookProgress p = mDoc->progress();
+    return jsonReply(200, {{"cooking", p.cooking},
+                           {"done", p.done},
+                           {"total", p.total},
+                           {"seconds", p.seconds},
+                           {"finished", p.finished}});
+}
+
+Response GraphServer::postCancel(const Request&)
+{
+    mDoc->cancel();
+    return jsonReply(200, {{"ok", true}});
+}
+
+Response GraphServer::getPreview(const Request& req)
+{
+    const auto param = [&](const char* name, const char* fallback) {
+        const auto it = req.query.find(name);
+        return it == req.query.end() ? std::string(fallback) : it->second;
+    };
+    std::lock_guard<std::mutex> lock(mPreviewMutex);
+    const auto it = mPreviews.find(param("node", "") + "." + param("port", "image"));
+    if (it == mPreviews.end()) return errorReply(404, "no preview of that node yet");
+    Response res;
+    res.contentType = "image/png";
+    res.body = it->second;
+    res.headers.emplace_back("Cache-Control", "no-store");
+    return res;
+}
+
+// Writes the edited graph back to its file, atomically; refuses (409) to replace a file that
+// was changed outside the page since the page's graph was loaded or saved, unless the body
+// says {"overwrite": true}.
+Response GraphServer::postSave(const Request& req)
+{
+    const bool overwrite =
+        req.body.empty() ? false
+                         : boolField(jsonBody(req, mOptions.load.maxJsonDepth), "overwrite", false);
+    std::optional<std::string> onDisk;
+    try {
+        onDisk = readGraphText(mOptions.graphFile, mOptions.load);
+    } catch (const InputError&) {
+        // gone or unreadable: a conflict too, since it is not what the page loaded
+    }
+    try {
+        std::lock_guard<std::mutex> lock(mDocMutex);
+        if (!overwrite && onDisk != mBaseText) {
+            nlohmann::json reply = {
+                {"error", mOptions.graphFile.string() +
+                              (onDisk ? " was changed outside the page since it was loaded"
+                                      : " is gone or unreadable") +
+                              "; reload it, or save again to overwrite it"},
+                {"conflict", true}};
+            return jsonReply(409, reply);
+        }
+        mFileText = mBaseText = mDoc->save(mOptions.graphFile);  // not a change from outside
+    } catch (const InputError& e) {
+        return errorReply(400, e.what());
+    }
+    return jsonReply(200, {{"saved", mOptions.graphFile.string()}});
 }
 
 }  // namespace cg::cli

@@ -1,4 +1,5 @@
-// cloudgraph serve GRAPH [--port P] [--host H] [--out DIR] [--cache DIR] [--plugin ...]
+// cloudgraph serve GRAPH [--port P] [--host H] [--allow-host NAME]... [--out DIR] [--cache DIR]
+//                       [--plugin ...]
 //
 // The graph editor and live preview in the browser (docs/serve.md).
 
@@ -13,6 +14,7 @@
 #include "cli/Commands.h"
 #include "cli/Common.h"
 #include "cli/GraphServer.h"
+#include "core/DiskCache.h"
 #include "core/Error.h"
 
 namespace cg::cli {
@@ -39,7 +41,8 @@ int serveCommand(const Args& args)
 {
     OptionParser opts(args);
     declareGraphOptions(opts);
-    for (const char* o : {"--port", "--host", "--out", "--cache"}) opts.valueOption(o);
+    for (const char* o : {"--port", "--host", "--allow-host", "--out", "--cache"})
+        opts.valueOption(o);
     return guarded([&] {
         opts.parse();
         if (opts.positionals().size() != 1)
@@ -50,6 +53,9 @@ int serveCommand(const Args& args)
         o.outDir = opts.value("--out").value_or("out");
         o.cacheDir = opts.value("--cache").value_or("");
         o.host = opts.value("--host").value_or("127.0.0.1");
+        o.allowedHosts = opts.values("--allow-host");
+        // As `run` does: a cache that cannot be made is refused before anything is served.
+        if (!o.cacheDir.empty()) DiskCache check(o.cacheDir);
         if (const auto port = opts.value("--port"))
             o.port = static_cast<int>(parseIntegerOption(*port, "--port", "a port", 0, 65535));
         o.load = graphLoadOptions(opts);
@@ -67,8 +73,9 @@ int serveCommand(const Args& args)
 
         GraphServer server(registry, o);
         const int port = server.bind();
-        std::printf("serving %s at http://%s:%d/ (Ctrl-C stops)\n", o.graphFile.c_str(),
-                    o.host.c_str(), port);
+        const bool ipv6 = o.host.find(':') != std::string::npos;
+        std::printf("serving %s at http://%s%s%s:%d/ (Ctrl-C stops)\n", o.graphFile.c_str(),
+                    ipv6 ? "[" : "", o.host.c_str(), ipv6 ? "]" : "", port);
         std::fflush(stdout);
         std::thread waiter([&] {
             int signal = 0;

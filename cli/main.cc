@@ -47,6 +47,7 @@ usage:
   cloudgraph serve GRAPH [options]   edit the graph in the browser with a live preview
       --port P                       listen on port P (default 8642; 0: any free port)
       --host H                       the address to listen on (default 127.0.0.1: this machine only)
+      --allow-host NAME              another name the browser may use for it (repeatable)
       --out DIR, --cache DIR         as for run
   cloudgraph --help | --version
 Every command takes -v (debug logging) and -q (errors only).

@@ -11,7 +11,7 @@ find_package(OpenVDB REQUIRED)
 
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(FFTW3 REQUIRED IMPORTED_TARGET fftw3 fftw3f)
-pkg_check_modules(CPP_HTTPLIB REQUIRED IMPORTED_TARGET cpp-httplib)  # `serve` and its tests
+pkg_check_modules(CPP_HTTPLIB REQUIRED IMPORTED_TARGET cpp-httplib)  # the tests' HTTP client
 find_package(PNG REQUIRED)
 find_package(OpenEXR CONFIG REQUIRED)    # WriteImage's linear .exr frames
 

@@ -158,8 +158,9 @@ GraphNode readNode(const std::string& id, const Json& j, const Reader& r, const 
 {
     const std::string ptr = "/nodes/" + jsonPointerToken(id);
     if (!validId(id))
-        r.fail(ptr, "invalid node id '" + id +
-                        "': ids match [A-Za-z_][A-Za-z0-9_-]* and have at most 128 characters");
+        r.fail(printableText(ptr),
+               "invalid node id '" + printableText(id) +
+                   "': ids match [A-Za-z_][A-Za-z0-9_-]* and have at most 128 characters");
     r.object(j, ptr, "a node");
     r.onlyKeys(j, ptr, {"type", "params", "inputs", "comment"});
 

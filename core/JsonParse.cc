@@ -183,6 +183,24 @@ Json parseJsonStrict(const std::string& text, const std::string& sourceName, int
     return std::move(sax.result());
 }
 
+std::string printableText(const std::string& text)
+{
+    static constexpr char kHex[] = "0123456789abcdef";
+    std::string printable;
+    printable.reserve(text.size());
+    for (const char ch : text) {
+        const auto c = static_cast<unsigned char>(ch);
+        if ((c < 0x20 && ch != '\n' && ch != '\t') || c == 0x7f) {
+            printable += "\\x";
+            printable += kHex[c >> 4];
+            printable += kHex[c & 15];
+        } else {
+            printable += ch;
+        }
+    }
+    return printable;
+}
+
 std::string jsonPointerToken(const std::string& key)
 {
     std::string out;

@@ -23,6 +23,10 @@ nlohmann::json parseJsonStrict(const std::string& text, const std::string& sourc
 /// One reference token of a JSON pointer, escaped ("~" -> "~0", "/" -> "~1").
 std::string jsonPointerToken(const std::string& key);
 
+/// `text` with control characters other than newline and tab written as \xNN, for quoting
+/// user input in a message (a node id with a NUL in it would cut the printed message short).
+std::string printableText(const std::string& text);
+
 /// The candidate closest to `word` by edit distance, if within 2 edits; otherwise empty.
 std::string closestName(const std::string& word, const std::vector<std::string>& candidates);
 

@@ -12,7 +12,7 @@ packages=(
     ccache  # rebuilds and the sanitizer build reuse compiled objects
     ffmpeg  # EncodeVideo runs the ffmpeg program (H.264 via libx264)
     pybind11-dev python3-dev python3-numpy  # the Python module (docs/python.md)
-    libcpp-httplib-dev  # cloudgraph serve's HTTP server
+    libcpp-httplib-dev  # the HTTP client of serve's tests (serve's server is our own)
 )
 # The farm test (ctest -L slurm) runs a real one-node Slurm; where these cannot be installed
 # (no package archive, a locked-down container) the build skips that test and says so.

@@ -2,7 +2,6 @@
 // over HTTP as the page drives it.
 
 #include <gtest/gtest.h>
-#include <httplib.h>
 
 #include <algorithm>
 #include <chrono>
@@ -13,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/ServeFixture.h"
 #include "formats/PngFile.h"
 #include "support/TestUtil.h"
 
@@ -20,66 +20,8 @@ namespace cg {
 namespace {
 
 using nlohmann::json;
-using test::CliProcess;
-using test::TempDir;
-
-/// The synthetic cumulus still, small: a SyntheticCumulus, a Renderer and a WriteImage.
-const char* kGraph = R"({
-  "cloudgraph": 1,
-  "frames": {"start": 0, "end": 2},
-  "nodes": {
-    "cloud": {"type": "SyntheticCumulus", "params": {"voxelSize": 40, "baseRadius": 500}},
-    "render": {"type": "Renderer", "inputs": {"volume": "cloud.volume"},
-               "params": {"width": 64, "height": 48, "cameraPosition": [400, -3800, 700]}},
-    "write": {"type": "WriteImage", "inputs": {"image": "render.image"},
-              "params": {"file": "still.png"}}
-  }
-})";
-
-class ServeTest : public ::testing::Test {
-protected:
-    virtual const char* graphText() const { return kGraph; }
-    void SetUp() override
-    {
-        test::writeFile(graphFile(), graphText());
-        std::filesystem::create_directories(dir / "out");
-        server = std::make_unique<CliProcess>(std::vector<std::string>{
-            "serve", graphFile().string(), "--port", "0", "--out", (dir / "out").string(),
-            "--cache", (dir / "cache").string()});
-        // The first line names the URL with the port the system chose.
-        for (int i = 0; i < 200 && port == 0; ++i) {
-            const std::string out = server->outputSoFar();
-            const auto at = out.find("http://127.0.0.1:");
-            if (at != std::string::npos && out.find('/', at + 17) != std::string::npos)
-                port = std::stoi(out.substr(at + 17));
-            else
-                std::this_thread::sleep_for(std::chrono::milliseconds(50));
-        }
-        ASSERT_NE(port, 0) << "the server printed no URL";
-    }
-
-    std::filesystem::path graphFile() const { return dir / "graph.json"; }
-    /// Replaces the graph file as an editor's save does: whole, by a rename.
-    void editFile(const std::string& text) const
-    {
-        test::writeFile(dir / "graph.json.new", text);
-        std::filesystem::rename(dir / "graph.json.new", graphFile());
-    }
-    httplib::Client client() const
-    {
-        httplib::Client c("127.0.0.1", port);
-        c.set_read_timeout(60, 0);
-        return c;
-    }
-    httplib::Result post(const std::string& path, const json& body) const
-    {
-        return client().Post(path.c_str(), body.dump(), "application/json");
-    }
-
-    TempDir dir;
-    std::unique_ptr<CliProcess> server;
-    int port = 0;
-};
+using test::kServeGraph;
+using test::ServeTest;
 
 TEST_F(ServeTest, ServesTheGraphWithItsDeclarationsAndThePage)
 {
@@ -138,8 +80,8 @@ TEST_F(ServeTest, AnEditRecooksOnlyWhatItDirtiesAndChangesThePreview)
     const std::string before = client().Get("/api/preview?node=render")->body;
     ASSERT_EQ(before.substr(1, 3), "PNG");
 
-    ASSERT_EQ(post("/api/param", {{"node", "render"}, {"param", "sunDirection"},
-                                  {"value", {-1.0, 0.5, 0.4}}})
+    ASSERT_EQ(post("/api/param",
+                   {{"node", "render"}, {"param", "sunDirection"}, {"value", {-1.0, 0.5, 0.4}}})
                   ->status,
               200);
     const auto second = post("/api/cook", {{"node", "render"}, {"frame", 0}});
@@ -161,12 +103,12 @@ TEST_F(ServeTest, AnEditRecooksOnlyWhatItDirtiesAndChangesThePreview)
 // A long cook (the path tracer) reports its progress while it runs: the page's bar polls it.
 TEST_F(ServeTest, ReportsTheProgressOfACookUnderWay)
 {
-    ASSERT_EQ(post("/api/param", {{"node", "render"}, {"param", "mode"}, {"value", "pathtrace"}})
-                  ->status,
-              200);
-    ASSERT_EQ(post("/api/param", {{"node", "render"}, {"param", "samples"}, {"value", 512}})
-                  ->status,
-              200);
+    ASSERT_EQ(
+        post("/api/param", {{"node", "render"}, {"param", "mode"}, {"value", "pathtrace"}})->status,
+        200);
+    ASSERT_EQ(
+        post("/api/param", {{"node", "render"}, {"param", "samples"}, {"value", 512}})->status,
+        200);
     std::thread cook([&] { post("/api/cook", {{"node", "render"}, {"frame", 0}}); });
     json during;
     for (int i = 0; i < 6000; ++i) {  // a minute at most (the sanitizer build is slow)
@@ -189,7 +131,8 @@ TEST_F(ServeTest, ReportsTheProgressOfACookUnderWay)
 
 TEST_F(ServeTest, SavesTheEditAtomicallyAsAGraphTheCliLoads)
 {
-    ASSERT_EQ(post("/api/param", {{"node", "render"}, {"param", "fov"}, {"value", 55}})->status, 200);
+    ASSERT_EQ(post("/api/param", {{"node", "render"}, {"param", "fov"}, {"value", 55}})->status,
+              200);
     const auto res = post("/api/save", json::object());
     ASSERT_TRUE(res);
     ASSERT_EQ(res->status, 200) << res->body;
@@ -215,17 +158,17 @@ TEST_F(ServeTest, RefusesBadRequestsAndKeepsServing)
         EXPECT_GE(res->status, 400) << path;
         EXPECT_EQ(res->body.find("cmake_minimum_required"), std::string::npos) << path;
     }
-    const auto malformed = client().Post("/api/param", "{\"node\": ", "application/json");
+    const auto malformed = postText("/api/param", "{\"node\": ", "application/json");
     ASSERT_TRUE(malformed);
     EXPECT_EQ(malformed->status, 400);
-    const auto notObject = client().Post("/api/cook", "[1, 2]", "application/json");
+    const auto notObject = postText("/api/cook", "[1, 2]", "application/json");
     EXPECT_EQ(notObject->status, 400);
     const auto badFrame = post("/api/cook", {{"node", "render"}, {"frame", 99}});
     EXPECT_EQ(badFrame->status, 400);
     const auto unknownNode = post("/api/cook", {{"node", "nope"}, {"frame", 0}});
     EXPECT_EQ(unknownNode->status, 400);
     const std::string huge(8u << 20, 'x');
-    const auto tooBig = client().Post("/api/param", huge, "application/json");
+    const auto tooBig = postText("/api/param", huge, "application/json");
     ASSERT_TRUE(tooBig);
     EXPECT_EQ(tooBig->status, 413);
     EXPECT_EQ(client().Get("/api/graph")->status, 200);
@@ -238,26 +181,26 @@ TEST_F(ServeTest, RefusesRequestsFromOtherSites)
 {
     const std::string edit = json{{"node", "render"}, {"param", "fov"}, {"value", 12}}.dump();
     const std::string ours = "127.0.0.1:" + std::to_string(port);
-    const auto plain = client().Post("/api/param", edit, "text/plain");
+    const auto plain = postText("/api/param", edit, "text/plain");
     ASSERT_TRUE(plain);
     EXPECT_EQ(plain->status, 403);
     EXPECT_NE(plain->body.find("application/json"), std::string::npos) << plain->body;
     const auto foreign =
-        client().Post("/api/param", {{"Origin", "http://evil.example"}}, edit, "application/json");
+        postText("/api/param", edit, "application/json", {{"Origin", "http://evil.example"}});
     EXPECT_EQ(foreign->status, 403);
     const auto rebound =
         client().Get("/api/graph", {{"Host", "evil.example:" + std::to_string(port)}});
     EXPECT_EQ(rebound->status, 403);
-    const auto save = client().Post("/api/save", {{"Origin", "http://evil.example"}}, "{}",
-                                    "application/json");
+    const auto save = postText("/api/save", "{}", "application/json",
+                               {{"Origin", "http://evil.example"}});
     EXPECT_EQ(save->status, 403);
-    EXPECT_EQ(test::readFile(graphFile()), kGraph);  // not saved
+    EXPECT_EQ(test::readFile(graphFile()), kServeGraph);  // not saved
     const json graph = json::parse(client().Get("/api/graph")->body)["graph"];
     EXPECT_FALSE(graph["nodes"]["render"]["params"].contains("fov"));  // not edited
 
     // The page itself: its own Origin, JSON.
     const auto own =
-        client().Post("/api/param", {{"Origin", "http://" + ours}}, edit, "application/json");
+        postText("/api/param", edit, "application/json", {{"Origin", "http://" + ours}});
     EXPECT_EQ(own->status, 200) << own->body;
     EXPECT_EQ(client().Get("/api/graph", {{"Host", "localhost:" + std::to_string(port)}})->status,
               200);
@@ -269,10 +212,10 @@ TEST_F(ServeTest, AnswersConcurrentRequests)
     std::vector<int> statuses(16, 0);
     for (int t = 0; t < 16; ++t)
         threads.emplace_back([&, t] {
-            const auto res = t % 2 ? client().Get("/api/graph")
-                                   : post("/api/param", {{"node", "render"},
-                                                         {"param", "fov"},
-                                                         {"value", 30 + t}});
+            const auto res =
+                t % 2
+                    ? client().Get("/api/graph")
+                    : post("/api/param", {{"node", "render"}, {"param", "fov"}, {"value", 30 + t}});
             statuses[static_cast<std::size_t>(t)] = res ? res->status : -1;
         });
     for (std::thread& t : threads) t.join();
@@ -295,12 +238,12 @@ TEST_F(ServeTest, WritesTheFramesOfTheWritersBelowWhenAsked)
 {
     // The preview shows the image as the WriteImage below writes it: its exposure, tone
     // curve and dither (seeded by the frame), so the two are the same pixels.
-    ASSERT_EQ(post("/api/param", {{"node", "write"}, {"param", "exposure"}, {"value", 1.5}})
-                  ->status,
-              200);
-    ASSERT_EQ(post("/api/param", {{"node", "write"}, {"param", "toneMap"}, {"value", "hable"}})
-                  ->status,
-              200);
+    ASSERT_EQ(
+        post("/api/param", {{"node", "write"}, {"param", "exposure"}, {"value", 1.5}})->status,
+        200);
+    ASSERT_EQ(
+        post("/api/param", {{"node", "write"}, {"param", "toneMap"}, {"value", "hable"}})->status,
+        200);
     const json cook = {{"node", "render"}, {"frame", 1}, {"write", true}};
     const auto first = post("/api/cook", cook);
     ASSERT_TRUE(first);
@@ -316,8 +259,7 @@ TEST_F(ServeTest, WritesTheFramesOfTheWritersBelowWhenAsked)
     ASSERT_TRUE(again) << "the server went away";
     ASSERT_EQ(again->status, 200) << again->body;
     EXPECT_EQ(json::parse(again->body)["preview"], "/api/preview?node=render&port=image");
-    EXPECT_EQ(post("/api/cook", {{"node", "render"}, {"frame", 1}, {"write", "yes"}})->status,
-              400);
+    EXPECT_EQ(post("/api/cook", {{"node", "render"}, {"frame", 1}, {"write", "yes"}})->status, 400);
 }
 
 TEST_F(ServeTest, WiringEditsAreCheckedAsLoadingChecksThem)
@@ -401,9 +343,9 @@ TEST_F(ServeTest, ReloadsTheGraphWhenItsFileChangesOnDisk)
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
     EXPECT_EQ(reply["fileError"], "");
-    EXPECT_EQ(json::parse(client().Get("/api/graph")->body)["graph"]["nodes"]["render"]["params"]
-                                                              ["fov"],
-              34.0);
+    EXPECT_EQ(
+        json::parse(client().Get("/api/graph")->body)["graph"]["nodes"]["render"]["params"]["fov"],
+        34.0);
 }
 
 /// A density map and the vapour emitted over it, for the previews of what is not an image.
