@@ -1,6 +1,7 @@
 // The page of `cloudgraph serve`: the network, the selected node's parameters (widgets made
 // from the node declarations, every edit checked by the server as the CLI checks it), the
 // preview of a renderer at the current frame, recooked after each edit, and the cook report.
+// api.js holds the status line and the API, save.js Save and the file's changes on disk.
 "use strict";
 
 const state = {
@@ -17,22 +18,6 @@ const state = {
   version: 0,         // of the server's graph when this page last read it
   registry: [],       // every node type, for "Add"
 };
-const $ = (id) => document.getElementById(id);
-
-function setStatus(text, isError = false) {
-  $("status").textContent = text;
-  $("status").classList.toggle("error", isError);
-}
-
-async function api(path, body) {
-  const options = body === undefined ? {} :
-    { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body) };
-  const response = await fetch(path, options);
-  const reply = await response.json();
-  if (!response.ok) throw new Error(reply.error || response.statusText);
-  return reply;
-}
-
 // The outputs the preview can draw: images, density maps and particles (as points).
 const PREVIEW_TYPES = ["Image", "Map2D", "VapourParticles", "Condensation", "CloudParticles"];
 
@@ -162,6 +147,7 @@ async function editGraph(edit) {
   state.editing++;
   try {
     await api("/api/graph", { graph });
+    markEdited();
     await reload();
   } catch (e) {
     setStatus(e.message, true);
@@ -198,6 +184,7 @@ async function editParam(id, name, read, message) {
     const reply = await api("/api/param", { node: id, param: name, value });
     (state.graph.nodes[id].params ||= {})[name] = value;
     state.version = reply.version;
+    markEdited();
   } catch (e) {
     message.textContent = e.message;   // the CLI's own message, naming node and parameter
     setStatus(e.message, true);
@@ -369,6 +356,7 @@ async function poll() {
     const reply = await api("/api/version");
     if (reply.version !== state.version && !state.cooking && !state.editing) {
       await reload();
+      fileChanged($("file").textContent, reply.fileError);
       cook();
     }
   } catch (e) {
@@ -403,13 +391,5 @@ $("play").addEventListener("click", () => {
   state.playing = !state.playing;
   $("play").textContent = state.playing ? "Pause" : "Play";
   if (state.playing && !state.cooking) nextFrame();
-});
-$("save").addEventListener("click", async () => {
-  try {
-    const reply = await api("/api/save", {});
-    setStatus(`saved ${reply.saved}`);
-  } catch (e) {
-    setStatus(e.message, true);
-  }
 });
 reload().then(() => { cook(); poll(); }).catch((e) => setStatus(e.message, true));

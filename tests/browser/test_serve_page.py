@@ -2,7 +2,9 @@
 reduced size, the sun moved, only the Renderer and its writer recook (the page's own cook
 report), the
 preview changes, a long cook shows its progress, an out-of-range value is refused naming node and parameter, and the saved
-graph loads in the CLI with the edit. Optionally saves a screenshot of the page."""
+graph loads in the CLI with the edit; Save refuses to replace a file changed on disk and offers
+to overwrite it, and a change on disk that replaces unsaved edits is said. Optionally saves a
+screenshot of the page."""
 
 import argparse
 import json
@@ -44,6 +46,17 @@ const inputs = [...document.querySelectorAll(`#params [data-param="${param}"]`)]
 inputs.forEach((input, i) => { input.value = values[i]; });
 inputs[0].dispatchEvent(new Event('change'));
 return inputs.length;"""
+
+
+CONFLICT_SHOWN = """return document.getElementById('conflict').open &&
+                          document.getElementById('conflict-text').textContent;"""
+
+
+def replace_file(path, text):
+    """Replaces `path` by `text` as an editor saves: a new file renamed over it."""
+    with open(path + ".new", "w") as f:
+        f.write(text)
+    os.replace(path + ".new", path)
 
 
 def small_figure6(source, target):
@@ -182,9 +195,43 @@ def main():
         browser.run(DRAG, 'circle[data-node="voxelize"][data-output="volume"]', render_input)
         browser.wait_for(WIRE, timeout=30)
         wait_for_cook(browser, cooks, "the Renderer wired again")
+
+        # Save refuses to replace a file changed on disk since the page loaded or saved it
+        # (here into one that does not load, so the server keeps the page's graph): the
+        # dialog says so, and Overwrite saves the page's graph.
+        cooks = browser.run(COOKS)
+        browser.run(SET_INPUTS, "fov", [35])
+        wait_for_cook(browser, cooks, "fov 35")
+        replace_file(graph_file, '{"cloudgraph": 1, "nodes": ')
+        browser.run("document.getElementById('save').click();")
+        conflict = browser.wait_for(CONFLICT_SHOWN, timeout=30)
+        assert graph_file in conflict, conflict
+        browser.run("document.getElementById('conflict-overwrite').click();")
+        browser.wait_for("return document.getElementById('status').textContent"
+                         ".startsWith('saved');", timeout=30)
+        assert not browser.run(CONFLICT_SHOWN), "the dialog stayed after Overwrite"
+        with open(graph_file) as f:
+            assert json.load(f)["nodes"]["render"]["params"]["fov"] == 35
+
+        # The file changed on disk while the page has unsaved edits: the page shows the
+        # file's graph and says that its edits were replaced.
+        cooks = browser.run(COOKS)
+        browser.run(SET_INPUTS, "fov", [36])
+        wait_for_cook(browser, cooks, "fov 36")
+        with open(graph_file) as f:
+            graph = json.load(f)
+        graph["nodes"]["render"]["params"]["fov"] = 40
+        replace_file(graph_file, json.dumps(graph, indent=1))
+        notice = browser.wait_for("""const n = document.getElementById('notice');
+                                     return !n.hidden && n.textContent;""", timeout=30)
+        assert "unsaved edits were replaced" in notice, notice
+        browser.wait_for("""const i = document.querySelector('#params [data-param="fov"]');
+                            return i && i.value === '40';""", timeout=30)
         print("the page loaded, recooked only the Renderer and its writer after the sun edit,"
               " showed a long cook's progress, refused width 0, saved a graph the CLI loads,"
-              " reloaded the file edited outside it, and rewired the Renderer by dragging")
+              " reloaded the file edited outside it, rewired the Renderer by dragging, offered"
+              " to overwrite a file changed on disk, and said when a change on disk replaced"
+              " its unsaved edits")
     finally:
         if browser:
             browser.close()
