@@ -40,7 +40,8 @@ Response jsonReply(int status, const nlohmann::json& body)
 {
     Response res;
     res.status = status;
-    res.body = body.dump();
+    // Messages may quote the bytes a client sent, which need not be UTF-8.
+    res.body = body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     return res;
 }
 
@@ -541,6 +542,10 @@ Response GraphServer::postSave(const Request& req)
             return jsonReply(409, reply);
         }
         mFileText = mBaseText = mDoc->save(mOptions.graphFile);  // not a change from outside
+        if (!mFileError.empty()) {  // an overwritten file that did not load now does
+            mFileError.clear();
+            changed();
+        }
     } catch (const InputError& e) {
         return errorReply(400, e.what());
     }

@@ -2,8 +2,8 @@
 # Builds the libFuzzer targets (clang, ASan + UBSan, in build-fuzz/: the configuration of CI's
 # second build, so after CI nothing rebuilds) and runs each longer than ctest's few seconds.
 # Usage: scripts/fuzz.sh [TARGET|all] [SECONDS] [libFuzzer flags...]
-#   TARGET   graph_loader, cgp_reader, cache_entry, plugin_stamp or sounding_reader
-#            (tests/fuzz/TARGET.cc); default all
+#   TARGET   one of tests/fuzz/*.cc by name (graph_loader, http_request, serve_api, ...);
+#            default all
 #   SECONDS  per target; default 600
 # New inputs accumulate in build-fuzz/fuzz-corpus/TARGET/, so a later run goes on from what
 # earlier ones found; crashing inputs land in build-fuzz/fuzz-findings/TARGET/, the full output

@@ -41,6 +41,16 @@ TEST_F(ServeHardening, ADeeplyNestedBodyIsRefusedAndTheServerLives)
     EXPECT_EQ(client().Get("/api/version")->status, 200);
 }
 
+// A syntax error's message quotes the bytes sent, which need not be UTF-8; the reply is still
+// JSON (the fuzz target serve_api found it answered 500).
+TEST_F(ServeHardening, AReplyQuotingBytesThatAreNotUtf8IsStillJson)
+{
+    const auto res = postText("/api/cook", "{\"node\": \"render\", \"frame\": 4\xce" "2}");
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 400);
+    EXPECT_TRUE(json::accept(res->body)) << res->body;
+}
+
 // 2^32 + 2 once cooked frame 2 and 2^63 frame 0.
 TEST_F(ServeHardening, FrameNumbersAreRangeCheckedBeforeTheyAreNarrowed)
 {
@@ -138,6 +148,7 @@ TEST_F(ServeHardening, SaveRefusesToReplaceAFileChangedOnDisk)
     const auto forced = post("/api/save", {{"overwrite", true}});
     ASSERT_EQ(forced->status, 200) << forced->body;
     EXPECT_EQ(test::runCli({"validate", graphFile().string()}).exitCode, 0);
+    EXPECT_EQ(json::parse(client().Get("/api/version")->body)["fileError"], "");
     // A valid edit is either refused or, once the watcher has loaded it, kept by the save.
     json edited = test::readJson(graphFile());
     edited["nodes"]["render"]["params"]["fov"] = 21;
