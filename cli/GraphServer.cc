@@ -1,4 +1,5 @@
 #include "cli/GraphServer.h"
+#include "cli/ApiBody.h"
 
 #include <algorithm>
 #include <cctype>
@@ -17,7 +18,6 @@
 #include "algo/render/Display.h"
 #include "cli/PreviewPicture.h"
 #include "core/Error.h"
-#include "core/JsonParse.h"
 #include "core/NodeDeclJson.h"
 #include "formats/PngFile.h"
 #include "nodes/render/ImageFile.h"
@@ -36,72 +36,13 @@ constexpr std::string_view kTokenPlaceholder = "{{CLOUDGRAPH_TOKEN}}";
 using http::Request;
 using http::Response;
 
-Response jsonReply(int status, const nlohmann::json& body)
+/// Whether two secrets are equal, in a time that does not depend on where they differ.
+bool sameSecret(const std::string& a, const std::string& b)
 {
-    Response res;
-    res.status = status;
-    // Messages may quote the bytes a client sent, which need not be UTF-8.
-    res.body = body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-    return res;
-}
-
-Response errorReply(int status, const std::string& message)
-{
-    return jsonReply(status, {{"error", message}});
-}
-
-/// Thrown by the request readers below with the reply to send instead.
-struct Refused {
-    Response response;
-};
-
-/// The request's body as a JSON object, read with the graph loader's strict, depth-limited
-/// parser (a deeply nested body is refused, never recursed into).
-nlohmann::json jsonBody(const Request& req, int maxDepth)
-{
-    nlohmann::json body;
-    try {
-        body = parseJsonStrict(req.body, "request body", maxDepth);
-    } catch (const InputError& e) {
-        throw Refused{errorReply(400, e.what())};
-    }
-    if (!body.is_object()) throw Refused{errorReply(400, "the request body must be a JSON object")};
-    return body;
-}
-
-/// body[key] as a string.
-std::string stringField(const nlohmann::json& body, const char* key)
-{
-    const auto it = body.find(key);
-    if (it == body.end() || !it->is_string())
-        throw Refused{errorReply(400, std::string("'") + key + "' must be a string")};
-    return it->get<std::string>();
-}
-
-/// body["frame"] as a frame of `frames`, checked before it is narrowed to an int.
-int frameField(const nlohmann::json& body, const FrameRange& frames)
-{
-    const auto it = body.find("frame");
-    if (it == body.end() || !it->is_number_integer())
-        throw Refused{errorReply(400, "'frame' must be an integer")};
-    // nlohmann keeps integers above INT64_MAX unsigned: no frame is that large.
-    const bool fits = !it->is_number_unsigned() || it->get<std::uint64_t>() <= INT64_MAX;
-    const std::int64_t f = fits ? it->get<std::int64_t>() : 0;
-    if (!fits || f < frames.start || f > frames.end)
-        throw Refused{errorReply(400, "frame " + it->dump() + " is outside the graph's frames " +
-                                          std::to_string(frames.start) + ":" +
-                                          std::to_string(frames.end))};
-    return static_cast<int>(f);
-}
-
-/// body[key] as a boolean, `fallback` when absent.
-bool boolField(const nlohmann::json& body, const char* key, bool fallback)
-{
-    const auto it = body.find(key);
-    if (it == body.end()) return fallback;
-    if (!it->is_boolean())
-        throw Refused{errorReply(400, std::string("'") + key + "' must be true or false")};
-    return it->get<bool>();
+    unsigned char differ = a.size() != b.size();
+    for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
+        differ |= static_cast<unsigned char>(a[i] ^ b[i]);
+    return differ == 0;
 }
 
 std::string lowerCase(std::string s)
@@ -282,7 +223,7 @@ std::string GraphServer::refusal(const Request& req) const
     if (const std::string* origin = req.header("origin");
         origin && *origin != "http://" + req.headerOr("host"))
         return "Origin '" + *origin + "' is not this server's page";
-    if (req.headerOr("x-cloudgraph-token") != mToken)
+    if (!sameSecret(req.headerOr("x-cloudgraph-token"), mToken))
         return "a POST must carry this session's X-CloudGraph-Token (reload the page)";
     return "";
 }

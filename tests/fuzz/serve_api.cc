@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 
 #include <spdlog/spdlog.h>
@@ -41,6 +42,11 @@ struct Fixture {
         cg::registerBuiltinNodes(registry);
         char templ[] = "/tmp/fuzz_serve_api.XXXXXX";
         dir = ::mkdtemp(templ);
+        static const std::filesystem::path made = dir;
+        std::atexit([] {
+            std::error_code ec;
+            std::filesystem::remove_all(made, ec);
+        });
         std::ofstream(dir / "graph.json") << kGraph;
         cg::cli::ServeOptions options;
         options.graphFile = dir / "graph.json";
