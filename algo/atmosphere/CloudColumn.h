@@ -1,5 +1,5 @@
 #pragma once
-/// What a meteorologist reads off a cloud (issue 14): its base, its top and its cloud fraction
+/// What a meteorologist reads off a cloud: its base, its top and its cloud fraction
 /// by height, from the condensation particles of one frame.
 
 #include <cstddef>

@@ -1,6 +1,6 @@
 #pragma once
 /// The environment as tables by height above the ground, sampled at even steps, so the
-/// per-particle steps look values up instead of searching a sounding's levels (issue 14).
+/// per-particle steps look values up instead of searching a sounding's levels (docs/atmosphere.md).
 
 #include <cstddef>
 #include <vector>

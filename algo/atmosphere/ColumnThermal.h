@@ -1,5 +1,5 @@
 #pragma once
-/// The thermal step of Eq. 6-8 through a real environment (issue 14): the environment's
+/// The thermal step of Eq. 6-8 through a real environment (docs/atmosphere.md): the environment's
 /// temperature from a sounding or the standard atmosphere instead of Eq. 9's line, each
 /// particle condensing at its own lifting condensation level, the moist adiabat above it,
 /// horizontal wind, and the outflow that spreads a tower's top into an anvil. Thermal.h keeps

@@ -1,6 +1,6 @@
 #pragma once
 /// Which tower a particle rose in, and where that tower's axis is, for the outflow that
-/// spreads the top of a tower into an anvil (issue 14; ours, the paper has no anvil).
+/// spreads the top of a tower into an anvil (ours, the paper has no anvil).
 
 #include <cstddef>
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-/// A parcel lifted through an environment profile (issue 14): where it condenses (the lifting
+/// A parcel lifted through an environment profile: where it condenses (the lifting
 /// condensation level), where it becomes warmer than its surroundings (the level of free
 /// convection) and where it stops being so (the equilibrium level, near which towers stop and
 /// anvils spread), and the energy it gains between them (CAPE). The data of a Skew-T diagram.

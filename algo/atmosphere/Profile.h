@@ -1,5 +1,5 @@
 #pragma once
-/// The environment as a function of height (issue 14): temperature, dew point, pressure and
+/// The environment as a function of height: temperature, dew point, pressure and
 /// wind from a sounding or the standard atmosphere, where the paper has Eq. 9's straight line.
 /// Heights are above mean sea level in metres, temperatures in C, pressures in hPa, winds in
 /// m/s toward the east and the north.

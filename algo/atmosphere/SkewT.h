@@ -1,5 +1,5 @@
 #pragma once
-/// A skew-T log-p diagram (issue 14): the picture a meteorologist reads a sounding from. The
+/// A skew-T log-p diagram: the picture a meteorologist reads a sounding from. The
 /// environment's temperature (red) and dew point (green) and the lifted parcel (black) over
 /// skewed isotherms (grey, 45 degrees), isobars (grey, labelled in hPa) and dry adiabats
 /// (tan); the LCL, LFC and EL as ticks on the right, and a cloud's extent as a blue bar beside

@@ -1,5 +1,5 @@
 #pragma once
-/// Moist-air thermodynamics for real atmospheres (issue 14; the paper's Eq. 8-9 use fixed
+/// Moist-air thermodynamics for real atmospheres (the paper's Eq. 8-9 use fixed
 /// lapse rates instead). Temperatures in degrees C, pressures in hPa, heights in metres.
 /// The formulas are the textbook ones (Bolton 1980 for saturation; the saturated-adiabatic
 /// lapse rate of the AMS Glossary); the constants are the usual dry-air and water values.

@@ -1,5 +1,5 @@
 #pragma once
-/// A horizontal wind that depends on height (issue 14; the paper ignores wind, Sec. 7 asks for
+/// A horizontal wind that depends on height (the paper ignores wind, Sec. 7 asks for
 /// it). Heights are above the ground in metres, winds in m/s toward the east and the north.
 
 #include <vector>

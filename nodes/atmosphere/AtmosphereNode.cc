@@ -1,5 +1,5 @@
 // Atmosphere: the environment of Eq. 8-9, one source of truth for the integrator and for
-// condensation; with issue 14, optionally a sounding or the standard atmosphere, and wind.
+// condensation; optionally a sounding or the standard atmosphere, and wind.
 
 #include <stdexcept>
 #include <string>
@@ -138,7 +138,7 @@ void registerAtmosphereNode(Registry& registry)
     d.doc = "The environment of Sec. 5.1: by default the paper's, ground temperature and "
             "environmental lapse rate (Eq. 9, T_e = T_sl_max - C_e z), one dew-point threshold "
             "and the particle lapse rates of Eq. 8, and gravity (Eq. 6); the defaults put the "
-            "cloud base of the default VapourEmitter at 1.4 km. Ours (issue 14, "
+            "cloud base of the default VapourEmitter at 1.4 km. Ours ("
             "docs/atmosphere.md): profile 'sounding' (a University of Wyoming or CSV sounding "
             "file; its parsed levels, not its path, enter the cache key) or 'standard' (ICAO) "
             "replaces Eq. 9 and the one T_dp: each particle then condenses at its own lifting "

@@ -19,7 +19,7 @@ namespace cg {
 
 namespace {
 
-/// Each particle's own dew point now (issue 14): from the profile at its start height, less
+/// Each particle's own dew point now: from the profile at its start height, less
 /// 1.8 C/km risen, or the paper's T_dp; plus its offset.
 std::vector<float> particleDewpoints(const AtmosphereData& a, const VapourParticlesData& particles)
 {
@@ -79,7 +79,7 @@ void registerCondensationNode(Registry& registry)
             "condensed and its height then (its condensation level); once condensed, a particle "
             "stays a condensation particle. Also gives the frame at which the first condensation "
             "particle appeared: t_s[1] of Sec. 5.2. A "
-            "simulation: each frame builds on the previous one. Ours (issue 14): with an "
+            "simulation: each frame builds on the previous one. Ours (docs/atmosphere.md): with an "
             "Atmosphere profile each particle has its own dew point, the profile's at its start "
             "height falling 1.8 degC/km as it rises, so it condenses at its lifting condensation "
             "level; a VapourEmitter moisture map adds each particle's perturbation.";

@@ -1,5 +1,5 @@
 // ThermalIntegrator: vapour particles rising under buoyancy (Eq. 6-9), stepped frame by frame;
-// with issue 14's real atmosphere, through a profile, with wind and outflow.
+// with a real atmosphere, through a profile, with wind and outflow.
 
 #include <cmath>
 
@@ -143,7 +143,7 @@ void registerThermalIntegratorNode(Registry& registry)
             "U += dt f / m and P += dt U(t) (Eq. 7, position advanced with the old velocity), "
             "T_v -= C dz with C = 10 C/km while T_v >= T_dp and 6 C/km after (Eq. 8). With the "
             "paper's atmosphere and the defaults below this is the paper's step exactly, and x, y "
-            "never change. Ours (issue 14, docs/atmosphere.md): with an Atmosphere profile, T_e "
+            "never change. Ours (docs/atmosphere.md): with an Atmosphere profile, T_e "
             "is the profile's, each particle condenses at its own lifting condensation level "
             "and, saturated, cools at the moist adiabatic rate; a wind moves x, y by the wind at "
             "the particle's height; 'parcel' buoyancy, drag and the outflow at the top of a "

@@ -1,4 +1,4 @@
-// WriteWeatherReport: a meteorologist's view of a frame (issue 14): cloud base, top and
+// WriteWeatherReport: a meteorologist's view of a frame (docs/atmosphere.md): cloud base, top and
 // fraction by height, the lifted parcel against the environment (a skew-T's data), LCL, LFC
 // and EL, as JSON, CSV and a skew-T PNG with the cloud's extent.
 
@@ -149,7 +149,8 @@ void registerWriteWeatherReportNode(Registry& registry)
 {
     NodeDecl d = writerDecl(
         "WriteWeatherReport",
-        "Ours (issue 14): a meteorological report of the frame, three files named by 'file' "
+        "Ours (docs/atmosphere.md): a meteorological report of the frame, three files named by "
+        "'file' "
         "plus .json, .csv and .png. JSON: the cloud's base and top (lowest and highest "
         "condensation particle, metres above sea level), its cloud fraction by height (the "
         "share of the ground's cellSize cells, over the particles' bounding box, above which a "
