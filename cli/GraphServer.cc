@@ -478,7 +478,7 @@ Response GraphServer::postSave(const Request& req)
                 {"error", mOptions.graphFile.string() +
                               (onDisk ? " was changed outside the page since it was loaded"
                                       : " is gone or unreadable") +
-                              "; reload it, or save again to overwrite it"},
+                              "; reload it, or overwrite it with the page's graph"},
                 {"conflict", true}};
             return jsonReply(409, reply);
         }
