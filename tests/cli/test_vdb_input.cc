@@ -18,60 +18,6 @@ namespace cg {
 using test::runCli;
 using test::TempDir;
 
-TEST(CliVdbInput, ValidateRefusesTheVoxelsAndBackgroundThatRunRefuses)
-{
-    TempDir dir;
-    openvdb::initialize();
-    auto fog = openvdb::FloatGrid::create(0.0f);
-    fog->setName("density");
-    fog->setGridClass(openvdb::GRID_FOG_VOLUME);
-    fog->fill(openvdb::CoordBBox({0, 0, 0}, {20, 20, 20}), 0.5f);
-    openvdb::io::File((dir / "good.vdb").string()).write({fog});
-    auto nan = fog->deepCopy();
-    nan->tree().setValue({3, 4, 5}, std::nanf(""));  // found only when the voxels are read
-    openvdb::io::File((dir / "nan.vdb").string()).write({nan});
-    // Read from the start of the tree, before its voxels.
-    auto background = openvdb::FloatGrid::create(0.5f);
-    background->setName("density");
-    background->setGridClass(openvdb::GRID_FOG_VOLUME);
-    background->fill(openvdb::CoordBBox({0, 0, 0}, {20, 20, 20}), 0.75f);
-    openvdb::io::File((dir / "background.vdb").string()).write({background});
-
-    for (const std::string name : {"nan", "background"}) {
-        const std::string file = (dir / (name + ".vdb")).string();
-        test::writeFile(dir / "g.json", R"({"cloudgraph": 1, "nodes": {
-            "read": {"type": "ReadVDB", "params": {"file": ")" +
-                                            file + R"("}}}})");
-        for (const std::string command : {"validate", "run"}) {
-            std::vector<std::string> args = {command, (dir / "g.json").string()};
-            if (command == "run") args.insert(args.end(), {"--out", (dir / "out").string()});
-            const auto r = runCli(args);
-            EXPECT_EQ(r.exitCode, 2) << command << " " << name << ": " << r.errors;
-            // `run` finds a value that is not finite when it cooks the node; `validate` reads
-            // the voxels of the file the parameter names.
-            const bool cooked = name == "nan" && command == "run";
-            EXPECT_NE(
-                r.errors.find(cooked ? "g.json:/nodes/read" : "g.json:/nodes/read/params/file"),
-                std::string::npos)
-                << r.errors;
-            EXPECT_NE(r.errors.find(name == "nan" ? "densities must be finite"
-                                                  : "has background 0.500000"),
-                      std::string::npos)
-                << r.errors;
-            EXPECT_NE(r.errors.find(file), std::string::npos) << r.errors;
-            EXPECT_NE(r.errors.find("grid 'density'"), std::string::npos) << r.errors;
-            EXPECT_EQ(r.errors.find("internal error"), std::string::npos) << r.errors;
-        }
-    }
-    // The good file validates and runs.
-    test::writeFile(dir / "g.json", R"({"cloudgraph": 1, "nodes": {
-        "read": {"type": "ReadVDB", "params": {"file": "good.vdb"}}}})");
-    const auto v = runCli({"validate", (dir / "g.json").string()});
-    EXPECT_EQ(v.exitCode, 0) << v.errors;
-    const auto r = runCli({"run", (dir / "g.json").string(), "--out", (dir / "out").string()});
-    EXPECT_EQ(r.exitCode, 0) << r.errors;
-}
-
 TEST(CliVdbInput, AVolumeWhoseVoxelsLieTooFarApartIsRefusedByTheRendererNotACrash)
 {
     // Two active voxels 2^25 - 24 voxels apart on x and 2^24 - 24 on y and z: the renderer's
