@@ -204,12 +204,12 @@ bool Server::writeTo(Connection& c)
 
 bool Server::drain(Connection& c)
 {
+    // One read a turn, as for requests: a client that never stops sending must not hold
+    // the thread that serves every other connection.
     char chunk[kReadChunk];
-    for (;;) {
-        const ssize_t n = ::recv(c.fd, chunk, sizeof chunk, MSG_DONTWAIT);
-        if (n == 0) return false;
-        if (n < 0) return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR;
-    }
+    const ssize_t n = ::recv(c.fd, chunk, sizeof chunk, MSG_DONTWAIT);
+    if (n == 0) return false;
+    return n > 0 || errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR;
 }
 
 void Server::acceptAll(std::vector<Connection>& connections)
@@ -226,7 +226,7 @@ void Server::acceptAll(std::vector<Connection>& connections)
                     (oldest == connections.end() || it->accepted < oldest->accepted))
                     oldest = it;
             if (oldest == connections.end()) {
-                ::close(fd);  // every slot is a request under way: this one waits its turn
+                ::close(fd);  // every slot holds a request under way: refuse this one
                 continue;
             }
             ::close(oldest->fd);

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <csignal>
 #include <cstdint>
 #include <string>
@@ -45,7 +46,9 @@ TEST_F(ServeHardening, ADeeplyNestedBodyIsRefusedAndTheServerLives)
 // JSON (the fuzz target serve_api found it answered 500).
 TEST_F(ServeHardening, AReplyQuotingBytesThatAreNotUtf8IsStillJson)
 {
-    const auto res = postText("/api/cook", "{\"node\": \"render\", \"frame\": 4\xce" "2}");
+    const auto res = postText("/api/cook",
+                              "{\"node\": \"render\", \"frame\": 4\xce"
+                              "2}");
     ASSERT_TRUE(res);
     EXPECT_EQ(res->status, 400);
     EXPECT_TRUE(json::accept(res->body)) << res->body;
@@ -124,6 +127,33 @@ TEST_F(ServeHardening, SlowClientsDoNotStarveThePage)
         const std::string reply = s->receiveAll();
         EXPECT_TRUE(reply.empty() || statusOf(reply) == 408) << reply.substr(0, 80);
     }
+}
+
+// A client refused for its body size that goes on sending (the server drains what it sends
+// so that it can read the refusal) holds the socket thread no longer than others.
+TEST_F(ServeHardening, AClientThatNeverStopsSendingCannotHoldTheServer)
+{
+    RawConnection flood(port);
+    ASSERT_TRUE(flood.send("POST /api/param HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) +
+                           "\r\nContent-Length: 999999999\r\n\r\n"));
+    std::atomic<bool> stop{false};
+    std::thread sender([&] {
+        const std::string chunk(1 << 16, 'x');
+        while (!stop && flood.send(chunk)) {
+        }
+    });
+    httplib::Client page("127.0.0.1", port);
+    page.set_connection_timeout(3, 0);
+    page.set_read_timeout(3, 0);
+    int answered = 0;
+    for (int i = 0; i < 10; ++i) {
+        const auto res = page.Get("/api/version");
+        answered += res && res->status == 200;
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
+    stop = true;
+    sender.join();
+    EXPECT_EQ(answered, 10);
 }
 
 TEST_F(ServeHardening, UnknownRoutesAndMethodsAreRefused)
