@@ -76,7 +76,15 @@ public:
     void cook(CookContext& ctx) override
     {
         const auto volume = ctx.input<FogVolumeData>("volume");
-        const algo::RenderSettings settings = settingsFrom(ctx.params());
+        algo::RenderSettings settings = settingsFrom(ctx.params());
+        if (ctx.params().getBool("volumeExtinction"))
+            if (const auto e = volume->grid->getMetadata<openvdb::FloatMetadata>("extinction")) {
+                if (!(e->value() >= 0.0f && e->value() <= 1e3f))
+                    throw InputError(ctx.nodeId() + "/inputs/volume",
+                                     "the volume's 'extinction' metadata must be in [0, 1000] 1/m "
+                                     "(or set volumeExtinction false)");
+                settings.medium.extinction = e->value();
+            }
         const bool pathTrace = ctx.params().getString("mode") == "pathtrace";
         const auto cancelled = [&ctx] { return ctx.cancelToken().cancelled(); };
         algo::RenderedImage img;
@@ -87,9 +95,9 @@ public:
             throw InputError(ctx.nodeId(), e.what());
         }
         ctx.checkCancelled();
-        ctx.setOutput("image", std::make_shared<ImageData>(img.width, img.height,
-                                                           std::move(img.rgba),
-                                                           std::move(img.background)));
+        ctx.setOutput("image",
+                      std::make_shared<ImageData>(img.width, img.height, std::move(img.rgba),
+                                                  std::move(img.background)));
     }
 };
 
@@ -124,7 +132,8 @@ void registerRendererNode(Registry& registry)
     d.framesInAnyOrder = true;
     d.doc =
         "Ray-marches a fog volume (sigma_t = extinction x density, sigma_s = albedo x sigma_t) "
-        "with empty-space skipping over 8^3-voxel blocks, and over 2^3-voxel bricks where no sample "
+        "with empty-space skipping over 8^3-voxel blocks, and over 2^3-voxel bricks where no "
+        "sample "
         "can be positive. Each sample scatters sun light "
         "(two-lobe Henyey-Greenstein phase by default; optical depth toward the sun from a "
         "light map precomputed per frame) and the multiply scattered light of sun, sky and "
@@ -154,15 +163,17 @@ void registerRendererNode(Registry& registry)
         floatParam("fov", def.camera.fovDegrees, "deg", "vertical field of view", 1, 170),
         vec3Param("cameraPosition", v3(def.camera.position), "m", "camera position (z up)"),
         vec3Param("cameraLookAt", v3(def.camera.lookAt), "m", "point at the image centre"),
-        vec3Param("cameraUp", v3(def.camera.up), "", "up direction (any length, not along the view)"),
+        vec3Param("cameraUp", v3(def.camera.up), "",
+                  "up direction (any length, not along the view)"),
         vec3Param("sunDirection", v3(def.sun.direction), "",
                   "direction toward the sun (normalised; z > 0 above the horizon)"),
         vec3Param("sunColour", v3(def.sun.colour), "", "sun colour, linear RGB", 0, 100),
         floatParam("sunIntensity", def.sun.intensity, "",
                    "sun irradiance scale: a white surface facing the sun has radiance "
-                   "colour x intensity / pi (our choice)", 0, 1e6),
-        vec3Param("skyZenith", v3(def.sky.zenith), "", "sky radiance straight up, linear RGB",
-                  0, 1e6),
+                   "colour x intensity / pi (our choice)",
+                   0, 1e6),
+        vec3Param("skyZenith", v3(def.sky.zenith), "", "sky radiance straight up, linear RGB", 0,
+                  1e6),
         vec3Param("skyHorizon", v3(def.sky.horizon), "",
                   "sky radiance at and below the horizon, linear RGB", 0, 1e6),
         floatParam("ambient", def.sky.ambient, "",
@@ -170,21 +181,24 @@ void registerRendererNode(Registry& registry)
         floatParam("skyOcclusion", def.sky.occlusion, "",
                    "sky light in the cloud falls as exp(-skyOcclusion x optical depth up)", 0, 10),
         boolParam("ground", def.ground.enabled, "draw the ground plane z = 0 with cloud shadows"),
-        vec3Param("groundAlbedo", v3(def.ground.albedo), "", "ground reflectance, linear RGB",
-                  0, 1),
+        vec3Param("groundAlbedo", v3(def.ground.albedo), "", "ground reflectance, linear RGB", 0,
+                  1),
         floatParam("hazeDistance", def.ground.hazeDistance, "m",
-                   "the ground fades to the horizon colour as exp(-distance / this); 0 = off",
-                   0, 1e7),
+                   "the ground fades to the horizon colour as exp(-distance / this); 0 = off", 0,
+                   1e7),
         floatParam("extinction", def.medium.extinction, "1/m",
-                   "extinction coefficient per unit density (0.05 ~ cumulus liquid water)",
-                   0, 1e3),
+                   "extinction coefficient per unit density (0.05 ~ cumulus liquid water)", 0, 1e3),
+        boolParam("volumeExtinction", true,
+                  "use the volume's 'extinction' metadata (1/m per unit value, written by the "
+                  "Voxelizer's optics 'water') in place of extinction when it has one"),
         floatParam("albedo", def.medium.albedo, "", "single-scattering albedo", 0, 1),
-        stringParam("phase", "twoLobeHG",
-                    "phase function: twoLobeHG = (1 - lobeBlend) HG(g) + lobeBlend HG(g2); mie = "
-                    "Jendersie and d'Eon's 2023 fit to Mie scattering by droplets of "
-                    "dropletDiameter (HG + Draine; sharper silver lining, a backward glory lobe; the "
-                    "fast mode is not yet within 10% of pathtrace with it, docs/rendering.md)",
-                    {"twoLobeHG", "mie"}),
+        stringParam(
+            "phase", "twoLobeHG",
+            "phase function: twoLobeHG = (1 - lobeBlend) HG(g) + lobeBlend HG(g2); mie = "
+            "Jendersie and d'Eon's 2023 fit to Mie scattering by droplets of "
+            "dropletDiameter (HG + Draine; sharper silver lining, a backward glory lobe; the "
+            "fast mode is not yet within 10% of pathtrace with it, docs/rendering.md)",
+            {"twoLobeHG", "mie"}),
         floatParam("g", def.medium.g, "", "twoLobeHG: asymmetry of the forward HG lobe", -0.99,
                    0.99),
         floatParam("g2", def.medium.g2, "", "twoLobeHG: asymmetry of the second HG lobe", -0.99,
@@ -217,8 +231,8 @@ void registerRendererNode(Registry& registry)
                    "0: never)",
                    0, 1),
         floatParam("lightTexel", def.march.lightTexel, "voxels",
-                   "texel of the sun light map (grown if the map would exceed 8M texels)",
-                   0.25, 64),
+                   "texel of the sun light map (grown if the map would exceed 8M texels)", 0.25,
+                   64),
         floatParam("lightStep", def.march.lightStep, "voxels", "step when filling the light maps",
                    0.1, 16),
         boolParam("jitter", def.march.jitter,
@@ -226,12 +240,14 @@ void registerRendererNode(Registry& registry)
                   "(turns banding into fine grain)"),
         intParam("jitterSeed", 0, "",
                  "seed of the jitter and of the path tracer's paths (counter-based on the pixel "
-                 "index)", 0, 1e15),
+                 "index)",
+                 0, 1e15),
         intParam("samples", def.pathTrace.samples, "",
                  "pathtrace: paths a pixel (noise falls as 1/sqrt(samples))", 1, 1 << 20),
         intParam("maxBounces", def.pathTrace.maxBounces, "",
                  "pathtrace: events a path may have before it is cut (thick cumulus needs "
-                 "hundreds; Russian roulette ends most paths long before)", 1, 1 << 20),
+                 "hundreds; Russian roulette ends most paths long before)",
+                 1, 1 << 20),
     };
     d.validate = [](const ParamSet& p, const ParamChecker& check) {
         // RGBA and the background: 7 floats a pixel.

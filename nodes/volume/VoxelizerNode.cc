@@ -12,8 +12,11 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
+#include "nodes/data/AtmosphereData.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/data/FogVolume.h"
+#include "nodes/data/VapourParticles.h"
+#include "nodes/volume/CloudWaterSetup.h"
 #include "nodes/volume/VolumeNodes.h"
 #include "util/SystemMemory.h"
 
@@ -50,8 +53,7 @@ Voxelized splatStreaming(const CloudParticlesData& particles, const algo::Voxeli
     // Particles without copies (vapour, primitive frames) leave the field empty: detail in
     // world coordinates.
     const bool copies = field && field->cellCount() > 0;
-    algo::erodeSurface(*grid, copies ? &*field : nullptr, detail,
-                       [&] { ctx.checkCancelled(); });
+    algo::erodeSurface(*grid, copies ? &*field : nullptr, detail, [&] { ctx.checkCancelled(); });
     return {grid, count};
 }
 
@@ -61,12 +63,72 @@ Voxelized splatArrays(const CloudParticlesData& particles, const algo::VoxelizeS
 {
     const auto& a = particles.arrays([&] { ctx.checkCancelled(); });
     const std::uint64_t count = particles.size();
-    auto grid = algo::voxelizeParticles(a.positions.data(), count, s, [&] { ctx.checkCancelled(); });
-    const algo::DetailParticles detailParticles{a.positions.data(), a.sources.data(), count,
-                                                a.copyOrigins.empty() ? nullptr : a.copyOrigins.data(),
-                                                a.copyOrigins.size() / 3};
+    auto grid =
+        algo::voxelizeParticles(a.positions.data(), count, s, [&] { ctx.checkCancelled(); });
+    const algo::DetailParticles detailParticles{
+        a.positions.data(), a.sources.data(), count,
+        a.copyOrigins.empty() ? nullptr : a.copyOrigins.data(), a.copyOrigins.size() / 3};
     algo::erodeSurface(*grid, detailParticles, s.radius, detail, [&] { ctx.checkCancelled(); });
     return {grid, count};
+}
+
+/// The droplets the parameters ask for: the air mass's k, and its typical number unless
+/// dropletConcentration is set.
+algo::DropletPopulation dropletsFrom(const ParamSet& p)
+{
+    algo::DropletPopulation d =
+        p.getString("airMass") == "maritime" ? algo::kMaritimeDroplets : algo::kContinentalDroplets;
+    if (p.getFloat("dropletConcentration") > 0.0)
+        d.concentrationPerCm3 = p.getFloat("dropletConcentration");
+    return d;
+}
+
+/// Flat bases and, with optics 'water', the cloud's water (algo/volume/CloudBase.h); writes
+/// what a renderer needs into the grid's metadata.
+void shapeBaseAndWater(openvdb::FloatGrid& grid, CookContext& ctx)
+{
+    const ParamSet& p = ctx.params();
+    const bool water = p.getString("optics") == "water";
+    if (!water && !p.getBool("flatBase")) return;
+    const auto condensation = ctx.input<CondensationData>("condensation");
+    if (!condensation)
+        throw InputError(ctx.nodeId() + "/inputs/condensation",
+                         "flatBase and optics 'water' need the condensation input (the "
+                         "condensation levels)");
+    std::shared_ptr<const AtmosphereData> atmosphere;
+    if (water) {
+        atmosphere = ctx.input<AtmosphereData>("atmosphere");
+        if (!atmosphere)
+            throw InputError(ctx.nodeId() + "/inputs/atmosphere",
+                             "optics 'water' needs the atmosphere input (the temperature and "
+                             "pressure at the cloud base)");
+    }
+    const auto base = cloudBaseOf(*condensation, p.getFloat("baseCellSize"));
+    if (!base) return;  // nothing has condensed: no cloud base yet
+    algo::CloudWaterSettings s;
+    s.transition = p.getFloat("baseTransition");
+    s.adiabaticFraction = p.getFloat("adiabaticFraction");
+    s.droplets = dropletsFrom(p);
+    std::optional<algo::AdiabaticWater> adiabatic;
+    if (water) {
+        adiabatic.emplace(adiabaticWaterAt(atmosphere->atmosphere, base->overall()));
+        s.water = &*adiabatic;
+    }
+    algo::shapeCloudWater(grid, *base, s, [&] { ctx.checkCancelled(); });
+    grid.insertMeta("cloud_base_m", openvdb::DoubleMetadata(base->overall()));
+    if (!water) return;
+    // One number turns the grid into extinction (1/m); the rest describes the droplets.
+    const double extinction = algo::extinctionPerUnitValue(s.droplets);
+    const double radius = algo::effectiveRadius(1.0, s.droplets);
+    grid.insertMeta("extinction", openvdb::FloatMetadata(static_cast<float>(extinction)));
+    grid.insertMeta("albedo", openvdb::FloatMetadata(1.0f));
+    grid.insertMeta("phase_asymmetry",
+                    openvdb::FloatMetadata(static_cast<float>(algo::dropletAsymmetry(radius))));
+    grid.insertMeta("droplet_concentration_cm3",
+                    openvdb::DoubleMetadata(s.droplets.concentrationPerCm3));
+    grid.insertMeta("value_meaning",
+                    openvdb::StringMetadata("extinction / 'extinction'; liquid water content "
+                                            "= value^1.5 g/m^3"));
 }
 
 class VoxelizerNode final : public Node {
@@ -89,8 +151,9 @@ public:
         detail.octaves = static_cast<int>(p.getInt("detailOctaves"));
         Voxelized voxelized;
         try {
-            voxelized = s.kernel == algo::VoxelKernel::Gaussian ? splatStreaming(*particles, s, detail, ctx)
-                                                                : splatArrays(*particles, s, detail, ctx);
+            voxelized = s.kernel == algo::VoxelKernel::Gaussian
+                            ? splatStreaming(*particles, s, detail, ctx)
+                            : splatArrays(*particles, s, detail, ctx);
         } catch (const algo::VoxelizeTooLarge& e) {
             throw InputError(ctx.nodeId() + "/params/voxelSize", e.what());
         } catch (const std::invalid_argument& e) {
@@ -100,6 +163,11 @@ public:
         algo::filterVolume(grid, algo::voxelFilterFromName(p.getString("filter")),
                            static_cast<int>(p.getInt("filterWidth")),
                            static_cast<int>(p.getInt("filterIterations")));
+        try {
+            shapeBaseAndWater(grid, ctx);
+        } catch (const std::invalid_argument& e) {
+            throw InputError(ctx.nodeId(), e.what());
+        }
 
         // Provenance for whoever opens the file (vdb_print, Houdini, Blender).
         grid.insertMeta("frame", openvdb::Int32Metadata(ctx.frame()));
@@ -119,7 +187,7 @@ void registerVoxelizerNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "Voxelizer";
-    d.version = 4;  // 2: surface detail; 3: the gaussian kernel by default; 4: its weights exact
+    d.version = 5;
     d.category = "volume";
     d.doc =
         "Splats cloud particles into a sparse OpenVDB fog volume (Sec. 6.3: volume data with "
@@ -138,24 +206,34 @@ void registerVoxelizerNode(Registry& registry)
         "splats), Perlin-Worley noise n in [0, 1] erodes it to (v - e) / (1 - e), e = "
         "detailAmplitude (1 - n), evaluated at the voxel's place in its copy (the voxel minus "
         "the copy's origin, R P_f of Eq. 10), so the detail moves with the copies instead of "
-        "swimming through them; detailAmplitude 0 leaves the splats untouched. Only leaves that "
-        "particles touch are allocated; the "
-        "grid is identical for any thread count. Metadata: frame, units ('metres'), "
-        "voxel_size_m, particle_radius_m, kernel, particle_count. See docs/voxelizer.md.";
+        "swimming through them; detailAmplitude 0 leaves the splats untouched. flatBase (ours) "
+        "cuts every column at its condensation level; optics 'water' (ours) makes the value the "
+        "cloud's liquid water as extinction: (LWC / 1 g m^-3)^(2/3), with LWC the share "
+        "adiabaticFraction x value of the moist-adiabatic water above the base, and writes "
+        "'extinction' (1/m per unit value, sigma of 1 g/m^3 for the droplets), 'albedo', "
+        "'phase_asymmetry' and 'droplet_concentration_cm3' into the metadata. Only leaves that "
+        "particles touch are allocated; the grid is identical for any thread count. Metadata: "
+        "frame, units ('metres'), voxel_size_m, particle_radius_m, kernel, particle_count, and "
+        "cloud_base_m with a flat base. See docs/voxelizer.md.";
     d.frameDependent = true;  // the frame is written into the grid's metadata
-    d.inputs = {port("particles", "CloudParticles", "the cloud particles, positions in metres")};
+    d.inputs = {port("particles", "CloudParticles", "the cloud particles, positions in metres"),
+                port("condensation", "Condensation",
+                     "the condensation levels, for flatBase and optics 'water'", true),
+                port("atmosphere", "Atmosphere",
+                     "temperature and pressure at the cloud base, for optics 'water'", true)};
     d.outputs = {port("volume", "FogVolume", "the density grid, values in [0, 1] when clamped")};
     d.params = {
         floatParam("voxelSize", 4.0, "m", "voxel edge length (value ours)", 0.01, 1000.0),
         floatParam("radius", 8.0, "m",
                    "kernel radius R of one particle, at most 32 voxels (value ours)", 0.01,
                    10000.0),
-        stringParam("kernel", "gaussian",
-                    "particle profile: smooth = (1 - r^2/R^2)^3, sphere = 1 inside R, gaussian = "
-                    "exp(-r^2 / (2 (0.3435 R)^2)), the smooth kernel's peak and integral, splatted "
-                    "by a trilinear deposit and separable blur passes (ours; its cost does not grow "
-                    "with R^3)",
-                    {"smooth", "sphere", "gaussian"}),
+        stringParam(
+            "kernel", "gaussian",
+            "particle profile: smooth = (1 - r^2/R^2)^3, sphere = 1 inside R, gaussian = "
+            "exp(-r^2 / (2 (0.3435 R)^2)), the smooth kernel's peak and integral, splatted "
+            "by a trilinear deposit and separable blur passes (ours; its cost does not grow "
+            "with R^3)",
+            {"smooth", "sphere", "gaussian"}),
         floatParam("density", 0.25, "",
                    "density one particle adds at its centre (fog density, 1 = opaque; value ours)",
                    0.0, 1000.0),
@@ -167,8 +245,34 @@ void registerVoxelizerNode(Registry& registry)
         floatParam("detailFrequency", 1.5, "1/radius",
                    "detail noise cycles per particle radius R, first octave (value ours)", 0.05,
                    16.0),
-        intParam("detailOctaves", 2, "", "octaves of the detail noise, each twice as fine (value ours)",
-                 1, 8),
+        intParam("detailOctaves", 2, "",
+                 "octaves of the detail noise, each twice as fine (value ours)", 1, 8),
+        boolParam("flatBase", false,
+                  "cut the cloud at the condensation level of its column (ours: rising air "
+                  "saturates there; the 10th percentile of the condensation heights per "
+                  "baseCellSize cell), rising to full density baseTransition above it"),
+        floatParam("baseTransition", 20.0, "m",
+                   "depth over which the cut at the base rises from 0 to 1 (value ours)", 0.1,
+                   10000.0),
+        floatParam("baseCellSize", 500.0, "m",
+                   "cell of the condensation level's height field (value ours)", 1.0, 1e6),
+        stringParam("optics", "density",
+                    "density = the splat's value (the Renderer's extinction scales it); water = "
+                    "the value is (LWC / 1 g m^-3)^(2/3), LWC = adiabaticFraction x value x the "
+                    "moist-adiabatic liquid water above the base (ours), so value x the "
+                    "'extinction' metadata is sigma = 3 LWC / (2 rho_w r_eff) (Stephens 1978); "
+                    "cuts at the base as flatBase does",
+                    {"density", "water"}),
+        floatParam("adiabaticFraction", 0.6, "",
+                   "water: share of the adiabatic liquid water the cloud holds (real cumulus "
+                   "0.3-0.8, Warner 1970; value ours)",
+                   0.01, 1.0),
+        stringParam("airMass", "continental",
+                    "water: droplet spectrum, k = (r_vol / r_eff)^3: continental 0.67, N 500 "
+                    "/cm^3; maritime 0.80, N 100 /cm^3 (Martin et al. 1994)",
+                    {"continental", "maritime"}),
+        floatParam("dropletConcentration", 0.0, "1/cm^3",
+                   "water: droplet number N; 0 = the air mass's typical value", 0.0, 10000.0),
         stringParam("filter", "none", "OpenVDB smoothing of the active voxels after splatting",
                     {"none", "mean", "gaussian", "median"}),
         intParam("filterWidth", 1, "voxels", "filter half-width: the stencil is (2 w + 1)^3", 1, 8),

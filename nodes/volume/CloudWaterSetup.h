@@ -1,0 +1,27 @@
+#pragma once
+/// What the Voxelizer needs from the atmosphere and the condensation to give its clouds flat
+/// bases and water (algo/volume/CloudBase.h): the condensation level by column, and the
+/// adiabatic water of a parcel saturated at that level.
+
+#include <memory>
+
+#include "algo/atmosphere/CloudWater.h"
+#include "algo/volume/CloudBase.h"
+
+namespace cg {
+
+struct Atmosphere;
+class CondensationData;
+
+/// The base field of the particles that have condensed, in cells of cellSize metres; null
+/// while none has (there is no cloud yet).
+std::unique_ptr<algo::CloudBaseField> cloudBaseOf(const CondensationData& condensation,
+                                                  double cellSize);
+
+/// The adiabatic water of a parcel saturated at height baseZ (m above the ground): at the
+/// dew point T_dp (the paper's Eq. 8 condenses a parcel there) and the pressure of a
+/// hydrostatic column whose temperature is Eq. 9's line from 1013.25 hPa at the ground; with
+/// a profile, at the profile's temperature and pressure at that height.
+algo::AdiabaticWater adiabaticWaterAt(const Atmosphere& atmosphere, double baseZ);
+
+}  // namespace cg
