@@ -137,4 +137,23 @@ TEST_F(VoxelizerNodeTest, RadiusBeyond32VoxelsIsRefusedAtLoad)
                  InputError);
 }
 
+TEST_F(VoxelizerNodeTest, WaterAndFlatBasesWithoutTheirInputsAreRefusedNamingTheInput)
+{
+    for (const char* params : {R"("optics": "water")", R"("flatBase": true)"}) {
+        const Graph g = parse(std::string(R"({"cloudgraph": 1, "nodes": {
+            "cloud": {"type": "TestCloudSource", "params": {"radius": 30, "spacing": 2}},
+            "vox": {"type": "Voxelizer", "inputs": {"particles": "cloud.particles"},
+                    "params": {"voxelSize": 1.5, "radius": 4.0, )") +
+                              params + "}}}}");
+        Evaluator ev(registry, {});
+        try {
+            volumeAt(ev, g, 0);
+            ADD_FAILURE() << params << " cooked without its condensation input";
+        } catch (const CookError& e) {
+            EXPECT_NE(std::string(e.what()).find("vox/inputs/condensation"), std::string::npos)
+                << e.what();
+        }
+    }
+}
+
 }  // namespace cg
