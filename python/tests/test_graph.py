@@ -39,7 +39,7 @@ def test_unset_parameters_read_their_declared_default():
 def test_node_types_carry_ports_parameters_units_and_docs():
     types = cloudgraph.node_types()
     voxelizer = types["Voxelizer"]
-    assert [p.name for p in voxelizer.inputs] == ["particles"]
+    assert [p.name for p in voxelizer.inputs] == ["particles", "condensation", "atmosphere"]
     assert voxelizer.inputs[0].type == "CloudParticles"
     assert [p.name for p in voxelizer.outputs] == ["volume"]
     size = voxelizer.params["voxelSize"]
