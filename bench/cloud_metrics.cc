@@ -1,12 +1,13 @@
 // How real a fog volume's clouds look, by cloud physics' measures (algo/volume/CloudMetrics.h):
 // side-outline and area-perimeter fractal dimensions, top-edge sharpness, base flatness.
 //
-// Usage: cloud_metrics [--extinction E] [--condensation-level Z] file.vdb [...]
+// Usage: cloud_metrics [--extinction E] [--condensation-level Z] [--side-png F] file.vdb [...]
 //
 // The extinction (1/m per unit of the grid's value) is the grid's `extinction` metadata when
 // it has one, else --extinction (default 0.02, the Renderer's default). With
 // --condensation-level, the median base's distance from it is printed as a share of the
-// cloud's depth.
+// cloud's depth. --side-png writes the side view's optical depth as a grey image (white =
+// tau >= 1, the cloud the outline is measured on; grey 1 - exp(-tau) below), top row highest.
 
 #include <cmath>
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include <openvdb/openvdb.h>
 
 #include "algo/volume/CloudMetrics.h"
+#include "formats/PngFile.h"
 
 namespace {
 
@@ -29,7 +31,25 @@ double extinctionOf(const openvdb::FloatGrid& grid, double fallback)
     return fallback;
 }
 
-void report(const std::string& path, double extinction, double condensationLevel)
+/// The side view as an 8-bit grey PNG, highest row first.
+void writeSidePng(const std::string& path, const cg::algo::SideView& side)
+{
+    std::vector<std::uint8_t> grey;
+    grey.reserve(side.tau.size());
+    for (int row = side.height - 1; row >= 0; --row)
+        for (int x = 0; x < side.width; ++x) {
+            const double tau = side.tau[static_cast<std::size_t>(row) * side.width + x];
+            const double g = tau >= 1.0 ? 1.0 : 0.8 * (1.0 - std::exp(-tau));
+            grey.push_back(static_cast<std::uint8_t>(255.0 * g + 0.5));
+        }
+    std::vector<const unsigned char*> rows;
+    for (int row = 0; row < side.height; ++row)
+        rows.push_back(grey.data() + static_cast<std::size_t>(row) * side.width);
+    cg::formats::writePng(path, side.width, side.height, 1, 8, rows, false);
+}
+
+void report(const std::string& path, double extinction, double condensationLevel,
+            const std::string& sidePng)
 {
     openvdb::io::File file(path);
     file.open();
@@ -39,6 +59,8 @@ void report(const std::string& path, double extinction, double condensationLevel
     cg::algo::CloudMetricsOptions options;
     options.extinction = extinctionOf(*grid, extinction);
     const cg::algo::CloudMetrics m = cg::algo::measureCloud(*grid, options);
+    if (!sidePng.empty())
+        writeSidePng(sidePng, cg::algo::sideOpticalDepth(*grid, options.extinction));
     std::printf("%s (extinction %.4g /m, voxel %.3g m)\n", path.c_str(), options.extinction,
                 m.voxelSize);
     std::printf("  side outline dimension      %.3f\n", m.sideOutlineDimension);
@@ -62,6 +84,7 @@ int main(int argc, char** argv)
     openvdb::initialize();
     double extinction = 0.02;
     double condensationLevel = std::nan("");
+    std::string sidePng;
     std::vector<std::string> files;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -69,6 +92,8 @@ int main(int argc, char** argv)
             extinction = std::atof(argv[++i]);
         else if (a == "--condensation-level" && i + 1 < argc)
             condensationLevel = std::atof(argv[++i]);
+        else if (a == "--side-png" && i + 1 < argc)
+            sidePng = argv[++i];
         else
             files.push_back(a);
     }
@@ -77,7 +102,7 @@ int main(int argc, char** argv)
         return 2;
     }
     try {
-        for (const auto& f : files) report(f, extinction, condensationLevel);
+        for (const auto& f : files) report(f, extinction, condensationLevel, sidePng);
     } catch (const std::exception& e) {
         std::cerr << "cloud_metrics: " << e.what() << "\n";
         return 2;

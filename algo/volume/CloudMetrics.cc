@@ -200,4 +200,21 @@ CloudMetrics measureCloud(const openvdb::FloatGrid& grid, const CloudMetricsOpti
     return out;
 }
 
+SideView sideOpticalDepth(const openvdb::FloatGrid& grid, double extinction)
+{
+    const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
+    if (box.empty()) return {};
+    const double perVoxel = extinction * grid.voxelSize()[0];
+    const openvdb::Coord lo = box.min(), dim = box.dim();
+    Plane side(lo.x(), lo.z(), dim.x(), dim.z());
+    for (auto it = grid.cbeginValueOn(); it; ++it) {
+        openvdb::CoordBBox b;
+        it.getBoundingBox(b);
+        const double tau = static_cast<double>(*it) * perVoxel * b.dim().y();
+        for (int x = b.min().x(); x <= b.max().x(); ++x)
+            for (int z = b.min().z(); z <= b.max().z(); ++z) side.at(x, z) += tau;
+    }
+    return {side.width, side.height, std::move(side.v)};
+}
+
 }  // namespace cg::algo

@@ -8,6 +8,7 @@
 /// depend on how the grid scales its values. "Cloud" is where the projected tau is >= 1.
 
 #include <cstddef>
+#include <vector>
 
 #include <openvdb/openvdb.h>
 
@@ -46,5 +47,14 @@ struct CloudMetrics {
 inline constexpr std::size_t kMinCloudPixels = 4;
 
 CloudMetrics measureCloud(const openvdb::FloatGrid& grid, const CloudMetricsOptions& options);
+
+/// The optical depth through the grid along y (the side view measureCloud's outline is
+/// taken on), over the active voxels' bounding box: width = x extent, height = z extent,
+/// row 0 the lowest z.
+struct SideView {
+    int width = 0, height = 0;
+    std::vector<double> tau;
+};
+SideView sideOpticalDepth(const openvdb::FloatGrid& grid, double extinction);
 
 }  // namespace cg::algo
