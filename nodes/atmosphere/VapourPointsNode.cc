@@ -47,7 +47,7 @@ void registerVapourPointsNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "VapourPoints";
-    d.version = 2;  // 2: CloudParticles carry copy origins (none here)
+    d.version = 2;  // each version's change: CHANGES.md, "Node versions"
     d.category = "atmosphere";
     d.doc =
         "The water vapour particles of this frame, the condensation particles, or both, as "

@@ -21,12 +21,12 @@ struct Atmosphere {
     double moistLapse = 6.0e-3;           ///< C of Eq. 8 once T_v < T_dp, degrees C per metre
     double gravity = 9.81;                ///< g of Eq. 6, m/s^2
 
-    /// Issue 14, ours: the environment of a sounding or the standard atmosphere, in place of
+    /// Ours: the environment of a sounding or the standard atmosphere, in place of
     /// Eq. 9 and the one T_dp. Null: the paper's line.
     std::shared_ptr<const algo::EnvironmentProfile> profile;
     /// With a profile: saturated particles cool at the moist adiabatic rate, not moistLapse.
     bool moistAdiabat = true;
-    /// Issue 14, ours: horizontal wind by height above the ground; calm in the paper.
+    /// Ours: horizontal wind by height above the ground; calm in the paper.
     algo::WindProfile wind;
 
     /// Eq. 9: T_e = T_sl_max - C_e * z, or the profile's temperature z above its ground.

@@ -21,7 +21,7 @@ struct VapourStatics {
     std::vector<float> x;                 ///< metres, at emission
     std::vector<float> y;                 ///< metres, at emission
     std::vector<float> startZ;            ///< metres, P_vz(t0): where the particle's parcel starts
-    /// Issue 14, ours: each particle's own dew-point perturbation (C), for irregular cloud
+    /// Ours: each particle's own dew-point perturbation (C), for irregular cloud
     /// bases; empty when there is none.
     std::vector<float> dewpointOffset;
     /// Ours: seconds after t0 at which each particle leaves its start (a source that keeps

@@ -44,7 +44,7 @@ void registerPrimitiveFrameNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "PrimitiveFrame";
-    d.version = 2;  // 2: CloudParticles carry copy origins (none here)
+    d.version = 2;  // each version's change: CHANGES.md, "Node versions"
     d.category = "fluid";
     d.frameDependent = true;
     d.doc =

@@ -58,7 +58,7 @@ void registerPrimitiveSimNode(Registry& registry)
     const algo::PrimitiveSettings def = algo::defaultPrimitiveSettings();
     NodeDecl d;
     d.type = "PrimitiveSim";
-    d.version = 2;  // 2: CG pressure solve, positions from the cloud origin
+    d.version = 2;  // each version's change: CHANGES.md, "Node versions"
     d.category = "fluid";
     d.doc =
         "The 3D cloud primitive set (Sec. 4, Figure 2) by a particle fluid simulation: SPH "

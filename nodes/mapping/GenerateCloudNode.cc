@@ -115,7 +115,7 @@ void registerGenerateCloudNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "GenerateCloud";
-    d.version = 2;  // 2: evaporateBelowBase cuts at the lowest condensation height, not particle
+    d.version = 2;  // each version's change: CHANGES.md, "Node versions"
     d.category = "mapping";
     // A frame's particles take longer to store and read back than to generate (and would
     // keep every frame's particles on disk, which the mapper's memory model rules out).

@@ -109,25 +109,7 @@ void registerRendererNode(Registry& registry)
     const auto v3 = [](const algo::RenderVec3& v) { return Vec3{v.x(), v.y(), v.z()}; };
     NodeDecl d;
     d.type = "Renderer";
-    d.version = 19;  // 2: the image carries its background; 3: the diffusion sees sky and ground
-                     // apart; 4: δ-Eddington sun, flux-limited diffusion, one radiance lobe;
-                     // 5: sparse sun light map, one voxel a texel in large sparse fields;
-                     // 6: the limiter's sun solves to 1e-2 (the image within 0.01%);
-                     // 7: phase (mie), the self-convolved phase tabulated; 8: diffuse light
-                     // scattered toward the camera through the δ-Eddington split; 9: the
-                     // diffuse light summed per colour channel in float once a frame (the
-                     // image within 1e-5; PNG frames unchanged); 10: surface faces let in
-                     // the sky, ground and cloud light they see (SurfaceGather); 11: the
-                     // ground shaded and lit by the clouds above it, its shadows δ-Eddington;
-                     // 12: the ground's map blurred (no ghosts of the clouds on the ground);
-                     // 13: samples two steps long once T < coarseTransmittance; 14: and
-                     // twice as long again at each halving of T, up to 8 steps; 15: those
-                     // samples on a lattice of their own, whatever the spans; 16: the
-                     // gather read 4 blocks out, and run twice (first on 8 directions);
-                     // 17: its last on 32 directions, each sweep spread sideways as a cone
-                     // (along the horizontal), the solve between the gathers to 0.1;
-                     // 18: without a sun, no sun light scattered, the limiter from the sky;
-                     // 19: the last gather on 80 directions, the first on 16 of 4^3 blocks
+    d.version = 19;  // each version's change: CHANGES.md, "Node versions"
     d.category = "render";
     d.framesInAnyOrder = true;
     d.doc =

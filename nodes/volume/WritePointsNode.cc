@@ -75,7 +75,7 @@ void registerWritePointsNode(Registry& registry)
         "frames firstFrame, firstFrame + every, ... and, with skipEmpty, only those with a "
         "particle, as WriteVDB does.",
         port("particles", "CloudParticles", "the particles to write"), "points.####.vdb");
-    d.version = 2;  // firstFrame and skipEmpty: no file for a frame without particles
+    d.version = 2;  // each version's change: CHANGES.md, "Node versions"
     addSequenceParams(d);  // empty: no particle
     d.params.push_back(floatParam(
         "voxelSize", 0.0, "m",

@@ -66,7 +66,7 @@ void registerWriteVdbNode(Registry& registry)
         "as one (it needs consecutive numbers: every = 1, and skipEmpty off if the cloud can "
         "vanish mid-run).",
         port("volume", "FogVolume", "the volume to write"), "density.####.vdb");
-    d.version = 2;  // skips empty grids: 'files' is empty on frames it wrote before
+    d.version = 2;  // each version's change: CHANGES.md, "Node versions"
     addSequenceParams(d);  // empty: a grid without active voxels
     d.params.push_back(boolParam(
         "halfFloat", false, "store values as 16-bit half floats (half the size, ~3 digits)"));
