@@ -12,20 +12,21 @@
 
 #include "algo/CounterRandom.h"
 
-
 namespace cg::algo {
 
 float MapView::at(double x, double y) const
 {
     const int ix = static_cast<int>(std::clamp(std::floor(x / cellSize), 0.0, nx - 1.0));
     const int iy = static_cast<int>(std::clamp(std::floor(y / cellSize), 0.0, ny - 1.0));
-    return values[static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(ix)];
+    return values[static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx) +
+                  static_cast<std::size_t>(ix)];
 }
 
 double selectionRatio(const MappingSettings& s, int level)
 {
     const auto i = static_cast<std::size_t>(level - 1);
-    return s.selectionRatio.empty() ? 0.0 : s.selectionRatio[std::min(i, s.selectionRatio.size() - 1)];
+    return s.selectionRatio.empty() ? 0.0
+                                    : s.selectionRatio[std::min(i, s.selectionRatio.size() - 1)];
 }
 
 int windowLength(const MappingSettings& s, int level)
@@ -47,7 +48,8 @@ std::uint32_t copyStride(const MappingSettings& s, const PrimitiveView& p)
     return static_cast<std::uint32_t>(std::clamp<std::uint64_t>(k, 1, 65536));
 }
 
-std::uint32_t clusterSize(const Source& src, int frame, const MappingSettings& s, const PrimitiveView& p)
+std::uint32_t clusterSize(const Source& src, int frame, const MappingSettings& s,
+                          const PrimitiveView& p)
 {
     if (frame < src.startFrame || p.frameCount == 0) return 0;
     const double t = std::floor(primitiveTime(src, frame, s, p));
@@ -93,7 +95,8 @@ void copyShift(const PrimitiveView& p, const MappingSettings& s, const float dri
 {
     const double past = time - (p.frameCount - 1);
     const bool drifting = s.pastLastFrame == PastLastFrame::Drift && past > 0.0;
-    const double travelled = drifting ? kDriftDecayFrames * -std::expm1(-past / kDriftDecayFrames) : 0.0;
+    const double travelled =
+        drifting ? kDriftDecayFrames * -std::expm1(-past / kDriftDecayFrames) : 0.0;
     for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(travelled * drift[k]);
 }
 
@@ -134,18 +137,23 @@ struct Origins {
 Origins originsWithDrift(const SourceTable& table, int frame, const CondensationView& c,
                          const PrimitiveView& p, const MappingSettings& s, const float drift[3])
 {
-    Origins out{std::vector<float>(3 * table.sources.size()), std::vector<float>(3 * table.sources.size())};
+    Origins out{std::vector<float>(3 * table.sources.size()),
+                std::vector<float>(3 * table.sources.size())};
     for (std::size_t j = 0; j < table.sources.size(); ++j) {
         const Source& src = table.sources[j];
         float* o = &out.origin[3 * j];
         if (frame < src.startFrame) continue;  // not started yet: no cluster, no origin
-        if (src.level == 1 && s.level1Origin == Level1Origin::Trail && !std::isnan(table.anchors[3 * j])) {
+        if (src.level == 1 && s.level1Origin == Level1Origin::Trail &&
+            !std::isnan(table.anchors[3 * j])) {
             std::copy_n(&table.anchors[3 * j], 3, o);  // laid: it stays where it was laid
         } else if (src.level == 1) {  // Eq. 12, L = 1: the condensation particle itself
             o[0] = c.x[src.parent], o[1] = c.y[src.parent];
-            o[2] = s.level1Origin == Level1Origin::CondensationLevel ? c.condensedZ[src.parent] : c.z[src.parent];
-        } else {  // Eq. 12, L >= 2: the parent cloud particle, placed by Eq. 10 (as sourceSlice does)
-            cloudParticlePosition(table.sources[src.parent], &out.copy[3 * static_cast<std::size_t>(src.parent)],
+            o[2] = s.level1Origin == Level1Origin::CondensationLevel ? c.condensedZ[src.parent]
+                                                                     : c.z[src.parent];
+        } else {  // Eq. 12, L >= 2: the parent cloud particle, placed by Eq. 10 (as sourceSlice
+                  // does)
+            cloudParticlePosition(table.sources[src.parent],
+                                  &out.copy[3 * static_cast<std::size_t>(src.parent)],
                                   src.parentFluid, frame, p, s, o);
         }
         copyOrigin(src, o, primitiveTime(src, frame, s, p), p, s, drift, &out.copy[3 * j]);
@@ -168,7 +176,8 @@ std::vector<std::uint64_t> cloudCounts(const SourceTable& table, int frame, cons
 {
     std::vector<std::uint64_t> counts(static_cast<std::size_t>(std::max(s.maxLevel, 1)), 0);
     for (const Source& src : table.sources)
-        if (src.level >= 1 && src.level <= counts.size()) counts[src.level - 1u] += clusterSize(src, frame, s, p);
+        if (src.level >= 1 && src.level <= counts.size())
+            counts[src.level - 1u] += clusterSize(src, frame, s, p);
     return counts;
 }
 
@@ -187,7 +196,8 @@ template <class Taken>
 std::uint64_t pickCandidate(const MappingSettings& s, int level, int frame, std::uint64_t k,
                             std::uint64_t n, const Taken& taken)
 {
-    const std::uint64_t stream = (static_cast<std::uint64_t>(level) << 32) | static_cast<std::uint32_t>(frame);
+    const std::uint64_t stream =
+        (static_cast<std::uint64_t>(level) << 32) | static_cast<std::uint32_t>(frame);
     std::uint64_t u = counterBits(s.seed, stream, k) % n;
     while (taken(u)) u = u + 1 == n ? 0 : u + 1;
     return u;
@@ -211,7 +221,8 @@ std::vector<std::uint64_t> pickParents(const SourceTable& table, const ParentCan
     std::vector<std::uint64_t> keys;
     std::unordered_set<std::uint64_t> takenNow;
     auto taken = [&](std::uint64_t key) {
-        return takenNow.count(key) != 0 || std::binary_search(table.cloudTaken.begin(), table.cloudTaken.end(), key);
+        return takenNow.count(key) != 0 ||
+               std::binary_search(table.cloudTaken.begin(), table.cloudTaken.end(), key);
     };
     auto take = [&](std::uint64_t key) {
         takenNow.insert(key);
@@ -224,7 +235,8 @@ std::vector<std::uint64_t> pickParents(const SourceTable& table, const ParentCan
             return (static_cast<std::uint64_t>(c.parents[slot]) << 32) | (v - *at);
         };
         for (std::uint64_t k = 0; k < fresh; ++k)
-            take(keyOf(pickCandidate(s, c.level, c.frame, k, c.count, [&](std::uint64_t v) { return taken(keyOf(v)); })));
+            take(keyOf(pickCandidate(s, c.level, c.frame, k, c.count,
+                                     [&](std::uint64_t v) { return taken(keyOf(v)); })));
         return keys;
     }
     // The paper's rule: r_j uniformly among the sources that have particles, then r_i
@@ -245,14 +257,17 @@ std::vector<std::uint64_t> pickParents(const SourceTable& table, const ParentCan
     }
     std::uint64_t freeLeft = 0;
     for (std::size_t n = 0; n < eligible.size(); ++n) freeLeft += sizes[n] - takenIn[n];
-    const std::uint64_t key = (static_cast<std::uint64_t>(c.level) << 32) | static_cast<std::uint32_t>(c.frame);
+    const std::uint64_t key =
+        (static_cast<std::uint64_t>(c.level) << 32) | static_cast<std::uint32_t>(c.frame);
     std::uint64_t parentDraw = 0, particleDraw = 0;
     while (keys.size() < fresh && freeLeft > 0) {
-        const std::size_t n = counterBits(s.seed, kParentStream | key, parentDraw++) % eligible.size();
+        const std::size_t n =
+            counterBits(s.seed, kParentStream | key, parentDraw++) % eligible.size();
         if (takenIn[n] >= sizes[n]) continue;
         std::uint64_t pair;
         do {
-            const std::uint64_t q = counterBits(s.seed, kParticleStream | key, particleDraw++) % sizes[n];
+            const std::uint64_t q =
+                counterBits(s.seed, kParticleStream | key, particleDraw++) % sizes[n];
             pair = (static_cast<std::uint64_t>(eligible[n]) << 32) | q;
         } while (taken(pair));
         take(pair);
@@ -269,7 +284,8 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
                         const MappingSettings& s)
 {
     if (s.level1Origin == Level1Origin::Trail && c.vz == nullptr)
-        throw std::invalid_argument("stepSources: level1Origin trail needs the particles' vertical speeds");
+        throw std::invalid_argument(
+            "stepSources: level1Origin trail needs the particles' vertical speeds");
     SourceTable table = previous;
     const std::uint32_t stride = copyStride(s, p);
     float drift[3];
@@ -305,25 +321,30 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
         std::uint64_t existing = 0;
         for (const Source& src : table.sources) existing += src.level == level;
         // Eq. 14: G[L](t) = M[L] x candidates, rounded down.
-        const auto target = static_cast<std::uint64_t>(std::floor(selectionRatio(s, level) * static_cast<double>(candidates)));
+        const auto target = static_cast<std::uint64_t>(
+            std::floor(selectionRatio(s, level) * static_cast<double>(candidates)));
         std::uint64_t fresh = target > existing ? target - existing : 0;
-        fresh = std::min<std::uint64_t>(fresh, s.maxSources > table.sources.size() ? s.maxSources - table.sources.size() : 0);
+        fresh = std::min<std::uint64_t>(
+            fresh, s.maxSources > table.sources.size() ? s.maxSources - table.sources.size() : 0);
         if (fresh == 0) continue;
 
         const std::vector<float> copies =
             level == 1 ? std::vector<float>() : originsWithDrift(table, frame, c, p, s, drift).copy;
         const std::vector<std::uint64_t> parentKeys =
-            level == 1 ? std::vector<std::uint64_t>()
-                       : pickParents(table, ParentCandidates{level, frame, parents, parentOffset, candidates}, fresh, s);
+            level == 1
+                ? std::vector<std::uint64_t>()
+                : pickParents(table,
+                              ParentCandidates{level, frame, parents, parentOffset, candidates},
+                              fresh, s);
         for (std::uint64_t k = 0; k < fresh; ++k) {
             Source src;
             src.level = static_cast<std::uint8_t>(level);
             src.startFrame = frame;
             double x, y;
             if (level == 1) {
-                const std::uint64_t u = pickCandidate(s, level, frame, k, candidates, [&](std::uint64_t v) {
-                    return table.condensationTaken[condensed[v]] != 0;
-                });
+                const std::uint64_t u = pickCandidate(
+                    s, level, frame, k, candidates,
+                    [&](std::uint64_t v) { return table.condensationTaken[condensed[v]] != 0; });
                 src.parent = condensed[u];
                 table.condensationTaken[src.parent] = 1;
                 x = c.x[src.parent];
@@ -335,8 +356,8 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
                 src.parentFluid = copyFluidId(table.sources[src.parent], key & 0xffffffffu, stride);
                 // Eq. 16 reads the map under the parent cloud particle's position (Eq. 10).
                 float at[3];
-                cloudParticlePosition(table.sources[src.parent], &copies[3 * src.parent], src.parentFluid,
-                                      frame, p, s, at);
+                cloudParticlePosition(table.sources[src.parent], &copies[3 * src.parent],
+                                      src.parentFluid, frame, p, s, at);
                 x = at[0];
                 y = at[1];
             }
@@ -364,7 +385,8 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
         }
     }
     // Pseudocode lines 26-27: once the top level has cloud particles, the next may start.
-    if (table.topLevel < s.maxLevel && cloudCounts(table, frame, p, s)[static_cast<std::size_t>(table.topLevel - 1)] > 0)
+    if (table.topLevel < s.maxLevel &&
+        cloudCounts(table, frame, p, s)[static_cast<std::size_t>(table.topLevel - 1)] > 0)
         ++table.topLevel;
     return table;
 }
@@ -381,8 +403,8 @@ struct FramePlan {
     std::uint64_t total() const { return offset.back(); }
 };
 
-FramePlan planFrame(const SourceTable& table, int frame, const CondensationView& c, const PrimitiveView& p,
-                    const MappingSettings& s)
+FramePlan planFrame(const SourceTable& table, int frame, const CondensationView& c,
+                    const PrimitiveView& p, const MappingSettings& s)
 {
     FramePlan plan;
     plan.stride = copyStride(s, p);
@@ -391,7 +413,8 @@ FramePlan planFrame(const SourceTable& table, int frame, const CondensationView&
     plan.copyOrigins = originsWithDrift(table, frame, c, p, s, drift).copy;
     const std::size_t n = table.sources.size();
     plan.offset.assign(n + 1, 0);
-    for (std::size_t j = 0; j < n; ++j) plan.offset[j + 1] = plan.offset[j] + clusterSize(table.sources[j], frame, s, p);
+    for (std::size_t j = 0; j < n; ++j)
+        plan.offset[j + 1] = plan.offset[j] + clusterSize(table.sources[j], frame, s, p);
     return plan;
 }
 
@@ -401,8 +424,9 @@ FramePlan planFrame(const SourceTable& table, int frame, const CondensationView&
 /// calling it per particle. K is the stride when known at compile time (1: contiguous ids, the
 /// loop the compiler vectorises), 0 when it is `stride`.
 template <std::uint32_t K>
-void copySlice(const float* __restrict a, const float* __restrict b, float w, bool lerp, std::size_t stride,
-               const float* origin, float scale, std::uint64_t n, float* __restrict out)
+void copySlice(const float* __restrict a, const float* __restrict b, float w, bool lerp,
+               std::size_t stride, const float* origin, float scale, std::uint64_t n,
+               float* __restrict out)
 {
     const std::size_t step = 3 * (K != 0 ? K : stride);
     const float ox = origin[0], oy = origin[1], oz = origin[2];
@@ -451,15 +475,17 @@ void fillRange(const FramePlan& plan, const SourceTable& table, int frame, const
                std::uint8_t* levels, std::uint32_t* sources)
 {
     const auto& offset = plan.offset;
-    auto j = static_cast<std::size_t>(std::upper_bound(offset.begin(), offset.end(), first) - offset.begin() - 1);
+    auto j = static_cast<std::size_t>(std::upper_bound(offset.begin(), offset.end(), first) -
+                                      offset.begin() - 1);
     for (std::uint64_t q = first; q < last; ++j) {
         const std::uint64_t end = std::min(last, offset[j + 1]);
         if (end == q) continue;  // a source not started yet: no cluster, no frame to look up
         const Source& src = table.sources[j];
-        sourceSlice(src, &plan.copyOrigins[3 * j], frame, p, s, plan.stride, q - offset[j], end - offset[j],
-                    xyz + 3 * (q - first));
+        sourceSlice(src, &plan.copyOrigins[3 * j], frame, p, s, plan.stride, q - offset[j],
+                    end - offset[j], xyz + 3 * (q - first));
         if (levels != nullptr) std::fill_n(levels + (q - first), end - q, src.level);
-        if (sources != nullptr) std::fill_n(sources + (q - first), end - q, static_cast<std::uint32_t>(j));
+        if (sources != nullptr)
+            std::fill_n(sources + (q - first), end - q, static_cast<std::uint32_t>(j));
         q = end;
     }
 }
@@ -471,10 +497,12 @@ void runChunks(const FramePlan& plan, const SourceTable& table, int frame, const
 {
     const std::uint64_t size = o.chunkParticles;
     const bool direct = o.positionsOut != nullptr;
-    if (size == 0) throw std::invalid_argument("forEachCloudChunk: chunkParticles must be positive");
+    if (size == 0)
+        throw std::invalid_argument("forEachCloudChunk: chunkParticles must be positive");
     if (direct ? (o.levels && o.levelsOut == nullptr) || (o.sources && o.sourcesOut == nullptr)
                : o.levelsOut != nullptr || o.sourcesOut != nullptr)
-        throw std::invalid_argument("forEachCloudChunk: frame arrays must be given for every requested field");
+        throw std::invalid_argument(
+            "forEachCloudChunk: frame arrays must be given for every requested field");
     const std::uint64_t total = plan.total();
     const std::uint64_t chunks = total / size + (total % size != 0);
     struct Buffers {
@@ -484,41 +512,43 @@ void runChunks(const FramePlan& plan, const SourceTable& table, int frame, const
     };
     tbb::enumerable_thread_specific<Buffers> perThread;
     // Chunk k is particles [k size, (k + 1) size): fixed by the inputs, whatever the partition.
-    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, chunks), [&](const tbb::blocked_range<std::uint64_t>& r) {
-        for (std::uint64_t k = r.begin(); k < r.end(); ++k) {
-            if (o.checkCancelled) o.checkCancelled();
-            CloudChunk chunk;
-            chunk.first = k * size;
-            chunk.count = std::min(size, total - chunk.first);
-            float* xyz;
-            std::uint8_t* levels = nullptr;
-            std::uint32_t* sources = nullptr;
-            if (direct) {
-                xyz = o.positionsOut + 3 * chunk.first;
-                if (o.levels) levels = o.levelsOut + chunk.first;
-                if (o.sources) sources = o.sourcesOut + chunk.first;
-            } else {
-                Buffers& b = perThread.local();
-                if (b.xyz.empty()) {
-                    b.xyz.resize(3 * size);
-                    if (o.levels) b.levels.resize(size);
-                    if (o.sources) b.sources.resize(size);
-                }
-                xyz = b.xyz.data();
-                if (o.levels) levels = b.levels.data();
-                if (o.sources) sources = b.sources.data();
-            }
-            fillRange(plan, table, frame, p, s, chunk.first, chunk.first + chunk.count, xyz, levels, sources);
-            if (consume) {
-                chunk.positions = xyz;
-                chunk.levels = levels;
-                chunk.sources = sources;
-                chunk.copyOrigins = plan.copyOrigins.data();
-                chunk.copyCount = plan.copyOrigins.size() / 3;
-                consume(chunk);
-            }
-        }
-    });
+    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, chunks),
+                      [&](const tbb::blocked_range<std::uint64_t>& r) {
+                          for (std::uint64_t k = r.begin(); k < r.end(); ++k) {
+                              if (o.checkCancelled) o.checkCancelled();
+                              CloudChunk chunk;
+                              chunk.first = k * size;
+                              chunk.count = std::min(size, total - chunk.first);
+                              float* xyz;
+                              std::uint8_t* levels = nullptr;
+                              std::uint32_t* sources = nullptr;
+                              if (direct) {
+                                  xyz = o.positionsOut + 3 * chunk.first;
+                                  if (o.levels) levels = o.levelsOut + chunk.first;
+                                  if (o.sources) sources = o.sourcesOut + chunk.first;
+                              } else {
+                                  Buffers& b = perThread.local();
+                                  if (b.xyz.empty()) {
+                                      b.xyz.resize(3 * size);
+                                      if (o.levels) b.levels.resize(size);
+                                      if (o.sources) b.sources.resize(size);
+                                  }
+                                  xyz = b.xyz.data();
+                                  if (o.levels) levels = b.levels.data();
+                                  if (o.sources) sources = b.sources.data();
+                              }
+                              fillRange(plan, table, frame, p, s, chunk.first,
+                                        chunk.first + chunk.count, xyz, levels, sources);
+                              if (consume) {
+                                  chunk.positions = xyz;
+                                  chunk.levels = levels;
+                                  chunk.sources = sources;
+                                  chunk.copyOrigins = plan.copyOrigins.data();
+                                  chunk.copyCount = plan.copyOrigins.size() / 3;
+                                  consume(chunk);
+                              }
+                          }
+                      });
 }
 
 }  // namespace
@@ -541,8 +571,8 @@ CloudParticleArrays generateCloudParticles(const SourceTable& table, int frame,
     const FramePlan plan = planFrame(table, frame, c, p, s);
     const auto n = static_cast<std::size_t>(plan.total());
     // Uninitialised: each chunk's writer touches its own pages first (no zero-fill on one thread).
-    CloudParticleArrays out{UninitArray<float>(3 * n), UninitArray<std::uint8_t>(n), UninitArray<std::uint32_t>(n),
-                            UninitArray<float>(plan.copyOrigins)};
+    CloudParticleArrays out{UninitArray<float>(3 * n), UninitArray<std::uint8_t>(n),
+                            UninitArray<std::uint32_t>(n), UninitArray<float>(plan.copyOrigins)};
     CloudChunkOptions o;
     o.levels = o.sources = true;
     o.positionsOut = out.positions.data();

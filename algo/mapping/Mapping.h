@@ -27,10 +27,11 @@ namespace cg::algo {
 
 /// One source record j: what Eq. 10-12 and 16 need to place its cluster at any frame.
 struct Source {
-    std::uint8_t level = 1;       ///< L
-    std::uint16_t phase = 0;      ///< o_j: the copy's first fluid id when copies are thinned
-    std::uint32_t parent = 0;     ///< L = 1: condensation particle index; L >= 2: source index j'
-    std::uint32_t parentFluid = 0;///< L >= 2: fluid particle id i' (in the primitive) of the parent
+    std::uint8_t level = 1;    ///< L
+    std::uint16_t phase = 0;   ///< o_j: the copy's first fluid id when copies are thinned
+    std::uint32_t parent = 0;  ///< L = 1: condensation particle index; L >= 2: source index j'
+    std::uint32_t parentFluid =
+        0;                        ///< L >= 2: fluid particle id i' (in the primitive) of the parent
     std::int32_t startFrame = 0;  ///< t0[L, j]
     float speed = 1.0f;           ///< A[L, j] = 1 + A0 fNoise (Eq. 16)
     float scale = 0.0f;           ///< R[L, j] = R0 fNoise (Eq. 16)
@@ -40,9 +41,9 @@ static_assert(sizeof(Source) == 24, "the source record stays 24 bytes (docs/mapp
 
 /// The mapper's whole state at one frame.
 struct SourceTable {
-    std::vector<Source> sources;            ///< in order of selection; parents precede children
-    std::int32_t topLevel = 1;              ///< L_max so far (pseudocode lines 7, 26-27)
-    std::vector<std::int32_t> levelStart;   ///< t_s[L] per level (index L-1); -1 while unknown
+    std::vector<Source> sources;           ///< in order of selection; parents precede children
+    std::int32_t topLevel = 1;             ///< L_max so far (pseudocode lines 7, 26-27)
+    std::vector<std::int32_t> levelStart;  ///< t_s[L] per level (index L-1); -1 while unknown
     /// Condensation particles already selected (index -> 1): each is a source at most once.
     std::vector<std::uint8_t> condensationTaken;
     /// Cloud particles already selected, as (j' << 32 | q), q the particle's index in its
@@ -59,7 +60,7 @@ struct PrimitiveView {
     const std::uint32_t* counts = nullptr;
     const float* const* frames = nullptr;  ///< frames[s] -> N_f(s) xyz triples
     int frameCount = 0;
-    double frameTime = 1.0;                ///< ds, seconds
+    double frameTime = 1.0;  ///< ds, seconds
 };
 
 /// A read-only view of the condensation particles at frame t.
@@ -132,17 +133,17 @@ inline constexpr int kDriftFrames = 10;
 inline constexpr double kDriftDecayFrames = 60.0;
 
 struct MappingSettings {
-    int maxLevel = 5;                           ///< cap on L_max
-    std::vector<double> selectionRatio{0.2};    ///< M[L]; the last value repeats for higher L
-    int firstStart = -1;                        ///< t_s[1]; -1: the first condensation frame
-    int levelDelay = 50;                        ///< chi: t_s[L] = t_s[L-1] + chi
-    std::vector<int> windowLength{100, 60};     ///< t_e[L] - t_s[L]; the last value repeats
-    double scaleCoefficient = 1.5;              ///< R0 of Eq. 16
-    double speedCoefficient = 2.0;              ///< A0 of Eq. 16
-    double metresPerPrimitiveMetre = 1.0;       ///< global scale of every cluster (ours)
-    double timeStep = 1.0;                      ///< dt of the stochastic simulation, seconds
+    int maxLevel = 5;                         ///< cap on L_max
+    std::vector<double> selectionRatio{0.2};  ///< M[L]; the last value repeats for higher L
+    int firstStart = -1;                      ///< t_s[1]; -1: the first condensation frame
+    int levelDelay = 50;                      ///< chi: t_s[L] = t_s[L-1] + chi
+    std::vector<int> windowLength{100, 60};   ///< t_e[L] - t_s[L]; the last value repeats
+    double scaleCoefficient = 1.5;            ///< R0 of Eq. 16
+    double speedCoefficient = 2.0;            ///< A0 of Eq. 16
+    double metresPerPrimitiveMetre = 1.0;     ///< global scale of every cluster (ours)
+    double timeStep = 1.0;                    ///< dt of the stochastic simulation, seconds
     std::uint64_t seed = 0;
-    std::uint64_t maxSources = 1u << 24;        ///< selection stops here (a memory guard)
+    std::uint64_t maxSources = 1u << 24;  ///< selection stops here (a memory guard)
     /// K: when > 0, each copy carries only about K of the primitive's particles (ours): copy j
     /// takes fluid ids o_j, o_j + k, o_j + 2k, ... with k = ceil(N_f(last) / K) and its own
     /// phase o_j in [0, k) drawn at selection, so different copies carry different particles.
@@ -165,10 +166,12 @@ double selectionRatio(const MappingSettings& s, int level);
 int windowLength(const MappingSettings& s, int level);
 
 /// Primitive frame s of a source at stochastic frame t (Eq. 11).
-double primitiveTime(const Source& src, int frame, const MappingSettings& s, const PrimitiveView& p);
+double primitiveTime(const Source& src, int frame, const MappingSettings& s,
+                     const PrimitiveView& p);
 /// The copy's particle count at frame t (Eq. 13's N_f(s), thinned): the fluid ids o_j + q k
 /// below N_f(s); 0 before its start.
-std::uint32_t clusterSize(const Source& src, int frame, const MappingSettings& s, const PrimitiveView& p);
+std::uint32_t clusterSize(const Source& src, int frame, const MappingSettings& s,
+                          const PrimitiveView& p);
 /// Fluid id of particle q of source src's copy: o_j + q k.
 inline std::uint32_t copyFluidId(const Source& src, std::uint64_t q, std::uint32_t stride)
 {
@@ -222,7 +225,10 @@ public:
         if (n * sizeof(T) >= util::kHugePageAdviceBytes)
             util::adviseHugePages(mData.get(), n * sizeof(T));
     }
-    explicit UninitArray(const std::vector<T>& v) : UninitArray(v.size()) { std::copy(v.begin(), v.end(), data()); }
+    explicit UninitArray(const std::vector<T>& v) : UninitArray(v.size())
+    {
+        std::copy(v.begin(), v.end(), data());
+    }
 
     T* data() { return mData.get(); }
     const T* data() const { return mData.get(); }
@@ -264,8 +270,8 @@ struct CloudChunk {
 
 struct CloudChunkOptions {
     std::uint64_t chunkParticles = kCloudChunkParticles;  ///< particles a chunk (> 0)
-    bool levels = false;   ///< also fill CloudChunk::levels
-    bool sources = false;  ///< also fill CloudChunk::sources
+    bool levels = false;                                  ///< also fill CloudChunk::levels
+    bool sources = false;                                 ///< also fill CloudChunk::sources
     /// Where chunks are written. All null (the default): a reused per-thread buffer of one
     /// chunk, so nothing frame-sized exists. Otherwise frame arrays of the frame's particle
     /// count (positionsOut 3 floats a particle; levelsOut / sourcesOut required when levels /
@@ -294,9 +300,9 @@ std::uint64_t forEachCloudChunk(const SourceTable& table, int frame, const Conde
 /// chunks of forEachCloudChunk written straight into fresh, uninitialised frame arrays
 /// (17 bytes a particle), and the copies' origins (12 bytes a source).
 struct CloudParticleArrays {
-    UninitArray<float> positions;         ///< x, y, z per particle
-    UninitArray<std::uint8_t> levels;     ///< level L per particle
-    UninitArray<std::uint32_t> sources;   ///< source index j per particle
+    UninitArray<float> positions;        ///< x, y, z per particle
+    UninitArray<std::uint8_t> levels;    ///< level L per particle
+    UninitArray<std::uint32_t> sources;  ///< source index j per particle
     /// Per source j, 3 floats: where its copy stands (its origin, Eq. 12, plus its drift past
     /// the primitive's end), so particle i of the copy is copyOrigins[j] + R P_f(i) (Eq. 10);
     /// zero for sources not started. What detail evaluated in copy coordinates needs.

@@ -56,10 +56,14 @@ algo::MappingSettings readSettings(ByteReader& in)
         static_cast<std::uint64_t>(checks::intIn(in.u64(), 1, L::kMaxSources, kType, "maxSources"));
     s.particlesPerCopy = static_cast<std::uint32_t>(
         checks::uintUpTo(in.u64(), L::kMaxParticlesPerCopy, kType, "particlesPerCopy"));
-    s.parentRule = static_cast<algo::ParentRule>(checks::uintUpTo(in.u64(), 1, kType, "parentRule"));
-    s.pastLastFrame = static_cast<algo::PastLastFrame>(checks::uintUpTo(in.u64(), 1, kType, "pastLastFrame"));
-    s.level1Origin = static_cast<algo::Level1Origin>(checks::uintUpTo(in.u64(), 2, kType, "level1Origin"));
-    s.trailRiseSpeed = checks::finiteIn(in.f64(), 0.0, L::kMaxTrailRiseSpeed, kType, "trailRiseSpeed");
+    s.parentRule =
+        static_cast<algo::ParentRule>(checks::uintUpTo(in.u64(), 1, kType, "parentRule"));
+    s.pastLastFrame =
+        static_cast<algo::PastLastFrame>(checks::uintUpTo(in.u64(), 1, kType, "pastLastFrame"));
+    s.level1Origin =
+        static_cast<algo::Level1Origin>(checks::uintUpTo(in.u64(), 2, kType, "level1Origin"));
+    s.trailRiseSpeed =
+        checks::finiteIn(in.f64(), 0.0, L::kMaxTrailRiseSpeed, kType, "trailRiseSpeed");
     return s;
 }
 
@@ -119,8 +123,9 @@ bool CloudSourcesData::serialize(ByteWriter& out) const
     out.u64(s.seed);
     out.u64(s.maxSources);
     out.u64(s.particlesPerCopy);
-    for (auto choice : {static_cast<std::uint8_t>(s.parentRule), static_cast<std::uint8_t>(s.pastLastFrame),
-                        static_cast<std::uint8_t>(s.level1Origin)})
+    for (auto choice :
+         {static_cast<std::uint8_t>(s.parentRule), static_cast<std::uint8_t>(s.pastLastFrame),
+          static_cast<std::uint8_t>(s.level1Origin)})
         out.u64(choice);
     out.f64(s.trailRiseSpeed);
     return true;

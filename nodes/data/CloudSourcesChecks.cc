@@ -154,10 +154,12 @@ void checkAnchors(const algo::SourceTable& t, const algo::MappingSettings& s)
         const float* a = &t.anchors[3 * j];
         const bool riding = std::isnan(a[0]) && std::isnan(a[1]) && std::isnan(a[2]);
         const bool laid = std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]);
-        const bool fits = t.sources[j].level == 1 ? riding || laid : a[0] == 0.0f && a[1] == 0.0f && a[2] == 0.0f;
+        const bool fits =
+            t.sources[j].level == 1 ? riding || laid : a[0] == 0.0f && a[1] == 0.0f && a[2] == 0.0f;
         if (!fits)
-            checks::refuse(kType, record(j) + "anchor (" + std::to_string(a[0]) + ", " + std::to_string(a[1]) +
-                                      ", " + std::to_string(a[2]) + ") does not fit a level " +
+            checks::refuse(kType, record(j) + "anchor (" + std::to_string(a[0]) + ", " +
+                                      std::to_string(a[1]) + ", " + std::to_string(a[2]) +
+                                      ") does not fit a level " +
                                       std::to_string(t.sources[j].level) + " record");
     }
 }

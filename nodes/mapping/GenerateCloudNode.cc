@@ -43,19 +43,22 @@ public:
     std::uint64_t particleCount() const
     {
         std::uint64_t total = 0;
-        for (auto c : algo::cloudCounts(mSources->table, mFrame, mPrim.view, mSources->settings)) total += c;
+        for (auto c : algo::cloudCounts(mSources->table, mFrame, mPrim.view, mSources->settings))
+            total += c;
         return total;
     }
 
     void forEachChunk(const std::function<void(const algo::CloudChunk&)>& consume,
-                      CloudChunkFields fields, const std::function<void()>& checkCancelled) const override
+                      CloudChunkFields fields,
+                      const std::function<void()>& checkCancelled) const override
     {
         algo::CloudChunkOptions o;
         o.levels = fields.levels;
         o.sources = fields.sources;
         o.checkCancelled = checkCancelled;
         if (!mBase) {
-            algo::forEachCloudChunk(mSources->table, mFrame, mCond, mPrim.view, mSources->settings, consume, o);
+            algo::forEachCloudChunk(mSources->table, mFrame, mCond, mPrim.view, mSources->settings,
+                                    consume, o);
             return;
         }
         // Evaporation: each chunk handed on without its particles under the base.
@@ -63,7 +66,9 @@ public:
         const float base = *mBase;
         algo::forEachCloudChunk(
             mSources->table, mFrame, mCond, mPrim.view, mSources->settings,
-            [&](const algo::CloudChunk& chunk) { consume(algo::chunkAbove(chunk, base, perThread.local())); },
+            [&](const algo::CloudChunk& chunk) {
+                consume(algo::chunkAbove(chunk, base, perThread.local()));
+            },
             o);
     }
 
@@ -100,10 +105,11 @@ public:
         const std::uint64_t total = cloud->particleCount();
         const auto limit = static_cast<std::uint64_t>(ctx.params().getInt("maxCloudParticles"));
         if (total > limit) {
-            throw InputError(ctx.nodeId(), "frame " + std::to_string(ctx.frame()) + " has " +
-                                               std::to_string(total) +
-                                               " cloud particles, over parameter maxCloudParticles = " +
-                                               std::to_string(limit));
+            throw InputError(ctx.nodeId(),
+                             "frame " + std::to_string(ctx.frame()) + " has " +
+                                 std::to_string(total) +
+                                 " cloud particles, over parameter maxCloudParticles = " +
+                                 std::to_string(limit));
         }
         ctx.setOutput("particles", std::make_shared<CloudParticlesData>(std::move(cloud)));
     }
@@ -140,7 +146,8 @@ void registerGenerateCloudNode(Registry& registry)
     d.outputs = {port("particles", "CloudParticles", "the cloud particles of this frame")};
     d.params = {intParam("maxCloudParticles", 100000000, "particles",
                          "refuse a frame with more cloud particles than this, before allocating "
-                         "(17 bytes each; value ours)", 1, 4e9),
+                         "(17 bytes each; value ours)",
+                         1, 4e9),
                 boolParam("evaporateBelowBase", false,
                           "ours: drop the cloud particles under the condensation level, the "
                           "lowest height at which a condensation particle condensed, as real "

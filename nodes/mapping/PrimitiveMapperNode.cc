@@ -25,7 +25,8 @@ algo::MappingSettings settingsFrom(const CookContext& ctx)
     s.firstStart = static_cast<int>(p.getInt("firstStart"));
     s.levelDelay = static_cast<int>(p.getInt("levelDelay"));
     s.windowLength.clear();  // the graph's list replaces the default, it does not extend it
-    for (std::int64_t w : p.getIntList("windowLength")) s.windowLength.push_back(static_cast<int>(w));
+    for (std::int64_t w : p.getIntList("windowLength"))
+        s.windowLength.push_back(static_cast<int>(w));
     s.scaleCoefficient = p.getFloat("scaleCoefficient");
     s.speedCoefficient = p.getFloat("speedCoefficient");
     s.metresPerPrimitiveMetre = p.getFloat("metresPerPrimitiveMetre");
@@ -34,9 +35,9 @@ algo::MappingSettings settingsFrom(const CookContext& ctx)
     s.maxSources = static_cast<std::uint64_t>(p.getInt("maxSources"));
     s.particlesPerCopy = static_cast<std::uint32_t>(p.getInt("particlesPerCopy"));
     s.parentRule = p.getString("parentRule") == "particle" ? algo::ParentRule::PerParticle
-                                                            : algo::ParentRule::PerSource;
+                                                           : algo::ParentRule::PerSource;
     s.pastLastFrame = p.getString("pastLastFrame") == "hold" ? algo::PastLastFrame::Hold
-                                                              : algo::PastLastFrame::Drift;
+                                                             : algo::PastLastFrame::Drift;
     const std::string& origin = p.getString("level1Origin");
     s.level1Origin = origin == "condensationLevel" ? algo::Level1Origin::CondensationLevel
                      : origin == "trail"           ? algo::Level1Origin::Trail
@@ -69,7 +70,8 @@ public:
         std::string text = "frame " + std::to_string(ctx.frame()) + ":";
         for (std::size_t l = 0; l < perLevel.size(); ++l)
             text += " L" + std::to_string(l + 1) + "=" + std::to_string(perLevel[l]);
-        text += " total=" + std::to_string(total) + " sources=" + std::to_string(table.sources.size()) +
+        text += " total=" + std::to_string(total) +
+                " sources=" + std::to_string(table.sources.size()) +
                 " Lmax=" + std::to_string(table.topLevel) + "\n";
         ctx.setOutput("summary", std::make_shared<TextData>(text));
         ctx.setOutput("sources", std::make_shared<CloudSourcesData>(std::move(table), settings));
@@ -94,7 +96,8 @@ void registerPrimitiveMapperNode(Registry& registry)
         "generator keyed by (seed, level, frame, index), without replacement: a candidate "
         "becomes a source at most once. Eq. 15 as the paper writes it (parentRule 'source'): a "
         "level L-1 source uniformly among those with particles, then one of its particles "
-        "uniformly; a taken pair is drawn again. Each source records its parent, t0 = t, A = 1 + A0 fNoise and "
+        "uniformly; a taken pair is drawn again. Each source records its parent, t0 = t, A = 1 + "
+        "A0 fNoise and "
         "R = R0 fNoise with fNoise read under the source (Eq. 16). t_s[1] is the first "
         "condensation frame unless firstStart is set; t_s[L] = t_s[L-1] + chi; t_e[L] = t_s[L] "
         "+ windowLength[L]. L_max starts at 1 and grows by one once the top level has cloud "
@@ -103,7 +106,8 @@ void registerPrimitiveMapperNode(Registry& registry)
         "previous frame's table.";
     d.simulation = true;
     d.readsTimeStep = true;
-    d.inputs = {port("condensation", "Condensation", "the condensation particles at this frame (N_v(t), P_v)"),
+    d.inputs = {port("condensation", "Condensation",
+                     "the condensation particles at this frame (N_v(t), P_v)"),
                 port("map", "Map2D", "the density map fNoise of Eq. 16 (the same map as Eq. 3-4)"),
                 port("primitive", "PrimitiveSet", "the 3D cloud primitive set (N_f(s), P_f(s))")};
     d.outputs = {port("sources", "CloudSources", "the table of source records at this frame"),
@@ -128,8 +132,9 @@ void registerPrimitiveMapperNode(Registry& registry)
     windows.minSize = 1;
     windows.maxSize = L::kMaxListSize;
     windows.units = "frames";
-    windows.doc = "t_e[L] - t_s[L], per level; the last value repeats (paper, Fig. 6: 100 for "
-                  "L = 1, 60 after)";
+    windows.doc =
+        "t_e[L] - t_s[L], per level; the last value repeats (paper, Fig. 6: 100 for "
+        "L = 1, 60 after)";
     d.params = {
         intParam("maxLevel", 5, "", "cap on L_max, the highest recursive level (paper: 4 and 5)", 1,
                  kMaxCloudLevel),

@@ -31,8 +31,8 @@ public:
         std::vector<std::uint32_t> counts;
         std::vector<float> positions;
         algo::everyKthParticle(full->counts, full->positions, k, counts, positions);
-        ctx.setOutput("primitive", std::make_shared<PrimitiveSetData>(full->frameTime, std::move(counts),
-                                                                      std::move(positions)));
+        ctx.setOutput("primitive", std::make_shared<PrimitiveSetData>(
+                                       full->frameTime, std::move(counts), std::move(positions)));
     }
 };
 
@@ -46,7 +46,8 @@ void registerPrimitiveSubsetNode(Registry& registry)
     d.doc =
         "Every k-th particle of a primitive set (ids 0, k, 2k, ... in order of appearance), as "
         "a primitive set again, with k = ceil(N_f(last) / K) so that about K particles remain "
-        "at the last frame: frame s keeps ceil(N_f(s) / k), each on its physical trajectory. Ours, not the paper's: Eq. 14 selects M[L] x N_c[L-1] sources from the "
+        "at the last frame: frame s keeps ceil(N_f(s) / k), each on its physical trajectory. Ours, "
+        "not the paper's: Eq. 14 selects M[L] x N_c[L-1] sources from the "
         "cloud particles of the level below, so the counts multiply by about M x N_f per "
         "level; a thinned primitive keeps a deep recursion (L_max 5) within millions of cloud "
         "particles, as the paper's Table 1 counts imply (Figure 6: 492,646). Give the "
@@ -54,10 +55,12 @@ void registerPrimitiveSubsetNode(Registry& registry)
         "particles, which line up in horizontal bands across a mapped cloud: for mapping, "
         "PrimitiveMapper's particlesPerCopy (a different subset per copy) looks better.";
     d.inputs = {port("primitive", "PrimitiveSet", "the full primitive set")};
-    d.outputs = {port("primitive", "PrimitiveSet", "ids 0, k, 2k, ... of the input, renumbered 0, 1, 2, ...")};
+    d.outputs = {port("primitive", "PrimitiveSet",
+                      "ids 0, k, 2k, ... of the input, renumbered 0, 1, 2, ...")};
     d.params = {intParam("particles", 16384, "particles",
                          "K: about this many particles remain at the last frame (value ours; at "
-                         "least N_f(last) keeps all)", 1, 1 << 30)};
+                         "least N_f(last) keeps all)",
+                         1, 1 << 30)};
     d.create = [] { return std::make_unique<PrimitiveSubsetNode>(); };
     registry.addNode(std::move(d));
 }

@@ -86,7 +86,8 @@ struct Scene {
     }
     static CondensationView view(const Frame& f)
     {
-        return {f.x.data(), f.y.data(), f.z.data(), f.condensed.data(), f.condensedZ.data(), f.x.size(), f.vz.data()};
+        return {f.x.data(),          f.y.data(), f.z.data(), f.condensed.data(),
+                f.condensedZ.data(), f.x.size(), f.vz.data()};
     }
 };
 
@@ -104,7 +105,8 @@ std::uint64_t expectedClusterSize(const Scene& scene, const Source& src, int t)
 void expectedDrift(const Scene& scene, double out[3])
 {
     const int last = Scene::kPrimitiveFrames - 1, first = last - 10;
-    const std::uint32_t n = std::min(scene.counts[static_cast<std::size_t>(first)], scene.counts[static_cast<std::size_t>(last)]);
+    const std::uint32_t n = std::min(scene.counts[static_cast<std::size_t>(first)],
+                                     scene.counts[static_cast<std::size_t>(last)]);
     for (int k = 0; k < 3; ++k) {
         double sum = 0.0;
         for (std::uint32_t i = 0; i < n; ++i)
@@ -192,10 +194,13 @@ TEST(Mapping, Eq13CountsMatchTheSumOverSources)
     for (int t = 0; t < 30; ++t) {
         const SourceTable& table = r.tables[static_cast<std::size_t>(t)];
         std::vector<std::uint64_t> expected(3, 0);
-        for (const Source& src : table.sources) expected[src.level - 1u] += expectedClusterSize(scene, src, t);
-        EXPECT_EQ(cloudCounts(table, t, scene.primitive(), scene.settings), expected) << "frame " << t;
-        const auto generated = generateCloudParticles(table, t, Scene::view(r.frames[static_cast<std::size_t>(t)]),
-                                                      scene.primitive(), scene.settings);
+        for (const Source& src : table.sources)
+            expected[src.level - 1u] += expectedClusterSize(scene, src, t);
+        EXPECT_EQ(cloudCounts(table, t, scene.primitive(), scene.settings), expected)
+            << "frame " << t;
+        const auto generated =
+            generateCloudParticles(table, t, Scene::view(r.frames[static_cast<std::size_t>(t)]),
+                                   scene.primitive(), scene.settings);
         EXPECT_EQ(generated.levels.size(), expected[0] + expected[1] + expected[2]);
         sawLevel2 = sawLevel2 || expected[1] > 0;
     }
@@ -218,9 +223,11 @@ TEST(Mapping, Eq14SourcesFollowTheRatioInsideTheWindowOnly)
             const int start = ts1 + (level - 1) * scene.settings.levelDelay;
             const int end = start + windowLength(scene.settings, level);
             const std::uint64_t candidates = level == 1 ? condensed : counts[0];
-            if (t >= start && t <= end && level <= r.tables[static_cast<std::size_t>(std::max(t - 1, 0))].topLevel) {
-                EXPECT_EQ(g, static_cast<std::uint64_t>(std::floor(selectionRatio(scene.settings, level) *
-                                                                   static_cast<double>(candidates))))
+            if (t >= start && t <= end &&
+                level <= r.tables[static_cast<std::size_t>(std::max(t - 1, 0))].topLevel) {
+                EXPECT_EQ(
+                    g, static_cast<std::uint64_t>(std::floor(selectionRatio(scene.settings, level) *
+                                                             static_cast<double>(candidates))))
                     << "level " << level << " frame " << t;
             }
         }
@@ -248,7 +255,8 @@ void expectPositionsMatchTheRecursiveFormula(const Scene& scene)
     for (int t : {5, 12, 20, 29}) {
         const SourceTable& table = r.tables[static_cast<std::size_t>(t)];
         const auto& c = r.frames[static_cast<std::size_t>(t)];
-        const auto out = generateCloudParticles(table, t, Scene::view(c), scene.primitive(), scene.settings);
+        const auto out =
+            generateCloudParticles(table, t, Scene::view(c), scene.primitive(), scene.settings);
         std::size_t q = 0;
         for (std::size_t j = 0; j < table.sources.size(); ++j) {
             const auto n = expectedClusterSize(scene, table.sources[j], t);
@@ -256,7 +264,8 @@ void expectPositionsMatchTheRecursiveFormula(const Scene& scene)
                 double e[3];
                 expectedCloudParticle(scene, table, c, j, i, t, e);
                 for (int k = 0; k < 3; ++k)
-                    ASSERT_NEAR(out.positions[3 * q + k], e[k], 1e-3 * std::max(1.0, std::abs(e[k])))
+                    ASSERT_NEAR(out.positions[3 * q + k], e[k],
+                                1e-3 * std::max(1.0, std::abs(e[k])))
                         << "source " << j << " particle " << i << " frame " << t;
                 EXPECT_EQ(out.sources[q], j);
                 EXPECT_EQ(out.levels[q], table.sources[j].level);
@@ -287,7 +296,8 @@ TEST(Mapping, Level1CopiesCanStandAtTheirCondensationHeight)
     const MappingRun r = run(scene, 30);
     const SourceTable& table = r.tables.back();
     const auto& c = r.frames.back();
-    const auto origins = sourceOrigins(table, 29, Scene::view(c), scene.primitive(), scene.settings);
+    const auto origins =
+        sourceOrigins(table, 29, Scene::view(c), scene.primitive(), scene.settings);
     scene.settings.level1Origin = Level1Origin::Particle;
     const auto paper = sourceOrigins(table, 29, Scene::view(c), scene.primitive(), scene.settings);
     int level1 = 0;
@@ -300,7 +310,8 @@ TEST(Mapping, Level1CopiesCanStandAtTheirCondensationHeight)
         EXPECT_EQ(origins[3 * j + 1], c.y[src.parent]);
         EXPECT_EQ(origins[3 * j + 2], 1400.0f + 10.0f * static_cast<float>(condensed));
         EXPECT_EQ(paper[3 * j + 2], c.z[src.parent]);
-        EXPECT_EQ(paper[3 * j + 2] - origins[3 * j + 2], 10.0f * static_cast<float>(29 - condensed));
+        EXPECT_EQ(paper[3 * j + 2] - origins[3 * j + 2],
+                  10.0f * static_cast<float>(29 - condensed));
     }
     EXPECT_GT(level1, 0);
 }
@@ -315,12 +326,14 @@ TEST(Mapping, TrailCopiesStayWhereTheirRisingParticleLaidThemAndStoppedParticles
     const SourceTable& table = r.tables.back();
     const auto& c = r.frames.back();
     ASSERT_EQ(table.anchors.size(), 3 * table.sources.size());
-    const auto origins = sourceOrigins(table, 29, Scene::view(c), scene.primitive(), scene.settings);
+    const auto origins =
+        sourceOrigins(table, 29, Scene::view(c), scene.primitive(), scene.settings);
     int laid = 0, carried = 0;
     for (std::size_t j = 0; j < table.sources.size(); ++j) {
         const Source& src = table.sources[j];
         if (src.level != 1) {
-            EXPECT_EQ(table.anchors[3 * j] + table.anchors[3 * j + 1] + table.anchors[3 * j + 2], 0.0f);
+            EXPECT_EQ(table.anchors[3 * j] + table.anchors[3 * j + 1] + table.anchors[3 * j + 2],
+                      0.0f);
             continue;
         }
         const bool rising = src.parent % 2 == 0;  // 20 m/s against 5: laid
@@ -328,8 +341,10 @@ TEST(Mapping, TrailCopiesStayWhereTheirRisingParticleLaidThemAndStoppedParticles
         EXPECT_EQ(origins[3 * j], c.x[src.parent]);
         EXPECT_EQ(origins[3 * j + 1], c.y[src.parent]);
         // The particle is 10 m higher each frame; a laid copy stays at its start frame's height.
-        const float expectedZ = rising ? 1400.0f + 10.0f * static_cast<float>(src.startFrame) : c.z[src.parent];
-        EXPECT_EQ(origins[3 * j + 2], expectedZ) << "source " << j << " started at " << src.startFrame;
+        const float expectedZ =
+            rising ? 1400.0f + 10.0f * static_cast<float>(src.startFrame) : c.z[src.parent];
+        EXPECT_EQ(origins[3 * j + 2], expectedZ)
+            << "source " << j << " started at " << src.startFrame;
         if (rising && src.startFrame < 29) {
             EXPECT_LT(origins[3 * j + 2], c.z[src.parent]);
         }
@@ -338,8 +353,9 @@ TEST(Mapping, TrailCopiesStayWhereTheirRisingParticleLaidThemAndStoppedParticles
     EXPECT_GT(carried, 0);
     CondensationView noSpeeds = Scene::view(c);
     noSpeeds.vz = nullptr;
-    EXPECT_THROW(stepSources(table, 30, 3, noSpeeds, scene.mapView(), scene.primitive(), scene.settings),
-                 std::invalid_argument);
+    EXPECT_THROW(
+        stepSources(table, 30, 3, noSpeeds, scene.mapView(), scene.primitive(), scene.settings),
+        std::invalid_argument);
     // Above every particle's rise speed nothing is laid: trail places copies as the paper does.
     scene.settings.trailRiseSpeed = 25.0;
     const SourceTable riding = run(scene, 30).tables.back();
@@ -361,7 +377,8 @@ TEST(Mapping, ThinnedCopiesCarryEveryKthParticleFromTheirOwnPhase)
     for (int t : {5, 12, 20, 29}) {
         const SourceTable& table = r.tables[static_cast<std::size_t>(t)];
         const auto& c = r.frames[static_cast<std::size_t>(t)];
-        const auto out = generateCloudParticles(table, t, Scene::view(c), scene.primitive(), scene.settings);
+        const auto out =
+            generateCloudParticles(table, t, Scene::view(c), scene.primitive(), scene.settings);
         std::vector<std::uint64_t> perLevel(3, 0);
         std::size_t q = 0;
         for (std::size_t j = 0; j < table.sources.size(); ++j) {
@@ -380,7 +397,8 @@ TEST(Mapping, ThinnedCopiesCarryEveryKthParticleFromTheirOwnPhase)
                 double e[3];
                 expectedCloudParticle(scene, table, c, j, static_cast<std::uint32_t>(id), t, e);
                 for (int k = 0; k < 3; ++k)
-                    ASSERT_NEAR(out.positions[3 * q + k], e[k], 1e-3 * std::max(1.0, std::abs(e[k])))
+                    ASSERT_NEAR(out.positions[3 * q + k], e[k],
+                                1e-3 * std::max(1.0, std::abs(e[k])))
                         << "source " << j << " fluid id " << id << " frame " << t;
             }
             EXPECT_EQ(clusterSize(src, t, scene.settings, scene.primitive()), n);
@@ -405,13 +423,16 @@ TEST(Mapping, ALevel2ClusterFollowsItsParentCloudParticle)
     const Source& src = final.sources[child];
     for (int t = src.startFrame; t < 30; ++t) {
         const auto& c = r.frames[static_cast<std::size_t>(t)];
-        const auto origins = sourceOrigins(final, t, Scene::view(c), scene.primitive(), scene.settings);
-        const auto cloud = generateCloudParticles(final, t, Scene::view(c), scene.primitive(), scene.settings);
+        const auto origins =
+            sourceOrigins(final, t, Scene::view(c), scene.primitive(), scene.settings);
+        const auto cloud =
+            generateCloudParticles(final, t, Scene::view(c), scene.primitive(), scene.settings);
         // Find the parent cloud particle (source src.parent, fluid id src.parentFluid).
         std::size_t q = 0;
         while (!(cloud.sources[q] == src.parent)) ++q;
         q += src.parentFluid;
-        for (int k = 0; k < 3; ++k) EXPECT_EQ(origins[3 * child + k], cloud.positions[3 * q + k]) << "frame " << t;
+        for (int k = 0; k < 3; ++k)
+            EXPECT_EQ(origins[3 * child + k], cloud.positions[3 * q + k]) << "frame " << t;
     }
 }
 
@@ -449,7 +470,8 @@ ParentDraws drawParents(ParentRule rule, int seeds)
     ParentDraws d;
     for (int seed = 0; seed < seeds; ++seed) {
         scene.settings.seed = static_cast<std::uint64_t>(seed);
-        const SourceTable next = stepSources(table, t, 0, Scene::view(c), scene.mapView(), scene.primitive(), scene.settings);
+        const SourceTable next = stepSources(table, t, 0, Scene::view(c), scene.mapView(),
+                                             scene.primitive(), scene.settings);
         for (std::size_t j = table.sources.size(); j < next.sources.size(); ++j) {
             const Source& src = next.sources[j];
             ++d.perParent[src.parent];
@@ -465,7 +487,9 @@ double chiSquareAgainstUniform(const std::vector<std::uint64_t>& counts)
     for (auto c : counts) total += static_cast<double>(c);
     const double expected = total / static_cast<double>(counts.size());
     double chi2 = 0.0;
-    for (auto c : counts) chi2 += (static_cast<double>(c) - expected) * (static_cast<double>(c) - expected) / expected;
+    for (auto c : counts)
+        chi2 +=
+            (static_cast<double>(c) - expected) * (static_cast<double>(c) - expected) / expected;
     return chi2;
 }
 
@@ -525,7 +549,8 @@ TEST(Mapping, NoCandidateIsSelectedTwiceAndLevelsRespectTheirCap)
     for (const Source& src : final.sources) {
         EXPECT_LE(src.level, 2);
         EXPECT_TRUE(seen.insert({src.level == 1 ? src.parent : src.parent + 1000000u,
-                                 src.level == 1 ? 0u : src.parentFluid}).second);
+                                 src.level == 1 ? 0u : src.parentFluid})
+                        .second);
     }
 }
 
@@ -555,7 +580,8 @@ TEST(Mapping, ChunksConcatenatedEqualTheFrameArraysForOneAndTwoThreads)
         const auto ref = generateCloudParticles(table, t, c, scene.primitive(), scene.settings);
         const std::size_t n = ref.levels.size();
         // 7 particles a chunk: chunks straddle sources, and a source spans several chunks.
-        for (std::uint64_t chunkParticles : {std::uint64_t{7}, std::uint64_t{1}, kCloudChunkParticles}) {
+        for (std::uint64_t chunkParticles :
+             {std::uint64_t{7}, std::uint64_t{1}, kCloudChunkParticles}) {
             for (int threads : {1, 2}) {
                 tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
                 std::vector<float> positions(3 * n, std::nanf(""));
@@ -570,7 +596,8 @@ TEST(Mapping, ChunksConcatenatedEqualTheFrameArraysForOneAndTwoThreads)
                 const std::uint64_t total = forEachCloudChunk(
                     table, t, c, scene.primitive(), scene.settings,
                     [&](const CloudChunk& k) {
-                        ASSERT_EQ(k.first % chunkParticles, 0u);  // boundaries fixed by the chunk size
+                        ASSERT_EQ(k.first % chunkParticles,
+                                  0u);  // boundaries fixed by the chunk size
                         ASSERT_EQ(k.count, std::min<std::uint64_t>(chunkParticles, n - k.first));
                         ASSERT_NE(k.levels, nullptr);
                         ASSERT_NE(k.sources, nullptr);
@@ -578,7 +605,8 @@ TEST(Mapping, ChunksConcatenatedEqualTheFrameArraysForOneAndTwoThreads)
                         firsts.insert(k.first);
                         for (std::uint64_t q = 0; q < k.count; ++q) {
                             ++deliveries[k.first + q];
-                            std::memcpy(&positions[3 * (k.first + q)], k.positions + 3 * q, 3 * sizeof(float));
+                            std::memcpy(&positions[3 * (k.first + q)], k.positions + 3 * q,
+                                        3 * sizeof(float));
                             levels[k.first + q] = k.levels[q];
                             sources[k.first + q] = k.sources[q];
                         }
@@ -589,8 +617,10 @@ TEST(Mapping, ChunksConcatenatedEqualTheFrameArraysForOneAndTwoThreads)
                 sawSeveralChunks = sawSeveralChunks || firsts.size() > 1;
                 for (std::size_t q = 0; q < n; ++q) ASSERT_EQ(deliveries[q], 1) << "particle " << q;
                 // Bit for bit: memcmp, not float ==.
-                EXPECT_EQ(std::memcmp(positions.data(), ref.positions.data(), 3 * n * sizeof(float)), 0)
-                    << "frame " << t << ", " << threads << " thread(s), chunks of " << chunkParticles;
+                EXPECT_EQ(
+                    std::memcmp(positions.data(), ref.positions.data(), 3 * n * sizeof(float)), 0)
+                    << "frame " << t << ", " << threads << " thread(s), chunks of "
+                    << chunkParticles;
                 EXPECT_TRUE(std::equal(levels.begin(), levels.end(), ref.levels.begin()));
                 EXPECT_TRUE(std::equal(sources.begin(), sources.end(), ref.sources.begin()));
 
@@ -600,16 +630,18 @@ TEST(Mapping, ChunksConcatenatedEqualTheFrameArraysForOneAndTwoThreads)
                 into.chunkParticles = chunkParticles;
                 into.positionsOut = direct.data();
                 std::atomic<std::uint64_t> counted{0};
-                forEachCloudChunk(table, t, c, scene.primitive(), scene.settings,
-                                  [&](const CloudChunk& k) {
-                                      EXPECT_EQ(k.positions, direct.data() + 3 * k.first);
-                                      EXPECT_EQ(k.levels, nullptr);
-                                      EXPECT_EQ(k.sources, nullptr);
-                                      counted += k.count;
-                                  },
-                                  into);
+                forEachCloudChunk(
+                    table, t, c, scene.primitive(), scene.settings,
+                    [&](const CloudChunk& k) {
+                        EXPECT_EQ(k.positions, direct.data() + 3 * k.first);
+                        EXPECT_EQ(k.levels, nullptr);
+                        EXPECT_EQ(k.sources, nullptr);
+                        counted += k.count;
+                    },
+                    into);
                 EXPECT_EQ(counted.load(), n);
-                EXPECT_EQ(std::memcmp(direct.data(), ref.positions.data(), 3 * n * sizeof(float)), 0);
+                EXPECT_EQ(std::memcmp(direct.data(), ref.positions.data(), 3 * n * sizeof(float)),
+                          0);
             }
         }
     }
@@ -623,13 +655,15 @@ TEST(Mapping, ChunkOptionsAreChecked)
     const CondensationView c = Scene::view(r.frames.back());
     CloudChunkOptions zero;
     zero.chunkParticles = 0;
-    EXPECT_THROW(forEachCloudChunk(r.tables.back(), 11, c, scene.primitive(), scene.settings, {}, zero),
-                 std::invalid_argument);
+    EXPECT_THROW(
+        forEachCloudChunk(r.tables.back(), 11, c, scene.primitive(), scene.settings, {}, zero),
+        std::invalid_argument);
     std::vector<float> frame(3 * 1000);
     CloudChunkOptions missingLevels;
     missingLevels.positionsOut = frame.data();
     missingLevels.levels = true;
-    EXPECT_THROW(forEachCloudChunk(r.tables.back(), 11, c, scene.primitive(), scene.settings, {}, missingLevels),
+    EXPECT_THROW(forEachCloudChunk(r.tables.back(), 11, c, scene.primitive(), scene.settings, {},
+                                   missingLevels),
                  std::invalid_argument);
 }
 
