@@ -1,9 +1,11 @@
 #include "algo/mapping/Mapping.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <unordered_set>
 
 #include <tbb/blocked_range.h>
@@ -33,6 +35,49 @@ int windowLength(const MappingSettings& s, int level)
 {
     const auto i = static_cast<std::size_t>(level - 1);
     return s.windowLength.empty() ? 0 : s.windowLength[std::min(i, s.windowLength.size() - 1)];
+}
+
+PrimitiveLibrary::PrimitiveLibrary(std::vector<PrimitiveView> several) : views(std::move(several))
+{
+    if (views.empty() || views.size() > kMaxPrimitives)
+        throw std::invalid_argument("a primitive library holds 1 to 8 primitives");
+}
+
+namespace {
+
+/// The counter-based stream of the sources' primitives (levels use streams below 2^40).
+constexpr std::uint64_t kPrimitiveStream = std::uint64_t{1} << 43;
+
+/// Refuses a library that is not the one the settings' table was made with.
+void checkLibrary(const PrimitiveLibrary& lib, const MappingSettings& s)
+{
+    if (lib.views.size() != s.primitiveCount)
+        throw std::invalid_argument("the mapping was made with " +
+                                    std::to_string(s.primitiveCount) + " primitives, not " +
+                                    std::to_string(lib.views.size()));
+}
+
+/// The primitive source j plays.
+const PrimitiveView& viewOf(const PrimitiveLibrary& lib, std::size_t j, const MappingSettings& s)
+{
+    return lib.views[primitiveOf(j, s)];
+}
+
+/// Each primitive's drift (primitiveDrift), by its index in the library.
+using Drifts = std::vector<std::array<float, 3>>;
+Drifts drifts(const PrimitiveLibrary& lib)
+{
+    Drifts out(lib.views.size());
+    for (std::size_t i = 0; i < lib.views.size(); ++i) primitiveDrift(lib.views[i], out[i].data());
+    return out;
+}
+
+}  // namespace
+
+std::size_t primitiveOf(std::size_t j, const MappingSettings& s)
+{
+    if (s.primitiveCount <= 1) return 0;
+    return static_cast<std::size_t>(counterBits(s.seed, kPrimitiveStream, j) % s.primitiveCount);
 }
 
 double primitiveTime(const Source& src, int frame, const MappingSettings& s, const PrimitiveView& p)
@@ -135,7 +180,7 @@ struct Origins {
 /// Origins in one pass in table order (parents precede children): a child's origin is its
 /// parent's particle, read off the parent's copy origin computed just before.
 Origins originsWithDrift(const SourceTable& table, int frame, const CondensationView& c,
-                         const PrimitiveView& p, const MappingSettings& s, const float drift[3])
+                         const PrimitiveLibrary& lib, const MappingSettings& s, const Drifts& drift)
 {
     Origins out{std::vector<float>(3 * table.sources.size()),
                 std::vector<float>(3 * table.sources.size())};
@@ -154,9 +199,12 @@ Origins originsWithDrift(const SourceTable& table, int frame, const Condensation
                   // does)
             cloudParticlePosition(table.sources[src.parent],
                                   &out.copy[3 * static_cast<std::size_t>(src.parent)],
-                                  src.parentFluid, frame, p, s, o);
+                                  src.parentFluid, frame, viewOf(lib, src.parent, s), s, o);
         }
-        copyOrigin(src, o, primitiveTime(src, frame, s, p), p, s, drift, &out.copy[3 * j]);
+        const std::size_t primitive = primitiveOf(j, s);
+        const PrimitiveView& p = lib.views[primitive];
+        copyOrigin(src, o, primitiveTime(src, frame, s, p), p, s, drift[primitive].data(),
+                   &out.copy[3 * j]);
     }
     return out;
 }
@@ -164,20 +212,22 @@ Origins originsWithDrift(const SourceTable& table, int frame, const Condensation
 }  // namespace
 
 std::vector<float> sourceOrigins(const SourceTable& table, int frame, const CondensationView& c,
-                                 const PrimitiveView& p, const MappingSettings& s)
+                                 const PrimitiveLibrary& lib, const MappingSettings& s)
 {
-    float drift[3];
-    primitiveDrift(p, drift);
-    return originsWithDrift(table, frame, c, p, s, drift).origin;
+    checkLibrary(lib, s);
+    return originsWithDrift(table, frame, c, lib, s, drifts(lib)).origin;
 }
 
-std::vector<std::uint64_t> cloudCounts(const SourceTable& table, int frame, const PrimitiveView& p,
-                                       const MappingSettings& s)
+std::vector<std::uint64_t> cloudCounts(const SourceTable& table, int frame,
+                                       const PrimitiveLibrary& lib, const MappingSettings& s)
 {
+    checkLibrary(lib, s);
     std::vector<std::uint64_t> counts(static_cast<std::size_t>(std::max(s.maxLevel, 1)), 0);
-    for (const Source& src : table.sources)
+    for (std::size_t j = 0; j < table.sources.size(); ++j) {
+        const Source& src = table.sources[j];
         if (src.level >= 1 && src.level <= counts.size())
-            counts[src.level - 1u] += clusterSize(src, frame, s, p);
+            counts[src.level - 1u] += clusterSize(src, frame, s, viewOf(lib, j, s));
+    }
     return counts;
 }
 
@@ -280,16 +330,15 @@ std::vector<std::uint64_t> pickParents(const SourceTable& table, const ParentCan
 }  // namespace
 
 SourceTable stepSources(const SourceTable& previous, int frame, int firstCondensation,
-                        const CondensationView& c, const MapView& map, const PrimitiveView& p,
+                        const CondensationView& c, const MapView& map, const PrimitiveLibrary& lib,
                         const MappingSettings& s)
 {
+    checkLibrary(lib, s);
     if (s.level1Origin == Level1Origin::Trail && c.vz == nullptr)
         throw std::invalid_argument(
             "stepSources: level1Origin trail needs the particles' vertical speeds");
     SourceTable table = previous;
-    const std::uint32_t stride = copyStride(s, p);
-    float drift[3];
-    primitiveDrift(p, drift);
+    const Drifts drift = drifts(lib);
     table.condensationTaken.resize(c.count, 0);
     table.levelStart.assign(static_cast<std::size_t>(s.maxLevel), -1);
     const int first = s.firstStart >= 0 ? s.firstStart : firstCondensation;
@@ -315,7 +364,7 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
                 if (table.sources[j].level != level - 1) continue;
                 parents.push_back(static_cast<std::uint32_t>(j));
                 parentOffset.push_back(candidates);
-                candidates += clusterSize(table.sources[j], frame, s, p);
+                candidates += clusterSize(table.sources[j], frame, s, viewOf(lib, j, s));
             }
         }
         std::uint64_t existing = 0;
@@ -329,7 +378,8 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
         if (fresh == 0) continue;
 
         const std::vector<float> copies =
-            level == 1 ? std::vector<float>() : originsWithDrift(table, frame, c, p, s, drift).copy;
+            level == 1 ? std::vector<float>()
+                       : originsWithDrift(table, frame, c, lib, s, drift).copy;
         const std::vector<std::uint64_t> parentKeys =
             level == 1
                 ? std::vector<std::uint64_t>()
@@ -353,18 +403,21 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
                 if (k >= parentKeys.size()) break;  // every draw hit a taken particle
                 const std::uint64_t key = parentKeys[k];
                 src.parent = static_cast<std::uint32_t>(key >> 32);
-                src.parentFluid = copyFluidId(table.sources[src.parent], key & 0xffffffffu, stride);
+                const PrimitiveView& parentView = viewOf(lib, src.parent, s);
+                src.parentFluid = copyFluidId(table.sources[src.parent], key & 0xffffffffu,
+                                              copyStride(s, parentView));
                 // Eq. 16 reads the map under the parent cloud particle's position (Eq. 10).
                 float at[3];
                 cloudParticlePosition(table.sources[src.parent], &copies[3 * src.parent],
-                                      src.parentFluid, frame, p, s, at);
+                                      src.parentFluid, frame, parentView, s, at);
                 x = at[0];
                 y = at[1];
             }
             // Which of the primitive's particles this copy carries, keyed by the source's index,
             // so it never depends on thread order.
-            src.phase = static_cast<std::uint16_t>(
-                counterBits(s.seed, kPhaseStream, table.sources.size()) % stride);
+            src.phase =
+                static_cast<std::uint16_t>(counterBits(s.seed, kPhaseStream, table.sources.size()) %
+                                           copyStride(s, viewOf(lib, table.sources.size(), s)));
             const double noise = map.at(x, y);  // Eq. 16
             src.scale = static_cast<float>(s.scaleCoefficient * noise);
             src.speed = static_cast<float>(1.0 + s.speedCoefficient * noise);
@@ -386,7 +439,7 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
     }
     // Pseudocode lines 26-27: once the top level has cloud particles, the next may start.
     if (table.topLevel < s.maxLevel &&
-        cloudCounts(table, frame, p, s)[static_cast<std::size_t>(table.topLevel - 1)] > 0)
+        cloudCounts(table, frame, lib, s)[static_cast<std::size_t>(table.topLevel - 1)] > 0)
         ++table.topLevel;
     return table;
 }
@@ -397,24 +450,22 @@ namespace {
 /// origin plus its drift; zero before the source starts) and the prefix sums of the cluster
 /// sizes (Eq. 13), so particle q belongs to the source j with offset[j] <= q < offset[j + 1].
 struct FramePlan {
-    std::uint32_t stride = 1;  ///< k of thinned copies
     std::vector<float> copyOrigins;
     std::vector<std::uint64_t> offset;
     std::uint64_t total() const { return offset.back(); }
 };
 
 FramePlan planFrame(const SourceTable& table, int frame, const CondensationView& c,
-                    const PrimitiveView& p, const MappingSettings& s)
+                    const PrimitiveLibrary& lib, const MappingSettings& s)
 {
+    checkLibrary(lib, s);
     FramePlan plan;
-    plan.stride = copyStride(s, p);
-    float drift[3];
-    primitiveDrift(p, drift);
-    plan.copyOrigins = originsWithDrift(table, frame, c, p, s, drift).copy;
+    plan.copyOrigins = originsWithDrift(table, frame, c, lib, s, drifts(lib)).copy;
     const std::size_t n = table.sources.size();
     plan.offset.assign(n + 1, 0);
     for (std::size_t j = 0; j < n; ++j)
-        plan.offset[j + 1] = plan.offset[j] + clusterSize(table.sources[j], frame, s, p);
+        plan.offset[j + 1] =
+            plan.offset[j] + clusterSize(table.sources[j], frame, s, viewOf(lib, j, s));
     return plan;
 }
 
@@ -470,9 +521,9 @@ void sourceSlice(const Source& src, const float* origin, int frame, const Primit
 
 /// Particles [first, last) of the frame into xyz (and levels / sources when not null), source
 /// slice by source slice.
-void fillRange(const FramePlan& plan, const SourceTable& table, int frame, const PrimitiveView& p,
-               const MappingSettings& s, std::uint64_t first, std::uint64_t last, float* xyz,
-               std::uint8_t* levels, std::uint32_t* sources)
+void fillRange(const FramePlan& plan, const SourceTable& table, int frame,
+               const PrimitiveLibrary& lib, const MappingSettings& s, std::uint64_t first,
+               std::uint64_t last, float* xyz, std::uint8_t* levels, std::uint32_t* sources)
 {
     const auto& offset = plan.offset;
     auto j = static_cast<std::size_t>(std::upper_bound(offset.begin(), offset.end(), first) -
@@ -481,7 +532,8 @@ void fillRange(const FramePlan& plan, const SourceTable& table, int frame, const
         const std::uint64_t end = std::min(last, offset[j + 1]);
         if (end == q) continue;  // a source not started yet: no cluster, no frame to look up
         const Source& src = table.sources[j];
-        sourceSlice(src, &plan.copyOrigins[3 * j], frame, p, s, plan.stride, q - offset[j],
+        const PrimitiveView& p = viewOf(lib, j, s);
+        sourceSlice(src, &plan.copyOrigins[3 * j], frame, p, s, copyStride(s, p), q - offset[j],
                     end - offset[j], xyz + 3 * (q - first));
         if (levels != nullptr) std::fill_n(levels + (q - first), end - q, src.level);
         if (sources != nullptr)
@@ -491,9 +543,9 @@ void fillRange(const FramePlan& plan, const SourceTable& table, int frame, const
 }
 
 /// The chunk loop behind forEachCloudChunk and generateCloudParticles.
-void runChunks(const FramePlan& plan, const SourceTable& table, int frame, const PrimitiveView& p,
-               const MappingSettings& s, const std::function<void(const CloudChunk&)>& consume,
-               const CloudChunkOptions& o)
+void runChunks(const FramePlan& plan, const SourceTable& table, int frame,
+               const PrimitiveLibrary& lib, const MappingSettings& s,
+               const std::function<void(const CloudChunk&)>& consume, const CloudChunkOptions& o)
 {
     const std::uint64_t size = o.chunkParticles;
     const bool direct = o.positionsOut != nullptr;
@@ -537,7 +589,7 @@ void runChunks(const FramePlan& plan, const SourceTable& table, int frame, const
                                   if (o.levels) levels = b.levels.data();
                                   if (o.sources) sources = b.sources.data();
                               }
-                              fillRange(plan, table, frame, p, s, chunk.first,
+                              fillRange(plan, table, frame, lib, s, chunk.first,
                                         chunk.first + chunk.count, xyz, levels, sources);
                               if (consume) {
                                   chunk.positions = xyz;
@@ -554,21 +606,21 @@ void runChunks(const FramePlan& plan, const SourceTable& table, int frame, const
 }  // namespace
 
 std::uint64_t forEachCloudChunk(const SourceTable& table, int frame, const CondensationView& c,
-                                const PrimitiveView& p, const MappingSettings& s,
+                                const PrimitiveLibrary& lib, const MappingSettings& s,
                                 const std::function<void(const CloudChunk&)>& consume,
                                 const CloudChunkOptions& options)
 {
-    const FramePlan plan = planFrame(table, frame, c, p, s);
-    runChunks(plan, table, frame, p, s, consume, options);
+    const FramePlan plan = planFrame(table, frame, c, lib, s);
+    runChunks(plan, table, frame, lib, s, consume, options);
     return plan.total();
 }
 
 CloudParticleArrays generateCloudParticles(const SourceTable& table, int frame,
-                                           const CondensationView& c, const PrimitiveView& p,
+                                           const CondensationView& c, const PrimitiveLibrary& lib,
                                            const MappingSettings& s,
                                            const std::function<void()>& checkCancelled)
 {
-    const FramePlan plan = planFrame(table, frame, c, p, s);
+    const FramePlan plan = planFrame(table, frame, c, lib, s);
     const auto n = static_cast<std::size_t>(plan.total());
     // Uninitialised: each chunk's writer touches its own pages first (no zero-fill on one thread).
     CloudParticleArrays out{UninitArray<float>(3 * n), UninitArray<std::uint8_t>(n),
@@ -579,7 +631,7 @@ CloudParticleArrays generateCloudParticles(const SourceTable& table, int frame,
     o.levelsOut = out.levels.data();
     o.sourcesOut = out.sources.data();
     o.checkCancelled = checkCancelled;
-    runChunks(plan, table, frame, p, s, {}, o);
+    runChunks(plan, table, frame, lib, s, {}, o);
     return out;
 }
 

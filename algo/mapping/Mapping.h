@@ -63,6 +63,20 @@ struct PrimitiveView {
     double frameTime = 1.0;  ///< ds, seconds
 };
 
+/// The primitive sets copies draw from (ours; the paper maps one): source j's copy plays
+/// primitive primitiveOf(j), so neighbouring towers do not share an outline. One view is the
+/// paper's case, and converts implicitly.
+struct PrimitiveLibrary {
+    std::vector<PrimitiveView> views;  ///< at least one
+
+    PrimitiveLibrary(const PrimitiveView& one)
+        : views{one} {}  // NOLINT: one primitive is a library
+    explicit PrimitiveLibrary(std::vector<PrimitiveView> several);
+};
+
+/// At most this many primitives in a library.
+inline constexpr std::size_t kMaxPrimitives = 8;
+
 /// A read-only view of the condensation particles at frame t.
 struct CondensationView {
     const float* x = nullptr;
@@ -156,7 +170,14 @@ struct MappingSettings {
     /// rather than carrying it (value ours: updrafts rise at 5-20 m/s, a tower's top settles
     /// around its equilibrium level at a few m/s).
     double trailRiseSpeed = 3.0;
+    /// Primitives in the library the table was made with (1..kMaxPrimitives): source j plays
+    /// primitive primitiveOf(j), drawn from the seed by j alone.
+    std::uint32_t primitiveCount = 1;
 };
+
+/// The primitive source j plays: a draw from the seed keyed by j, so it depends on neither the
+/// frame nor the thread order; 0 with one primitive (the paper).
+std::size_t primitiveOf(std::size_t j, const MappingSettings& s);
 
 /// k, the fluid-id stride of thinned copies: ceil(N_f(last) / K), at least 1, at most 65,536
 /// (the phase is 16 bits); 1 when particlesPerCopy is 0.
@@ -194,17 +215,17 @@ void copyShift(const PrimitiveView& p, const MappingSettings& s, const float dri
 /// Origins P_s[L, j](t) of every source at frame t (Eq. 12), 3 floats each; zero for sources
 /// that start after t.
 std::vector<float> sourceOrigins(const SourceTable& table, int frame, const CondensationView& c,
-                                 const PrimitiveView& p, const MappingSettings& s);
+                                 const PrimitiveLibrary& lib, const MappingSettings& s);
 
 /// N_c[L](t) for L = 1..maxLevel (Eq. 13): index L-1.
-std::vector<std::uint64_t> cloudCounts(const SourceTable& table, int frame, const PrimitiveView& p,
-                                       const MappingSettings& s);
+std::vector<std::uint64_t> cloudCounts(const SourceTable& table, int frame,
+                                       const PrimitiveLibrary& lib, const MappingSettings& s);
 
 /// One frame of pseudocode lines 15-28: selects the new sources of every active level at
 /// frame t (Eq. 12, 14-16) and updates L_max. `firstCondensation` is t_s[1] from the
 /// Condensation node (-1 if none yet). Returns the table at frame t.
 SourceTable stepSources(const SourceTable& previous, int frame, int firstCondensation,
-                        const CondensationView& c, const MapView& map, const PrimitiveView& p,
+                        const CondensationView& c, const MapView& map, const PrimitiveLibrary& lib,
                         const MappingSettings& s);
 
 /// A heap array of a trivial type whose elements are left uninitialised on allocation: a
@@ -292,7 +313,7 @@ struct CloudChunkOptions {
 /// deterministic). Per frame this keeps only the sources' origins and prefix sums
 /// (20 bytes a source) and one chunk buffer per thread. Returns N, the frame's particle count.
 std::uint64_t forEachCloudChunk(const SourceTable& table, int frame, const CondensationView& c,
-                                const PrimitiveView& p, const MappingSettings& s,
+                                const PrimitiveLibrary& lib, const MappingSettings& s,
                                 const std::function<void(const CloudChunk&)>& consume,
                                 const CloudChunkOptions& options = {});
 
@@ -309,7 +330,7 @@ struct CloudParticleArrays {
     UninitArray<float> copyOrigins;
 };
 CloudParticleArrays generateCloudParticles(const SourceTable& table, int frame,
-                                           const CondensationView& c, const PrimitiveView& p,
+                                           const CondensationView& c, const PrimitiveLibrary& lib,
                                            const MappingSettings& s,
                                            const std::function<void()>& checkCancelled = {});
 

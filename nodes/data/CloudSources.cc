@@ -64,6 +64,8 @@ algo::MappingSettings readSettings(ByteReader& in)
         static_cast<algo::Level1Origin>(checks::uintUpTo(in.u64(), 2, kType, "level1Origin"));
     s.trailRiseSpeed =
         checks::finiteIn(in.f64(), 0.0, L::kMaxTrailRiseSpeed, kType, "trailRiseSpeed");
+    s.primitiveCount = static_cast<std::uint32_t>(
+        checks::intIn(in.u64(), 1, algo::kMaxPrimitives, kType, "primitive count"));
     return s;
 }
 
@@ -128,6 +130,7 @@ bool CloudSourcesData::serialize(ByteWriter& out) const
           static_cast<std::uint8_t>(s.level1Origin)})
         out.u64(choice);
     out.f64(s.trailRiseSpeed);
+    out.u64(s.primitiveCount);
     return true;
 }
 

@@ -2,6 +2,9 @@
 /// The mapper's state: the table of source records (Sec. 5.2) and the settings that place
 /// their clusters, so cloud particles can be generated from it at any frame.
 
+#include <memory>
+#include <vector>
+
 #include "algo/mapping/Mapping.h"
 #include "core/Data.h"
 
@@ -53,6 +56,10 @@ void checkSourceTable(const algo::SourceTable& table, const algo::MappingSetting
 /// (the inputs are other values): consumers of a stored table call it before mapping, with
 /// the settings they map with (GenerateCloud the table's own; PrimitiveMapper, stepping from
 /// its previous frame, its parameters'). O(records).
+void checkSourcesFit(const algo::SourceTable& table, const algo::MappingSettings& s,
+                     const CondensationData& condensation,
+                     const std::vector<std::shared_ptr<const PrimitiveSetData>>& primitives);
+/// The same for a table made with one primitive set.
 void checkSourcesFit(const algo::SourceTable& table, const algo::MappingSettings& s,
                      const CondensationData& condensation, const PrimitiveSetData& primitive);
 

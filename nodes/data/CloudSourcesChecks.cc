@@ -182,12 +182,12 @@ void checkSourceTable(const algo::SourceTable& t, const algo::MappingSettings& s
 }
 
 void checkSourcesFit(const algo::SourceTable& t, const algo::MappingSettings& s,
-                     const CondensationData& condensation, const PrimitiveSetData& primitive)
+                     const CondensationData& condensation,
+                     const std::vector<std::shared_ptr<const PrimitiveSetData>>& primitives)
 {
-    algo::PrimitiveView p;
-    p.counts = primitive.counts.data();
-    p.frameCount = primitive.frames();
-    p.frameTime = primitive.frameTime;
+    if (primitives.size() != s.primitiveCount)
+        checks::refuse(kType, "made with " + std::to_string(s.primitiveCount) +
+                                  " primitive sets, given " + std::to_string(primitives.size()));
     for (std::size_t j = 0; j < t.sources.size(); ++j) {
         const algo::Source& src = t.sources[j];
         if (src.level == 1) {
@@ -205,6 +205,12 @@ void checkSourcesFit(const algo::SourceTable& t, const algo::MappingSettings& s,
         // so below N_f at every later frame (A >= 1, N_f never decreases).
         if (src.parent >= j) checks::refuse(kType, record(j) + "parent does not precede it");
         const algo::Source& parent = t.sources[src.parent];
+        // The parent's particles are those of the primitive it plays.
+        const PrimitiveSetData& primitive = *primitives[algo::primitiveOf(src.parent, s)];
+        algo::PrimitiveView p;
+        p.counts = primitive.counts.data();
+        p.frameCount = primitive.frames();
+        p.frameTime = primitive.frameTime;
         if (p.frameCount == 0) checks::refuse(kType, "the primitive set has no frames");
         const double time = std::floor(algo::primitiveTime(parent, src.startFrame, s, p));
         if (!(time >= 0.0))
@@ -214,6 +220,14 @@ void checkSourcesFit(const algo::SourceTable& t, const algo::MappingSettings& s,
             checks::refuse(kType, record(j) + "parent fluid particle " +
                                       std::to_string(src.parentFluid) + " is not in the primitive");
     }
+}
+
+void checkSourcesFit(const algo::SourceTable& t, const algo::MappingSettings& s,
+                     const CondensationData& condensation, const PrimitiveSetData& primitive)
+{
+    // A non-owning pointer (the aliasing constructor with no owner): the caller keeps it alive.
+    const std::shared_ptr<const PrimitiveSetData> one(std::shared_ptr<void>(), &primitive);
+    checkSourcesFit(t, s, condensation, {one});
 }
 
 }  // namespace cg

@@ -16,6 +16,7 @@
 #include "nodes/data/CloudSources.h"
 #include "nodes/mapping/MappingNodes.h"
 #include "nodes/mapping/MappingViews.h"
+#include "nodes/mapping/PrimitivePorts.h"
 
 namespace cg {
 
@@ -26,13 +27,12 @@ namespace {
 class GeneratedCloud final : public CloudParticleStream {
 public:
     GeneratedCloud(std::shared_ptr<const CloudSourcesData> sources,
-                   std::shared_ptr<const CondensationData> condensation,
-                   std::shared_ptr<const PrimitiveSetData> primitive, int frame,
-                   bool evaporateBelowBase)
+                   std::shared_ptr<const CondensationData> condensation, PrimitiveInputs primitives,
+                   int frame, bool evaporateBelowBase)
         : mSources(std::move(sources)),
           mCondensation(std::move(condensation)),
-          mPrimitive(std::move(primitive)),
-          mPrim(*mPrimitive),
+          mPrimitives(std::move(primitives)),
+          mPrim(mPrimitives),
           mCond(condensationView(*mCondensation)),
           mFrame(frame)
     {
@@ -43,7 +43,7 @@ public:
     std::uint64_t particleCount() const
     {
         std::uint64_t total = 0;
-        for (auto c : algo::cloudCounts(mSources->table, mFrame, mPrim.view, mSources->settings))
+        for (auto c : algo::cloudCounts(mSources->table, mFrame, mPrim.library, mSources->settings))
             total += c;
         return total;
     }
@@ -57,15 +57,15 @@ public:
         o.sources = fields.sources;
         o.checkCancelled = checkCancelled;
         if (!mBase) {
-            algo::forEachCloudChunk(mSources->table, mFrame, mCond, mPrim.view, mSources->settings,
-                                    consume, o);
+            algo::forEachCloudChunk(mSources->table, mFrame, mCond, mPrim.library,
+                                    mSources->settings, consume, o);
             return;
         }
         // Evaporation: each chunk handed on without its particles under the base.
         tbb::enumerable_thread_specific<algo::KeptParticles> perThread;
         const float base = *mBase;
         algo::forEachCloudChunk(
-            mSources->table, mFrame, mCond, mPrim.view, mSources->settings,
+            mSources->table, mFrame, mCond, mPrim.library, mSources->settings,
             [&](const algo::CloudChunk& chunk) {
                 consume(algo::chunkAbove(chunk, base, perThread.local()));
             },
@@ -75,7 +75,7 @@ public:
     algo::CloudParticleArrays materialise(
         const std::function<void()>& checkCancelled) const override
     {
-        auto arrays = algo::generateCloudParticles(mSources->table, mFrame, mCond, mPrim.view,
+        auto arrays = algo::generateCloudParticles(mSources->table, mFrame, mCond, mPrim.library,
                                                    mSources->settings, checkCancelled);
         if (mBase) algo::dropCloudParticlesBelow(arrays, *mBase);
         return arrays;
@@ -84,8 +84,8 @@ public:
 private:
     std::shared_ptr<const CloudSourcesData> mSources;
     std::shared_ptr<const CondensationData> mCondensation;
-    std::shared_ptr<const PrimitiveSetData> mPrimitive;
-    PrimitiveViewHolder mPrim;
+    PrimitiveInputs mPrimitives;
+    PrimitiveLibraryHolder mPrim;
     algo::CondensationView mCond;  ///< views into *mCondensation
     int mFrame;
     std::optional<float> mBase;  ///< evaporation: particles under it are dropped
@@ -97,11 +97,12 @@ public:
     {
         const auto sources = ctx.input<CloudSourcesData>("sources");
         const auto condensation = ctx.input<CondensationData>("condensation");
-        const auto primitive = ctx.input<PrimitiveSetData>("primitive");
+        const PrimitiveInputs primitives = primitiveInputs(ctx);
         // A table read from a disk cache must index these inputs before anything reads them.
-        checkSourcesFit(sources->table, sources->settings, *condensation, *primitive);
-        auto cloud = std::make_shared<GeneratedCloud>(sources, condensation, primitive, ctx.frame(),
-                                                      ctx.params().getBool("evaporateBelowBase"));
+        checkSourcesFit(sources->table, sources->settings, *condensation, primitives);
+        auto cloud =
+            std::make_shared<GeneratedCloud>(sources, condensation, primitives, ctx.frame(),
+                                             ctx.params().getBool("evaporateBelowBase"));
         const std::uint64_t total = cloud->particleCount();
         const auto limit = static_cast<std::uint64_t>(ctx.params().getInt("maxCloudParticles"));
         if (total > limit) {
@@ -121,7 +122,7 @@ void registerGenerateCloudNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "GenerateCloud";
-    d.version = 2;  // each version's change: CHANGES.md, "Node versions"
+    d.version = 3;  // each version's change: CHANGES.md, "Node versions"
     d.category = "mapping";
     // A frame's particles take longer to store and read back than to generate (and would
     // keep every frame's particles on disk, which the mapper's memory model rules out).
@@ -140,9 +141,11 @@ void registerGenerateCloudNode(Registry& registry)
         "made for a consumer that takes the particles in chunks (the Voxelizer with the "
         "gaussian kernel): they are generated as it reads them. With evaporateBelowBase "
         "(ours), particles under the condensation level are dropped.";
-    d.inputs = {port("sources", "CloudSources", "the source table at this frame"),
-                port("condensation", "Condensation", "the condensation particles at this frame"),
-                port("primitive", "PrimitiveSet", "the 3D cloud primitive set")};
+    d.inputs = {
+        port("sources", "CloudSources", "the source table at this frame"),
+        port("condensation", "Condensation", "the condensation particles at this frame"),
+    };
+    for (PortDecl& p : primitivePorts()) d.inputs.push_back(std::move(p));
     d.outputs = {port("particles", "CloudParticles", "the cloud particles of this frame")};
     d.params = {intParam("maxCloudParticles", 100000000, "particles",
                          "refuse a frame with more cloud particles than this, before allocating "

@@ -1,6 +1,7 @@
 #pragma once
 /// Borrowed views of node data for the node-free mapping algorithm.
 
+#include <memory>
 #include <vector>
 
 #include "algo/mapping/Mapping.h"
@@ -43,6 +44,33 @@ struct PrimitiveViewHolder {
 
     std::vector<const float*> frames;
     algo::PrimitiveView view;
+};
+
+/// The primitive sets a mapping node is given, in port order: 'primitive', then
+/// 'primitive2' .. 'primitive4' where connected.
+using PrimitiveInputs = std::vector<std::shared_ptr<const PrimitiveSetData>>;
+
+/// Views of a library of primitives, their frame tables kept alive with them.
+struct PrimitiveLibraryHolder {
+    explicit PrimitiveLibraryHolder(const PrimitiveInputs& primitives)
+        : library(views(primitives, holders))
+    {
+    }
+    std::vector<std::unique_ptr<PrimitiveViewHolder>> holders;
+    algo::PrimitiveLibrary library;
+
+private:
+    static std::vector<algo::PrimitiveView> views(
+        const PrimitiveInputs& primitives,
+        std::vector<std::unique_ptr<PrimitiveViewHolder>>& holders)
+    {
+        std::vector<algo::PrimitiveView> out;
+        for (const auto& p : primitives) {
+            holders.push_back(std::make_unique<PrimitiveViewHolder>(*p));
+            out.push_back(holders.back()->view);
+        }
+        return out;
+    }
 };
 
 }  // namespace cg

@@ -11,12 +11,13 @@
 #include "nodes/data/CloudSources.h"
 #include "nodes/mapping/MappingNodes.h"
 #include "nodes/mapping/MappingViews.h"
+#include "nodes/mapping/PrimitivePorts.h"
 
 namespace cg {
 
 namespace {
 
-algo::MappingSettings settingsFrom(const CookContext& ctx)
+algo::MappingSettings settingsFrom(const CookContext& ctx, std::size_t primitives)
 {
     const ParamSet& p = ctx.params();
     algo::MappingSettings s;
@@ -43,6 +44,7 @@ algo::MappingSettings settingsFrom(const CookContext& ctx)
                      : origin == "trail"           ? algo::Level1Origin::Trail
                                                    : algo::Level1Origin::Particle;
     s.trailRiseSpeed = p.getFloat("trailRiseSpeed");
+    s.primitiveCount = static_cast<std::uint32_t>(primitives);
     return s;
 }
 
@@ -52,17 +54,17 @@ public:
     {
         const auto condensation = ctx.input<CondensationData>("condensation");
         const auto map = ctx.input<Map2DData>("map");
-        const auto primitive = ctx.input<PrimitiveSetData>("primitive");
+        const PrimitiveInputs primitives = primitiveInputs(ctx);
         const auto previous = ctx.previous<CloudSourcesData>("sources");
-        const algo::MappingSettings settings = settingsFrom(ctx);
+        const algo::MappingSettings settings = settingsFrom(ctx, primitives.size());
         // The previous table may come from a disk cache: it must index these inputs.
-        if (previous) checkSourcesFit(previous->table, settings, *condensation, *primitive);
-        const PrimitiveViewHolder prim(*primitive);
+        if (previous) checkSourcesFit(previous->table, settings, *condensation, primitives);
+        const PrimitiveLibraryHolder prim(primitives);
         algo::SourceTable table = algo::stepSources(
             previous ? previous->table : algo::SourceTable{}, ctx.frame(), condensation->firstFrame,
-            condensationView(*condensation), mapView(*map), prim.view, settings);
+            condensationView(*condensation), mapView(*map), prim.library, settings);
 
-        const auto counts = algo::cloudCounts(table, ctx.frame(), prim.view, settings);
+        const auto counts = algo::cloudCounts(table, ctx.frame(), prim.library, settings);
         std::vector<std::int64_t> perLevel(counts.begin(), counts.end());
         std::int64_t total = 0;
         for (auto c : perLevel) total += c;
@@ -84,9 +86,7 @@ void registerPrimitiveMapperNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "PrimitiveMapper";
-    // 2: source records carry the copy phase; 3: Eq. 15 per source, drift; 4: the table keeps
-    // parentRule, pastLastFrame and level1Origin (a table read back from disk lost the first two)
-    d.version = 5;
+    d.version = 6;  // each version's change: CHANGES.md, "Node versions"
     d.category = "mapping";
     d.doc =
         "The recursive mapping of Sec. 5.2 (pseudocode lines 15-28). Each frame t, every active "
@@ -106,10 +106,12 @@ void registerPrimitiveMapperNode(Registry& registry)
         "previous frame's table.";
     d.simulation = true;
     d.readsTimeStep = true;
-    d.inputs = {port("condensation", "Condensation",
-                     "the condensation particles at this frame (N_v(t), P_v)"),
-                port("map", "Map2D", "the density map fNoise of Eq. 16 (the same map as Eq. 3-4)"),
-                port("primitive", "PrimitiveSet", "the 3D cloud primitive set (N_f(s), P_f(s))")};
+    d.inputs = {
+        port("condensation", "Condensation",
+             "the condensation particles at this frame (N_v(t), P_v)"),
+        port("map", "Map2D", "the density map fNoise of Eq. 16 (the same map as Eq. 3-4)"),
+    };
+    for (PortDecl& p : primitivePorts()) d.inputs.push_back(std::move(p));
     d.outputs = {port("sources", "CloudSources", "the table of source records at this frame"),
                  port("cloudCount", "Int", "cloud particles of all levels at this frame (Eq. 13)"),
                  port("summary", "Text", "\"frame t: L1=N_c[1] ... total= sources= Lmax=\"")};

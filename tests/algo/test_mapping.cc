@@ -668,3 +668,89 @@ TEST(Mapping, ChunkOptionsAreChecked)
 }
 
 }  // namespace cg::algo
+
+namespace cg::algo {
+
+TEST(MappingLibrary, EachSourceDrawsItsPrimitiveByItsIndexEvenly)
+{
+    MappingSettings s;
+    s.seed = 5;
+    EXPECT_EQ(primitiveOf(123, s), 0u);  // one primitive: always the first
+    s.primitiveCount = 3;
+    std::vector<int> counts(3, 0);
+    for (std::size_t j = 0; j < 30000; ++j) {
+        const std::size_t i = primitiveOf(j, s);
+        ASSERT_LT(i, 3u);
+        ASSERT_EQ(i, primitiveOf(j, s));
+        ++counts[i];
+    }
+    for (int c : counts) EXPECT_NEAR(c, 10000, 500);
+    // Another seed draws other primitives.
+    MappingSettings other = s;
+    other.seed = 6;
+    int same = 0;
+    for (std::size_t j = 0; j < 3000; ++j) same += primitiveOf(j, s) == primitiveOf(j, other);
+    EXPECT_LT(same, 1300);
+}
+
+TEST(MappingLibrary, EachCopyPlaysItsOwnPrimitive)
+{
+    // Level 1 only, so the table does not depend on the primitives' positions: B is A moved
+    // 50 primitive metres along x, so a copy playing B stands r 50 m east of one playing A.
+    Scene scene;
+    scene.settings.maxLevel = 1;
+    scene.settings.primitiveCount = 2;
+    std::vector<std::vector<float>> moved = scene.primitiveFrames;
+    std::vector<const float*> movedPointers;
+    for (auto& f : moved) {
+        for (std::size_t i = 0; i < f.size(); i += 3) f[i] += 50.0f;
+        movedPointers.push_back(f.data());
+    }
+    PrimitiveView b = scene.primitive();
+    b.frames = movedPointers.data();
+    const PrimitiveLibrary sameTwice(
+        std::vector<PrimitiveView>{scene.primitive(), scene.primitive()});
+    const PrimitiveLibrary twoShapes(std::vector<PrimitiveView>{scene.primitive(), b});
+
+    SourceTable table;
+    int first = -1;
+    Scene::Frame c;
+    for (int t = 0; t < 20; ++t) {
+        c = scene.condensation(t);
+        for (auto f : c.condensed)
+            if (f >= 0 && (first < 0 || f < first)) first = f;
+        table = stepSources(table, t, first, Scene::view(c), scene.mapView(), sameTwice,
+                            scene.settings);
+        EXPECT_EQ(table.sources.size(), stepSources(table, t, first, Scene::view(c),
+                                                    scene.mapView(), twoShapes, scene.settings)
+                                            .sources.size());
+    }
+    const auto a = generateCloudParticles(table, 19, Scene::view(c), sameTwice, scene.settings);
+    const auto ab = generateCloudParticles(table, 19, Scene::view(c), twoShapes, scene.settings);
+    ASSERT_EQ(a.positions.size(), ab.positions.size());
+    std::set<std::size_t> played;
+    for (std::size_t q = 0; q < a.sources.size(); ++q) {
+        const std::size_t j = a.sources[q];
+        played.insert(primitiveOf(j, scene.settings));
+        const double r = scene.settings.metresPerPrimitiveMetre * table.sources[j].scale;
+        const double east = primitiveOf(j, scene.settings) == 1 ? 50.0 * r : 0.0;
+        ASSERT_NEAR(ab.positions[3 * q] - a.positions[3 * q], east, 1e-3 * (1.0 + east))
+            << "source " << j;
+        ASSERT_EQ(ab.positions[3 * q + 1], a.positions[3 * q + 1]);
+        ASSERT_EQ(ab.positions[3 * q + 2], a.positions[3 * q + 2]);
+    }
+    EXPECT_EQ(played.size(), 2u);  // both primitives are played
+}
+
+TEST(MappingLibrary, ALibraryOfAnotherSizeThanTheTablesIsRefused)
+{
+    Scene scene;
+    scene.settings.primitiveCount = 2;
+    const Scene::Frame c = scene.condensation(5);
+    EXPECT_THROW(
+        stepSources({}, 5, 3, Scene::view(c), scene.mapView(), scene.primitive(), scene.settings),
+        std::invalid_argument);
+    EXPECT_THROW(PrimitiveLibrary(std::vector<PrimitiveView>{}), std::invalid_argument);
+}
+
+}  // namespace cg::algo
