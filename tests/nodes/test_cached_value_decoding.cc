@@ -915,6 +915,8 @@ TEST(CachedValueDecoding, CloudSourcesFitTheirInputsOrAreRefused)
     expectMisfit(
         [](MapperScene& s) { s.table.sources[s.table.sources[s.first(2)].parent].speed = -1.0f; },
         "primitive time is negative");
+    expectMisfit([](MapperScene& s) { s.settings.primitiveCount = 2; },
+                 "made with 2 primitive sets, given 1");
     const MapperScene scene;
     const PrimitiveSetData noFrames(1.0, {}, {});
     EXPECT_THROW(checkSourcesFit(scene.table, scene.settings, *scene.condensation, noFrames),
