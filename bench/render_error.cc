@@ -17,7 +17,7 @@
 //                  (intensity), skyRadiance (scales the sky's colours, 0 = a black sky, so
 //                  a camera in the clear air sees only what the clouds send it), haze (the
 //                  ground's haze distance, m, 0 = none), ground (0 or 1), groundAlbedo
-//                  (grey), bounces (the reference's maxBounces; with --fast octaves=1,
+//                  (grey), albedo (the cloud's single-scattering albedo), bounces (the reference's maxBounces; with --fast octaves=1,
 //                  single scattering alone), to take the light apart; mie=D, the Mie phase
 //                  function of droplets D μm across
 //   --cache DIR    keep reference images there and reuse them; a file's name holds what the
@@ -251,6 +251,7 @@ int main(int argc, char** argv)
                 else if (key == "skyRadiance") { s.sky.zenith *= v; s.sky.horizon *= v; }
                 else if (key == "ground") s.ground.enabled = v != 0.0;
                 else if (key == "groundAlbedo") s.ground.albedo = cg::algo::RenderVec3(v);
+                else if (key == "albedo") s.medium.albedo = v;
                 else if (key == "bounces") s.pathTrace.maxBounces = static_cast<int>(v);
                 else if (key == "mie") {
                     s.medium.phase = cg::algo::PhaseModel::Mie;

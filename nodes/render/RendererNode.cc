@@ -71,20 +71,33 @@ algo::RenderSettings settingsFrom(const ParamSet& p)
     return s;
 }
 
+/// The volume's own optics, where its metadata has them (the Voxelizer's optics 'water'):
+/// 'extinction' (1/m per unit value) and 'albedo' replace the parameters.
+void takeVolumeOptics(const openvdb::FloatGrid& grid, algo::RenderMedium& medium,
+                      const CookContext& ctx)
+{
+    const auto take = [&](const char* name, double max, double& into) {
+        const auto m = grid.getMetadata<openvdb::FloatMetadata>(name);
+        if (!m) return;
+        if (!(m->value() >= 0.0f && m->value() <= max))
+            throw InputError(ctx.nodeId() + "/inputs/volume",
+                             std::string("the volume's '") + name + "' metadata must be in [0, " +
+                                 std::to_string(static_cast<int>(max)) +
+                                 "] (or set volumeOptics false)");
+        into = m->value();
+    };
+    take("extinction", 1e3, medium.extinction);
+    take("albedo", 1.0, medium.albedo);
+}
+
 class RendererNode final : public Node {
 public:
     void cook(CookContext& ctx) override
     {
         const auto volume = ctx.input<FogVolumeData>("volume");
         algo::RenderSettings settings = settingsFrom(ctx.params());
-        if (ctx.params().getBool("volumeExtinction"))
-            if (const auto e = volume->grid->getMetadata<openvdb::FloatMetadata>("extinction")) {
-                if (!(e->value() >= 0.0f && e->value() <= 1e3f))
-                    throw InputError(ctx.nodeId() + "/inputs/volume",
-                                     "the volume's 'extinction' metadata must be in [0, 1000] 1/m "
-                                     "(or set volumeExtinction false)");
-                settings.medium.extinction = e->value();
-            }
+        if (ctx.params().getBool("volumeOptics"))
+            takeVolumeOptics(*volume->grid, settings.medium, ctx);
         const bool pathTrace = ctx.params().getString("mode") == "pathtrace";
         const auto cancelled = [&ctx] { return ctx.cancelToken().cancelled(); };
         algo::RenderedImage img;
@@ -170,9 +183,10 @@ void registerRendererNode(Registry& registry)
                    1e7),
         floatParam("extinction", def.medium.extinction, "1/m",
                    "extinction coefficient per unit density (0.05 ~ cumulus liquid water)", 0, 1e3),
-        boolParam("volumeExtinction", true,
-                  "use the volume's 'extinction' metadata (1/m per unit value, written by the "
-                  "Voxelizer's optics 'water') in place of extinction when it has one"),
+        boolParam("volumeOptics", true,
+                  "use the volume's 'extinction' (1/m per unit value) and 'albedo' metadata, "
+                  "written by the Voxelizer's optics 'water', in place of those parameters "
+                  "where it has them"),
         floatParam("albedo", def.medium.albedo, "", "single-scattering albedo", 0, 1),
         stringParam(
             "phase", "twoLobeHG",

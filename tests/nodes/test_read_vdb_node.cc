@@ -19,6 +19,7 @@
 #include "core/Registry.h"
 #include "nodes/Builtin.h"
 #include "nodes/data/FogVolume.h"
+#include "nodes/data/Image.h"
 #include "support/FixtureNodes.h"
 #include "support/TestUtil.h"
 
@@ -177,6 +178,56 @@ TEST_F(ReadVdbTest, BadFilesAreRefusedAtLoadNamingTheFileAndGrid)
     small.allocationLimitBytes = bytes.size() + 64;
     EXPECT_NE(loadRefusal(out / "good.vdb", "density", small).find("more than"),
               std::string::npos);
+}
+
+namespace {
+
+/// The image of a 48 x 32 render of the VDB `file` with the given Renderer parameters (JSON).
+std::vector<float> renderOf(Registry& registry, const fs::path& file, const std::string& params)
+{
+    const Graph g = parseGraph(R"({"cloudgraph": 1, "nodes": {
+        "read": {"type": "ReadVDB", "params": {"file": ")" + file.string() + R"("}},
+        "render": {"type": "Renderer", "inputs": {"volume": "read.volume"},
+                   "params": {"width": 48, "height": 32, "cameraPosition": [0, -400, 30],
+                              "cameraLookAt": [0, 0, 30], )" +
+                                   params + "}}}}",
+                               "render.json", registry);
+    Evaluator ev(registry, {});
+    return std::dynamic_pointer_cast<const ImageData>(ev.pull(g, "render", 0)->at("image"))->rgba;
+}
+
+/// A 40 m cube of density 0.5 on 2 m voxels, with `meta` float metadata.
+void writeCube(const fs::path& file, const std::vector<std::pair<std::string, float>>& meta)
+{
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    grid->setName("density");
+    grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(2.0));
+    grid->denseFill(openvdb::CoordBBox(openvdb::Coord(-10, -10, 5), openvdb::Coord(9, 9, 24)), 0.5f,
+                    true);
+    for (const auto& [name, value] : meta) grid->insertMeta(name, openvdb::FloatMetadata(value));
+    openvdb::io::File(file.string()).write({grid});
+}
+
+}  // namespace
+
+TEST_F(ReadVdbTest, TheVolumesOpticsReplaceTheRenderersParametersUnlessTurnedOff)
+{
+    // Values a float holds exactly: the metadata is float, the parameters double.
+    writeCube(out.path() / "water.vdb", {{"extinction", 0.0625f}, {"albedo", 0.9375f}});
+    writeCube(out.path() / "plain.vdb", {});
+    const auto fromVolume = renderOf(registry, out.path() / "water.vdb", R"("extinction": 0.01)");
+    EXPECT_EQ(fromVolume, renderOf(registry, out.path() / "plain.vdb",
+                                   R"("extinction": 0.0625, "albedo": 0.9375)"));
+    EXPECT_NE(fromVolume, renderOf(registry, out.path() / "water.vdb",
+                                   R"("extinction": 0.01, "volumeOptics": false)"));
+    writeCube(out.path() / "bad.vdb", {{"albedo", 1.5f}});
+    try {
+        renderOf(registry, out.path() / "bad.vdb", R"("extinction": 0.01)");
+        ADD_FAILURE() << "an albedo of 1.5 was taken";
+    } catch (const CookError& e) {
+        EXPECT_NE(std::string(e.what()).find("'albedo' metadata"), std::string::npos) << e.what();
+    }
 }
 
 }  // namespace cg
