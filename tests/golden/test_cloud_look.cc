@@ -1,0 +1,75 @@
+// The realism measures of docs/voxelizer.md on the small Figure 6 with the cloud's water
+// (Voxelizer optics 'water'): crisp tops and a base at the condensation level, the targets
+// of issue 53 that hold; the others (median base, base spread, outline dimension) are
+// printed for the record. A golden statistic on a reduced graph, not a timed test.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "algo/volume/CloudMetrics.h"
+#include "core/Evaluator.h"
+#include "core/Graph.h"
+#include "core/Registry.h"
+#include "golden/GoldenRun.h"
+#include "golden/GoldenSpecs.h"
+#include "nodes/Builtin.h"
+#include "nodes/data/FogVolume.h"
+
+namespace cg::golden {
+
+TEST(CloudLook, SmallFigure6WithWaterHasCrispTopsAndItsBaseAtTheCondensationLevel)
+{
+    Registry registry;
+    registerBuiltinNodes(registry);
+    std::ifstream in(graphsDir() / "figure6_towering_cumulus.json");
+    nlohmann::json doc = nlohmann::json::parse(in);
+    auto& vox = doc["nodes"]["voxelize"];
+    vox["inputs"]["condensation"] = "condense.condensation";
+    vox["inputs"]["atmosphere"] = "atmosphere.atmosphere";
+    vox["params"]["optics"] = "water";
+    vox["params"]["density"] = 1.0;
+    Graph g = parseGraph(doc.dump(), "figure6_water.json", registry);
+    findSpec("figure6_towering_cumulus")->shrink(g);
+    // 80% of the range, as the issue measures.
+    const int frame = g.frames.start + (g.frames.end - g.frames.start) * 8 / 10;
+    std::shared_ptr<const FogVolumeData> volume;
+    Evaluator ev(registry, {});
+    ev.cookFrames(g, g.frames.start, frame, {"voxelize"},
+                  [&](int f, const Evaluator::FrameOutputs& r) {
+                      if (f == frame)
+                          volume = std::dynamic_pointer_cast<const FogVolumeData>(
+                              r[g.indexOf("voxelize")]->at("volume"));
+                  });
+    ASSERT_TRUE(volume);
+    const openvdb::FloatGrid& grid = *volume->grid;
+    const auto extinction = grid.getMetadata<openvdb::FloatMetadata>("extinction");
+    const auto base = grid.getMetadata<openvdb::DoubleMetadata>("cloud_base_m");
+    ASSERT_TRUE(extinction && base) << "a water volume carries its extinction and cloud base";
+    algo::CloudMetricsOptions options;
+    options.extinction = extinction->value();
+    const algo::CloudMetrics m = algo::measureCloud(grid, options);
+    const double depth = m.top - m.baseMedian;
+    std::printf(
+        "small figure 6, frame %d: top edge median %.0f m (p90 %.0f), base p10 %.0f m, "
+        "median %.0f m (condensation level %.0f m, depth %.0f m), base spread %.1f%%, "
+        "side outline dimension %.3f\n",
+        frame, m.topEdgeMedian, m.topEdgeP90, m.baseP10, m.baseMedian, base->value(), depth,
+        100.0 * m.baseSpread, m.sideOutlineDimension);
+    ASSERT_GT(m.thickColumns, 100u);
+    // The sunlit surface is a few mean free paths deep (6 m for 1 g/m^3): target 50 m.
+    EXPECT_LE(m.topEdgeMedian, 50.0);
+    // The lowest bases sit on the condensation level: not below it (the cut), and within a
+    // voxel and the cut's transition above it. The median base is 9% of the depth above it on
+    // this small graph (2% on the full Figure 6): the undersides of turrets that overhang the
+    // tower's base, which the issue's 15% base-spread target is about and which stays open.
+    const double voxel = grid.voxelSize()[0];
+    EXPECT_GE(m.baseP10, base->value() - 0.5 * voxel);
+    EXPECT_LE(m.baseP10, base->value() + voxel + 20.0);
+}
+
+}  // namespace cg::golden
