@@ -43,12 +43,14 @@ Graph chain(int length, int count)
             {"type", "Scale"},
             {"params", {{"factor", 1.0 + i * 1e-3}}},
             {"inputs", {{"values", "n" + std::to_string(i - 1) + ".values"}}}};
-    return parseGraph(nlohmann::json{{"cloudgraph", 1}, {"nodes", nodes}}.dump(), "bench", registry());
+    return parseGraph(nlohmann::json{{"cloudgraph", 1}, {"nodes", nodes}}.dump(), "bench",
+                      registry());
 }
 
 std::filesystem::path scratchDir()
 {
-    auto p = std::filesystem::temp_directory_path() / ("cloudgraph-bench-" + std::to_string(::getpid()));
+    auto p =
+        std::filesystem::temp_directory_path() / ("cloudgraph-bench-" + std::to_string(::getpid()));
     std::filesystem::create_directories(p);
     return p;
 }
@@ -102,7 +104,8 @@ static void BM_PlainLoopPerNode(benchmark::State& state)
         for (int i = 1; i <= 100; ++i) {
             std::vector<float> next(n);
             const std::vector<float>& v = kept.back();
-            for (std::size_t k = 0; k < n; ++k) next[k] = static_cast<float>(v[k] * (1.0 + i * 1e-3));
+            for (std::size_t k = 0; k < n; ++k)
+                next[k] = static_cast<float>(v[k] * (1.0 + i * 1e-3));
             kept.push_back(std::move(next));
         }
         benchmark::DoNotOptimize(kept.back().data());
@@ -143,14 +146,16 @@ static void BM_PlainFileRoundTrip16MiB(benchmark::State& state)
     for (auto _ : state) {
         {
             std::ofstream f(path, std::ios::binary);
-            f.write(reinterpret_cast<const char*>(values.data()), static_cast<std::streamsize>(values.size() * 4));
+            f.write(reinterpret_cast<const char*>(values.data()),
+                    static_cast<std::streamsize>(values.size() * 4));
         }
         const int fd = ::open(path.c_str(), O_RDONLY);  // fsync, as the disk cache does
         ::fsync(fd);
         ::close(fd);
         std::vector<float> back(values.size());
         std::ifstream in(path, std::ios::binary);
-        in.read(reinterpret_cast<char*>(back.data()), static_cast<std::streamsize>(back.size() * 4));
+        in.read(reinterpret_cast<char*>(back.data()),
+                static_cast<std::streamsize>(back.size() * 4));
         benchmark::DoNotOptimize(back.data());
         std::filesystem::remove(path);
     }

@@ -27,9 +27,10 @@
 //
 // forEachCloudChunk's chunks (positions, levels, sources; and its frame-array mode) are
 // checked bit for bit against generateCloudParticles (every 97th frame and the last) before
-// the single-frame benchmarks run; the program aborts on a difference. BM_Figure5/0 checks its count against Eq. 13. ru_maxrss is a process-wide
-// high-water mark: rss_B_per_particle means something only for the first run in a process
-// (run_mapper_bench.sh starts one process per Figure 5 run).
+// the single-frame benchmarks run; the program aborts on a difference. BM_Figure5/0 checks its
+// count against Eq. 13. ru_maxrss is a process-wide high-water mark: rss_B_per_particle means
+// something only for the first run in a process (run_mapper_bench.sh starts one process per Figure
+// 5 run).
 
 #include <benchmark/benchmark.h>
 
@@ -109,7 +110,7 @@ constexpr std::uint32_t kPrimitiveParticles = 16401;
 constexpr int kFrames = 612;
 constexpr std::size_t kCondensation = 4000;
 constexpr int kMapX = 300, kMapY = 125;
-constexpr double kCell = 20.0;            // metres: a 6 km x 2.5 km map
+constexpr double kCell = 20.0;  // metres: a 6 km x 2.5 km map
 constexpr std::int64_t kBytesPerParticle = 3 * sizeof(float);
 
 float hashUnit(std::uint64_t stream, std::uint64_t i)
@@ -134,7 +135,8 @@ struct Scene {
         for (int s = 0; s < kPrimitiveFrames; ++s) {
             const double u = static_cast<double>(s + 1) / kPrimitiveFrames;
             counts.push_back(std::max<std::uint32_t>(
-                1, static_cast<std::uint32_t>(std::lround(kPrimitiveParticles * std::pow(u, 1.3)))));
+                1,
+                static_cast<std::uint32_t>(std::lround(kPrimitiveParticles * std::pow(u, 1.3)))));
         }
         counts.back() = kPrimitiveParticles;
         for (int s = 0; s < kPrimitiveFrames; ++s) {
@@ -154,7 +156,8 @@ struct Scene {
         // Density map: smooth, dense in the middle (the paper's Figure 6 pattern), in [0, 1].
         for (int iy = 0; iy < kMapY; ++iy)
             for (int ix = 0; ix < kMapX; ++ix) {
-                const double dx = (ix - kMapX / 2.0) / (kMapX / 2.0), dy = (iy - kMapY / 2.0) / (kMapY / 2.0);
+                const double dx = (ix - kMapX / 2.0) / (kMapX / 2.0),
+                             dy = (iy - kMapY / 2.0) / (kMapY / 2.0);
                 const double v = 0.65 * std::exp(-2.0 * (dx * dx + dy * dy)) +
                                  0.25 * (0.5 + 0.5 * std::sin(0.11 * ix) * std::cos(0.17 * iy)) +
                                  0.1 * hashUnit(4, static_cast<std::uint64_t>(iy * kMapX + ix));
@@ -198,7 +201,11 @@ struct Condensation {
     std::vector<std::int32_t> condensed;
     std::vector<float> condensedZ;
     Condensation()
-        : x(kCondensation), y(kCondensation), z(kCondensation), condensed(kCondensation), condensedZ(kCondensation)
+        : x(kCondensation),
+          y(kCondensation),
+          z(kCondensation),
+          condensed(kCondensation),
+          condensedZ(kCondensation)
     {
     }
     CondensationView at(const Scene& sc, int t)
@@ -238,9 +245,10 @@ const Selection& finalSelection()
         Selection out;
         const auto start = std::chrono::steady_clock::now();
         for (int t = 0; t < kFrames; ++t)
-            out.last = stepSources(out.last, t, firstCondensation(sc, t), cond.at(sc, t), sc.mapView(),
-                                   sc.primitive(), sc.settings);
-        out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            out.last = stepSources(out.last, t, firstCondensation(sc, t), cond.at(sc, t),
+                                   sc.mapView(), sc.primitive(), sc.settings);
+        out.seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return out;
     }();
     return sel;
@@ -263,7 +271,8 @@ void verifyBitIdentical()
     SourceTable table;
     for (int t = 0; t < kFrames; ++t) {
         const CondensationView c = cond.at(sc, t);
-        table = stepSources(table, t, firstCondensation(sc, t), c, sc.mapView(), sc.primitive(), sc.settings);
+        table = stepSources(table, t, firstCondensation(sc, t), c, sc.mapView(), sc.primitive(),
+                            sc.settings);
         if (t % 97 != 0 && t != kFrames - 1) continue;
         const auto ref = generateCloudParticles(table, t, c, sc.primitive(), sc.settings);
         const std::size_t n = ref.levels.size();
@@ -286,11 +295,15 @@ void verifyBitIdentical()
         into.positionsOut = direct.data();
         forEachCloudChunk(table, t, c, sc.primitive(), sc.settings, {}, into);
         if (total != n || delivered.load() != n ||
-            std::memcmp(streamed.data(), ref.positions.data(), streamed.size() * sizeof(float)) != 0 ||
+            std::memcmp(streamed.data(), ref.positions.data(), streamed.size() * sizeof(float)) !=
+                0 ||
             std::memcmp(direct.data(), ref.positions.data(), direct.size() * sizeof(float)) != 0 ||
             std::memcmp(levels.data(), ref.levels.data(), n) != 0 ||
             std::memcmp(sources.data(), ref.sources.data(), n * sizeof(std::uint32_t)) != 0) {
-            std::fprintf(stderr, "mapper_bench: forEachCloudChunk differs from generateCloudParticles at frame %d\n", t);
+            std::fprintf(
+                stderr,
+                "mapper_bench: forEachCloudChunk differs from generateCloudParticles at frame %d\n",
+                t);
             std::abort();
         }
     }
@@ -323,20 +336,23 @@ void BM_Figure5(benchmark::State& state)
             for (int t = 0; t < kFrames; ++t) {
                 const CondensationView c = cond.at(sc, t);
                 const auto t0 = std::chrono::steady_clock::now();
-                table = stepSources(table, t, firstCondensation(sc, t), c, sc.mapView(), sc.primitive(), sc.settings);
+                table = stepSources(table, t, firstCondensation(sc, t), c, sc.mapView(),
+                                    sc.primitive(), sc.settings);
                 const auto t1 = std::chrono::steady_clock::now();
                 std::uint64_t n = 0;
                 if (library) {
-                    const auto arrays = generateCloudParticles(table, t, c, sc.primitive(), sc.settings);
+                    const auto arrays =
+                        generateCloudParticles(table, t, c, sc.primitive(), sc.settings);
                     benchmark::DoNotOptimize(arrays.positions.data());
                     n = arrays.levels.size();
                 } else {
                     counted = 0;
-                    forEachCloudChunk(table, t, c, sc.primitive(), sc.settings, [&](const CloudChunk& k) {
-                        benchmark::DoNotOptimize(k.positions);
-                        benchmark::ClobberMemory();
-                        counted.fetch_add(k.count, std::memory_order_relaxed);
-                    });
+                    forEachCloudChunk(table, t, c, sc.primitive(), sc.settings,
+                                      [&](const CloudChunk& k) {
+                                          benchmark::DoNotOptimize(k.positions);
+                                          benchmark::ClobberMemory();
+                                          counted.fetch_add(k.count, std::memory_order_relaxed);
+                                      });
                     n = counted.load();
                 }
                 const auto t2 = std::chrono::steady_clock::now();
@@ -351,8 +367,10 @@ void BM_Figure5(benchmark::State& state)
                 return;
             }
         }
-        bytesPerParticle = static_cast<double>(g_peak.load() - live0) / static_cast<double>(finalCount);
-        rssPerParticle = static_cast<double>(maxRssBytes() - rss0) / static_cast<double>(finalCount);
+        bytesPerParticle =
+            static_cast<double>(g_peak.load() - live0) / static_cast<double>(finalCount);
+        rssPerParticle =
+            static_cast<double>(maxRssBytes() - rss0) / static_cast<double>(finalCount);
     }
     state.counters["select_s"] = select;
     state.counters["generate_s"] = generate;
@@ -374,7 +392,8 @@ struct LastFrame {
     {
         verifyBitIdentical();  // here, after BM_Figure5, so that its ru_maxrss stays its own
         view = cond.at(scene(), kFrames - 1);
-        particles = total(cloudCounts(finalSelection().last, kFrames - 1, scene().primitive(), scene().settings));
+        particles = total(
+            cloudCounts(finalSelection().last, kFrames - 1, scene().primitive(), scene().settings));
     }
 };
 LastFrame& lastFrame()
@@ -386,7 +405,8 @@ LastFrame& lastFrame()
 void setThroughput(benchmark::State& state, std::uint64_t particles)
 {
     state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(particles));
-    state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(particles) * kBytesPerParticle);
+    state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(particles) *
+                            kBytesPerParticle);
     state.counters["particles"] = static_cast<double>(particles);
 }
 
@@ -396,7 +416,8 @@ void BM_GenerateLibrary(benchmark::State& state)
     const Scene& sc = scene();
     LastFrame& f = lastFrame();
     for (auto _ : state) {
-        const auto arrays = generateCloudParticles(finalSelection().last, kFrames - 1, f.view, sc.primitive(), sc.settings);
+        const auto arrays = generateCloudParticles(finalSelection().last, kFrames - 1, f.view,
+                                                   sc.primitive(), sc.settings);
         benchmark::DoNotOptimize(arrays.positions.data());
     }
     setThroughput(state, f.particles);
@@ -410,13 +431,17 @@ void BM_FreshFrameArrays(benchmark::State& state)
 {
     LastFrame& f = lastFrame();
     for (auto _ : state) {
-        CloudParticleArrays out{UninitArray<float>(3 * f.particles), UninitArray<std::uint8_t>(f.particles),
+        CloudParticleArrays out{UninitArray<float>(3 * f.particles),
+                                UninitArray<std::uint8_t>(f.particles),
                                 UninitArray<std::uint32_t>(f.particles), UninitArray<float>()};
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, f.particles, kCloudChunkParticles),
                           [&](const tbb::blocked_range<std::size_t>& r) {
-                              std::fill(out.positions.data() + 3 * r.begin(), out.positions.data() + 3 * r.end(), 1.0f);
-                              std::fill(out.levels.data() + r.begin(), out.levels.data() + r.end(), std::uint8_t{1});
-                              std::fill(out.sources.data() + r.begin(), out.sources.data() + r.end(), 1u);
+                              std::fill(out.positions.data() + 3 * r.begin(),
+                                        out.positions.data() + 3 * r.end(), 1.0f);
+                              std::fill(out.levels.data() + r.begin(), out.levels.data() + r.end(),
+                                        std::uint8_t{1});
+                              std::fill(out.sources.data() + r.begin(),
+                                        out.sources.data() + r.end(), 1u);
                           });
         benchmark::DoNotOptimize(out.positions.data());
         benchmark::DoNotOptimize(out.levels.data());
@@ -435,7 +460,8 @@ void BM_GenerateFrameBuffer(benchmark::State& state)
     CloudChunkOptions into;
     into.positionsOut = frame.data();
     for (auto _ : state) {
-        forEachCloudChunk(finalSelection().last, kFrames - 1, f.view, sc.primitive(), sc.settings, {}, into);
+        forEachCloudChunk(finalSelection().last, kFrames - 1, f.view, sc.primitive(), sc.settings,
+                          {}, into);
         benchmark::ClobberMemory();
     }
     setThroughput(state, f.particles);
@@ -469,10 +495,11 @@ void BM_StreamWrite(benchmark::State& state)
     std::vector<float> frame(3 * f.particles, 0.0f);
     float value = 1.0f;
     for (auto _ : state) {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, frame.size(), 3 * kCloudChunkParticles),
-                          [&](const tbb::blocked_range<std::size_t>& r) {
-                              std::fill(frame.data() + r.begin(), frame.data() + r.end(), value);
-                          });
+        tbb::parallel_for(
+            tbb::blocked_range<std::size_t>(0, frame.size(), 3 * kCloudChunkParticles),
+            [&](const tbb::blocked_range<std::size_t>& r) {
+                std::fill(frame.data() + r.begin(), frame.data() + r.end(), value);
+            });
         value += 1.0f;
         benchmark::ClobberMemory();
     }
@@ -489,7 +516,8 @@ void BM_StreamCopy(benchmark::State& state)
     for (auto _ : state) {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, a.size(), 3 * kCloudChunkParticles),
                           [&](const tbb::blocked_range<std::size_t>& r) {
-                              std::memcpy(b.data() + r.begin(), a.data() + r.begin(), r.size() * sizeof(float));
+                              std::memcpy(b.data() + r.begin(), a.data() + r.begin(),
+                                          r.size() * sizeof(float));
                           });
         std::swap(a, b);
         benchmark::ClobberMemory();
@@ -512,8 +540,8 @@ void BM_HybridStep(benchmark::State& state)
     SourceTable before;
     int frame = -1;
     for (int t = 0; t < kFrames; ++t) {
-        SourceTable next = stepSources(before, t, firstCondensation(sc, t), cond.at(sc, t), sc.mapView(),
-                                       sc.primitive(), sc.settings);
+        SourceTable next = stepSources(before, t, firstCondensation(sc, t), cond.at(sc, t),
+                                       sc.mapView(), sc.primitive(), sc.settings);
         if (total(cloudCounts(next, t, sc.primitive(), sc.settings)) >= target) {
             frame = t;
             break;
@@ -527,8 +555,8 @@ void BM_HybridStep(benchmark::State& state)
     std::uint64_t particles = 0;
     for (auto _ : state) {
         const CondensationView c = cond.at(sc, frame);
-        const SourceTable table =
-            stepSources(before, frame, firstCondensation(sc, frame), c, sc.mapView(), sc.primitive(), sc.settings);
+        const SourceTable table = stepSources(before, frame, firstCondensation(sc, frame), c,
+                                              sc.mapView(), sc.primitive(), sc.settings);
         std::atomic<std::uint64_t> counted{0};
         forEachCloudChunk(table, frame, c, sc.primitive(), sc.settings, [&](const CloudChunk& k) {
             benchmark::DoNotOptimize(k.positions);
@@ -540,7 +568,12 @@ void BM_HybridStep(benchmark::State& state)
     state.counters["frame"] = frame;
     state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(particles));
 }
-BENCHMARK(BM_HybridStep)->Arg(64000)->Arg(256000)->Arg(1000000)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HybridStep)
+    ->Arg(64000)
+    ->Arg(256000)
+    ->Arg(1000000)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 /// --scene-info: the scene's counts per level every 51 frames, and the selection's time.
 void printSceneInfo()
@@ -548,22 +581,29 @@ void printSceneInfo()
     const Scene& sc = scene();
     Condensation cond;
     SourceTable table;
-    std::printf("primitive: %d frames, N_f %u .. %u, %.1f MB; map %d x %d; %zu condensation particles\n",
-                kPrimitiveFrames, sc.counts.front(), sc.counts.back(), static_cast<double>(sc.primitiveBytes) / 1e6,
-                kMapX, kMapY, kCondensation);
+    std::printf(
+        "primitive: %d frames, N_f %u .. %u, %.1f MB; map %d x %d; %zu condensation particles\n",
+        kPrimitiveFrames, sc.counts.front(), sc.counts.back(),
+        static_cast<double>(sc.primitiveBytes) / 1e6, kMapX, kMapY, kCondensation);
     std::uint64_t particleFrames = 0;
     for (int t = 0; t < kFrames; ++t) {
         const CondensationView c = cond.at(sc, t);
-        table = stepSources(table, t, firstCondensation(sc, t), c, sc.mapView(), sc.primitive(), sc.settings);
+        table = stepSources(table, t, firstCondensation(sc, t), c, sc.mapView(), sc.primitive(),
+                            sc.settings);
         const auto counts = cloudCounts(table, t, sc.primitive(), sc.settings);
         particleFrames += total(counts);
         if (t % 51 == 0 || t == kFrames - 1) {
             std::vector<int> g(4, 0);
             for (const Source& s : table.sources) ++g[s.level - 1u];
-            std::printf("frame %3d: L_max %d, sources %d/%d/%d/%d, cloud particles %llu/%llu/%llu/%llu = %llu\n", t,
-                        table.topLevel, g[0], g[1], g[2], g[3], static_cast<unsigned long long>(counts[0]),
-                        static_cast<unsigned long long>(counts[1]), static_cast<unsigned long long>(counts[2]),
-                        static_cast<unsigned long long>(counts[3]), static_cast<unsigned long long>(total(counts)));
+            std::printf(
+                "frame %3d: L_max %d, sources %d/%d/%d/%d, cloud particles %llu/%llu/%llu/%llu = "
+                "%llu\n",
+                t, table.topLevel, g[0], g[1], g[2], g[3],
+                static_cast<unsigned long long>(counts[0]),
+                static_cast<unsigned long long>(counts[1]),
+                static_cast<unsigned long long>(counts[2]),
+                static_cast<unsigned long long>(counts[3]),
+                static_cast<unsigned long long>(total(counts)));
         }
     }
     std::printf("particle-frames over the run: %llu; table: %zu sources, %zu bytes\n",

@@ -5,7 +5,8 @@
 // frame of Figure 6 and a frame of Figure 9.
 //
 // Usage: render_error [options] CASE...
-//   CASE: synthetic, box (a homogeneous cube), or NAME=FILE.vdb@EXTINCTION@CX,CY,CZ@LX,LY,LZ@FOV (camera position,
+//   CASE: synthetic, box (a homogeneous cube), or NAME=FILE.vdb@EXTINCTION@CX,CY,CZ@LX,LY,LZ@FOV
+//   (camera position,
 //         look-at point, vertical field of view in degrees; grid "density")
 //   --samples N    reference paths a pixel, both halves together (default 256)
 //   --size WxH     image size (default 240x180)
@@ -17,9 +18,9 @@
 //                  (intensity), skyRadiance (scales the sky's colours, 0 = a black sky, so
 //                  a camera in the clear air sees only what the clouds send it), haze (the
 //                  ground's haze distance, m, 0 = none), ground (0 or 1), groundAlbedo
-//                  (grey), albedo (the cloud's single-scattering albedo), bounces (the reference's maxBounces; with --fast octaves=1,
-//                  single scattering alone), to take the light apart; mie=D, the Mie phase
-//                  function of droplets D μm across
+//                  (grey), albedo (the cloud's single-scattering albedo), bounces (the reference's
+//                  maxBounces; with --fast octaves=1, single scattering alone), to take the light
+//                  apart; mie=D, the Mie phase function of droplets D μm across
 //   --cache DIR    keep reference images there and reuse them; a file's name holds what the
 //                  image depends on: the case's name and a hash (core/Hash.h) of its grid's
 //                  voxels, transform, camera and extinction, the sun, the size, the scene
@@ -97,8 +98,8 @@ Case boxCase()
     out.name = "box";
     out.grid = openvdb::FloatGrid::create(0.0f);
     out.grid->setTransform(openvdb::math::Transform::createLinearTransform(20.0));
-    out.grid->denseFill(openvdb::CoordBBox(openvdb::Coord(-25, -25, 25), openvdb::Coord(24, 24, 74)),
-                        1.0f, true);
+    out.grid->denseFill(
+        openvdb::CoordBBox(openvdb::Coord(-25, -25, 25), openvdb::Coord(24, 24, 74)), 1.0f, true);
     out.settings.camera.position = RenderVec3(400, -3800, 700);
     out.settings.camera.lookAt = RenderVec3(0, 0, 1000);
     out.settings.camera.fovDegrees = 40.0;
@@ -207,23 +208,29 @@ int main(int argc, char** argv)
                 if (i + 1 >= argc) throw std::runtime_error(arg + " needs a value");
                 return argv[++i];
             };
-            if (arg == "--samples") samples = std::stoi(value());
+            if (arg == "--samples")
+                samples = std::stoi(value());
             else if (arg == "--size") {
                 if (std::sscanf(value().c_str(), "%dx%d", &width, &height) != 2)
                     throw std::runtime_error("--size WxH");
-            } else if (arg == "--png") pngDir = value();
-            else if (arg == "--cache") cacheDir = value();
-            else if (arg == "--seed") seed = std::stoull(value());
+            } else if (arg == "--png")
+                pngDir = value();
+            else if (arg == "--cache")
+                cacheDir = value();
+            else if (arg == "--seed")
+                seed = std::stoull(value());
             else if (arg == "--fast" || arg == "--scene") {
                 const std::string kv = value();
                 const auto eq = kv.find('=');
                 if (eq == std::string::npos) throw std::runtime_error(arg + " K=V");
                 (arg == "--fast" ? fastSettings : sceneSettings)
                     .emplace_back(kv.substr(0, eq), std::stod(kv.substr(eq + 1)));
-            }
-            else if (arg == "synthetic") cases.push_back(syntheticCase());
-            else if (arg == "box") cases.push_back(boxCase());
-            else cases.push_back(fileCase(arg));
+            } else if (arg == "synthetic")
+                cases.push_back(syntheticCase());
+            else if (arg == "box")
+                cases.push_back(boxCase());
+            else
+                cases.push_back(fileCase(arg));
         }
         if (cases.empty()) throw std::runtime_error("no case given");
     } catch (const std::exception& e) {
@@ -231,8 +238,9 @@ int main(int argc, char** argv)
         return 2;
     }
 
-    std::printf("| volume | sun | cloud px | fast / ref | mean error | 90th pct | darker half | "
-                "brighter half | reference noise | fast | reference |\n");
+    std::printf(
+        "| volume | sun | cloud px | fast / ref | mean error | 90th pct | darker half | "
+        "brighter half | reference noise | fast | reference |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (Case& c : cases) {
         const std::string content = cacheDir.empty() ? std::string() : contentKey(c);
@@ -245,32 +253,45 @@ int main(int argc, char** argv)
             s.march.seed = seed;
             std::string sceneTag;  // in the cached reference's name
             for (const auto& [key, v] : sceneSettings) {
-                if (key == "ambient") s.sky.ambient = v;
-                else if (key == "sun") s.sun.intensity = v;
-                else if (key == "haze") s.ground.hazeDistance = v;
-                else if (key == "skyRadiance") { s.sky.zenith *= v; s.sky.horizon *= v; }
-                else if (key == "ground") s.ground.enabled = v != 0.0;
-                else if (key == "groundAlbedo") s.ground.albedo = cg::algo::RenderVec3(v);
-                else if (key == "albedo") s.medium.albedo = v;
-                else if (key == "bounces") s.pathTrace.maxBounces = static_cast<int>(v);
+                if (key == "ambient")
+                    s.sky.ambient = v;
+                else if (key == "sun")
+                    s.sun.intensity = v;
+                else if (key == "haze")
+                    s.ground.hazeDistance = v;
+                else if (key == "skyRadiance") {
+                    s.sky.zenith *= v;
+                    s.sky.horizon *= v;
+                } else if (key == "ground")
+                    s.ground.enabled = v != 0.0;
+                else if (key == "groundAlbedo")
+                    s.ground.albedo = cg::algo::RenderVec3(v);
+                else if (key == "albedo")
+                    s.medium.albedo = v;
+                else if (key == "bounces")
+                    s.pathTrace.maxBounces = static_cast<int>(v);
                 else if (key == "mie") {
                     s.medium.phase = cg::algo::PhaseModel::Mie;
                     s.medium.dropletDiameter = v;
-                }
-                else throw std::runtime_error("unknown scene setting " + key);
+                } else
+                    throw std::runtime_error("unknown scene setting " + key);
                 sceneTag += "_" + key + std::to_string(v);
             }
             cg::algo::RenderSettings fastS = s;
             for (const auto& [key, v] : fastSettings) {
-                if (key == "lightTexel") fastS.march.lightTexel = v;
-                else if (key == "step") fastS.march.step = v;
-                else if (key == "coarseTransmittance") fastS.march.coarseTransmittance = v;
-                else if (key == "cellVoxels") fastS.multiScatter.cellVoxels = static_cast<int>(v);
+                if (key == "lightTexel")
+                    fastS.march.lightTexel = v;
+                else if (key == "step")
+                    fastS.march.step = v;
+                else if (key == "coarseTransmittance")
+                    fastS.march.coarseTransmittance = v;
+                else if (key == "cellVoxels")
+                    fastS.multiScatter.cellVoxels = static_cast<int>(v);
                 else if (key == "octaves") {  // the model before the diffusion solve
                     fastS.multiScatter.model = cg::algo::MultiScatterModel::Octaves;
                     fastS.multiScatter.octaves = static_cast<int>(v);
-                }
-                else throw std::runtime_error("unknown fast setting " + key);
+                } else
+                    throw std::runtime_error("unknown fast setting " + key);
             }
 
             auto start = std::chrono::steady_clock::now();
@@ -285,13 +306,12 @@ int main(int argc, char** argv)
                 h.pathTrace.samples = std::max(1, samples / 2);
                 h.march.seed = 2 * seed + static_cast<std::uint64_t>(which);
                 const std::filesystem::path cached =
-                    cacheDir.empty()
-                        ? std::filesystem::path()
-                        : std::filesystem::path(cacheDir) /
-                              (c.name + "-" + content + "_" + where + "_" +
-                               std::to_string(width) + "x" + std::to_string(height) + sceneTag +
-                               "_" + std::to_string(h.pathTrace.samples) + "_seed" +
-                               std::to_string(h.march.seed) + ".f32");
+                    cacheDir.empty() ? std::filesystem::path()
+                                     : std::filesystem::path(cacheDir) /
+                                           (c.name + "-" + content + "_" + where + "_" +
+                                            std::to_string(width) + "x" + std::to_string(height) +
+                                            sceneTag + "_" + std::to_string(h.pathTrace.samples) +
+                                            "_seed" + std::to_string(h.march.seed) + ".f32");
                 cg::algo::RenderedImage img;
                 img.width = width;
                 img.height = height;
@@ -312,13 +332,13 @@ int main(int argc, char** argv)
             for (std::size_t i = 0; i < ref.rgba.size(); ++i)
                 ref.rgba[i] = 0.5f * (refA.rgba[i] + refB.rgba[i]);
             const cg::algo::LuminanceError e = cg::algo::luminanceError(fast, ref);
-            std::printf("| %s | %s | %zu | %.2f | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% | "
-                        "%.3f s | %s |\n",
-                        c.name.c_str(), where.c_str(), e.pixels, e.ratio, 100 * e.mean,
-                        100 * e.p90, 100 * e.darkMean, 100 * e.brightMean,
-                        100 * cg::algo::referenceNoise(refA, refB), fastSeconds,
-                        refSeconds > 0.0 ? (std::to_string(refSeconds) + " s").c_str()
-                                         : "cached");
+            std::printf(
+                "| %s | %s | %zu | %.2f | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% | "
+                "%.3f s | %s |\n",
+                c.name.c_str(), where.c_str(), e.pixels, e.ratio, 100 * e.mean, 100 * e.p90,
+                100 * e.darkMean, 100 * e.brightMean, 100 * cg::algo::referenceNoise(refA, refB),
+                fastSeconds,
+                refSeconds > 0.0 ? (std::to_string(refSeconds) + " s").c_str() : "cached");
             std::fflush(stdout);
             if (!pngDir.empty()) {
                 std::filesystem::create_directories(pngDir);

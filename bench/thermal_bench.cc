@@ -42,7 +42,8 @@ void BM_ThermalStep(benchmark::State& state)
         benchmark::ClobberMemory();
     }
     state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(kParticles));
-    state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(kParticles) * kBytesPerParticleStep);
+    state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(kParticles) *
+                            kBytesPerParticleStep);
 }
 BENCHMARK(BM_ThermalStep)->UseRealTime()->Unit(benchmark::kMillisecond);
 
@@ -62,7 +63,8 @@ void BM_StreamCopy(benchmark::State& state)
         benchmark::ClobberMemory();
     }
     state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(kParticles));
-    state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(kParticles) * kBytesPerParticleStep);
+    state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(kParticles) *
+                            kBytesPerParticleStep);
 }
 BENCHMARK(BM_StreamCopy)->UseRealTime()->Unit(benchmark::kMillisecond);
 

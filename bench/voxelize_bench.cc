@@ -41,7 +41,9 @@ const std::vector<float>& cumulus(std::size_t n)
     if (!xyz.empty()) return xyz;
     std::mt19937 rng(1234);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
-    struct Blob { double x, y, z, r; };
+    struct Blob {
+        double x, y, z, r;
+    };
     std::vector<Blob> blobs;
     for (int b = 0; b < 24; ++b) {
         const double r = 80.0 + 140.0 * (0.5 + 0.5 * u(rng));
@@ -57,7 +59,7 @@ const std::vector<float>& cumulus(std::size_t n)
             for (double& c : p) c = u(rng);
         } while (p[0] * p[0] + p[1] * p[1] + p[2] * p[2] > 1.0);
         const double s = b.r * std::cbrt(0.2 + 0.8 * (0.5 + 0.5 * u(rng)));  // denser core
-        const double z = std::max(b.z + s * p[2], 1000.0);  // flat base
+        const double z = std::max(b.z + s * p[2], 1000.0);                   // flat base
         xyz.insert(xyz.end(), {static_cast<float>(b.x + s * p[0]),
                                static_cast<float>(b.y + s * p[1]), static_cast<float>(z)});
     }
@@ -108,7 +110,10 @@ void voxelize(benchmark::State& state, cg::algo::VoxelKernel kernel)
 }
 void BM_Voxelize(benchmark::State& state) { voxelize(state, cg::algo::VoxelKernel::Smooth); }
 /// The Gaussian kernel: trilinear deposit, then separable blur passes.
-void BM_VoxelizeGaussian(benchmark::State& state) { voxelize(state, cg::algo::VoxelKernel::Gaussian); }
+void BM_VoxelizeGaussian(benchmark::State& state)
+{
+    voxelize(state, cg::algo::VoxelKernel::Gaussian);
+}
 
 /// OpenVDB: build the point grid, then rasterise trilinearly (what a user of OpenVDB does).
 void BM_OpenVdbTrilinear(benchmark::State& state)

@@ -123,7 +123,8 @@ void OptionParser::parse()
         }
         if (std::find(mFlags.begin(), mFlags.end(), name) != mFlags.end() && !inlineValue) {
             mSeen.emplace_back(name, "");
-        } else if (std::find(mValueOptions.begin(), mValueOptions.end(), name) != mValueOptions.end()) {
+        } else if (std::find(mValueOptions.begin(), mValueOptions.end(), name) !=
+                   mValueOptions.end()) {
             if (inlineValue) {
                 mSeen.emplace_back(name, *inlineValue);
             } else if (i + 1 < mArgs.size()) {

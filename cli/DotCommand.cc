@@ -20,10 +20,13 @@ int dotCommand(const Args& args)
         Registry registry;
         buildRegistry(registry, opts);
         const Graph graph = loadGraph(opts.positionals()[0], registry);
-        std::printf("digraph cloudgraph {\n  rankdir=LR;\n  node [shape=box, fontname=\"Helvetica\"];\n");
+        std::printf(
+            "digraph cloudgraph {\n  rankdir=LR;\n  node [shape=box, fontname=\"Helvetica\"];\n");
         for (std::size_t i : graph.topologicalOrder()) {
             const GraphNode& n = graph.nodes()[i];
-            const char* style = n.decl->simulation ? ", style=rounded" : n.decl->writesFiles ? ", style=bold" : "";
+            const char* style = n.decl->simulation    ? ", style=rounded"
+                                : n.decl->writesFiles ? ", style=bold"
+                                                      : "";
             std::printf("  \"%s\" [label=\"%s\\n%s\"%s];\n", n.id.c_str(), n.id.c_str(),
                         n.decl->type.c_str(), style);
         }

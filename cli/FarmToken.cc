@@ -24,17 +24,19 @@ std::string leaveFarmToken(const DiskCache& cache)
     std::snprintf(token, sizeof token, "%016llx", static_cast<unsigned long long>(bits));
     cache.storeRecord(recordName(token), {{"token", token}});
     if (!cache.loadRecord(recordName(token)))
-        throw InputError("--cache " + cache.root().string(), "cannot store the farm's token record");
+        throw InputError("--cache " + cache.root().string(),
+                         "cannot store the farm's token record");
     return token;
 }
 
 void checkFarmToken(const DiskCache& cache, const std::string& token)
 {
-    const bool wellFormed = token.size() == kTokenDigits &&
-                            std::all_of(token.begin(), token.end(), [](char c) {
-                                return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
-                            });
-    if (!wellFormed) throw InputError("--farm-token", "'" + token + "' is not 16 lowercase hex digits");
+    const bool wellFormed =
+        token.size() == kTokenDigits && std::all_of(token.begin(), token.end(), [](char c) {
+            return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+        });
+    if (!wellFormed)
+        throw InputError("--farm-token", "'" + token + "' is not 16 lowercase hex digits");
     const auto record = cache.loadRecord(recordName(token));
     if (!record || record->value("token", "") != token) {
         throw InputError("--cache " + cache.root().string(),

@@ -18,8 +18,8 @@ FrameRange parseFrameRange(const std::string& text, const FrameRange& graphRange
 {
     const auto colon = text.find(':');
     auto frame = [&](const std::string& part) {
-        return static_cast<int>(parseIntegerOption(part, "--frames", "a frame", graphRange.start,
-                                                   graphRange.end));
+        return static_cast<int>(
+            parseIntegerOption(part, "--frames", "a frame", graphRange.start, graphRange.end));
     };
     FrameRange r;
     r.start = frame(text.substr(0, colon));
@@ -43,15 +43,17 @@ int chunkCount(const FrameRange& range, int chunkSize)
     return static_cast<int>((frames + chunkSize - 1) / chunkSize);
 }
 
-FrameRange chunkFrames(const FrameRange& range, int chunk, const std::optional<std::string>& taskText,
+FrameRange chunkFrames(const FrameRange& range, int chunk,
+                       const std::optional<std::string>& taskText,
                        const std::optional<std::string>& slurmTaskId)
 {
     const int chunks = chunkCount(range, chunk);
     const std::string source = taskText ? "--task" : "SLURM_ARRAY_TASK_ID";
     const std::optional<std::string>& text = taskText ? taskText : slurmTaskId;
     if (!text) {
-        throw InputError("--task", "--chunk needs a task index: give --task I or run as a Slurm "
-                                   "array task (SLURM_ARRAY_TASK_ID)");
+        throw InputError("--task",
+                         "--chunk needs a task index: give --task I or run as a Slurm "
+                         "array task (SLURM_ARRAY_TASK_ID)");
     }
     const std::int64_t task = parseIntegerOption(*text, source, "a chunk index", 0, chunks - 1);
     FrameRange r;

@@ -3,8 +3,8 @@
 //                      [--report FILE] [--plugin PATH]... [--python-nodes FILE]... [--farm-token T]
 
 #include <csignal>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 
 #include <spdlog/spdlog.h>
@@ -41,13 +41,17 @@ void writeReport(const std::string& path, const nlohmann::json& report)
     }
 }
 
-extern "C" void onInterrupt(int) { if (gCancel) gCancel->cancel(); }
+extern "C" void onInterrupt(int)
+{
+    if (gCancel) gCancel->cancel();
+}
 
 /// --frames, or chunk --task (SLURM_ARRAY_TASK_ID) of --chunk frames of that range.
 FrameRange framesToCook(const OptionParser& opts, const Graph& graph)
 {
-    const FrameRange range =
-        opts.value("--frames") ? parseFrameRange(*opts.value("--frames"), graph.frames) : graph.frames;
+    const FrameRange range = opts.value("--frames")
+                                 ? parseFrameRange(*opts.value("--frames"), graph.frames)
+                                 : graph.frames;
     const auto chunk = opts.value("--chunk");
     if (!chunk) {
         if (opts.has("--task")) throw InputError("--task", "needs --chunk N (frames per chunk)");
@@ -86,7 +90,8 @@ std::vector<std::string> targetsOfOneChunk(const Graph& graph)
             ids.push_back(node.id);
             continue;
         }
-        spdlog::info("{} ({}) gathers every frame: a chunk leaves it out", node.id, node.decl->type);
+        spdlog::info("{} ({}) gathers every frame: a chunk leaves it out", node.id,
+                     node.decl->type);
         for (std::size_t up : graph.upstream()[idx]) stack.push_back(up);
     }
     return ids;
@@ -102,7 +107,8 @@ void checkOutputLocations(const OptionParser& opts)
     if (fs::exists(out, ec) && !fs::is_directory(out, ec))
         throw InputError("--out " + out.string(), "is not a directory");
     if (opts.has("--simulations-only") && !opts.value("--cache"))
-        throw InputError("--simulations-only", "needs --cache DIR: the states are cooked to be kept there");
+        throw InputError("--simulations-only",
+                         "needs --cache DIR: the states are cooked to be kept there");
     if (const auto report = opts.value("--report")) {
         const fs::path file(*report);
         if (report->empty() || report->back() == '/' || fs::is_directory(file, ec))
@@ -119,8 +125,8 @@ int runCommand(const Args& args)
 {
     OptionParser opts(args);
     declareGraphOptions(opts);
-    for (const char* o : {"--frames", "--cache", "--out", "--threads", "--report", "--cache-memory-mb",
-                          "--chunk", "--task", "--farm-token"})
+    for (const char* o : {"--frames", "--cache", "--out", "--threads", "--report",
+                          "--cache-memory-mb", "--chunk", "--task", "--farm-token"})
         opts.valueOption(o);
     opts.flag("--simulations-only");
     return guarded([&] {
@@ -134,22 +140,24 @@ int runCommand(const Args& args)
         Registry registry;
         const Graph graph = loadGraphFromOptions(opts, registry, "run");
         const FrameRange frames = framesToCook(opts, graph);
-        const std::vector<std::string> targets = opts.has("--simulations-only") ? simulationNodes(graph)
-                                                 : opts.has("--chunk")          ? targetsOfOneChunk(graph)
-                                                                                : std::vector<std::string>{};
+        const std::vector<std::string> targets = opts.has("--simulations-only")
+                                                     ? simulationNodes(graph)
+                                                 : opts.has("--chunk") ? targetsOfOneChunk(graph)
+                                                                       : std::vector<std::string>{};
 
         EvaluatorOptions evalOptions;
         evalOptions.outDir = opts.value("--out").value_or("out");
         if (auto c = opts.value("--cache")) evalOptions.diskCache = std::make_shared<DiskCache>(*c);
         if (auto token = opts.value("--farm-token")) {
-            if (!evalOptions.diskCache) throw InputError("--farm-token", "needs the farm's --cache");
+            if (!evalOptions.diskCache)
+                throw InputError("--farm-token", "needs the farm's --cache");
             checkFarmToken(*evalOptions.diskCache, *token);
         }
         if (auto m = opts.value("--cache-memory-mb"))
-            evalOptions.memoryBudgetBytes = static_cast<std::uint64_t>(parseIntegerOption(
-                                                *m, "--cache-memory-mb", "a size in MiB", 0,
-                                                kMaxCacheMemoryMiB))
-                                            << 20;
+            evalOptions.memoryBudgetBytes =
+                static_cast<std::uint64_t>(parseIntegerOption(
+                    *m, "--cache-memory-mb", "a size in MiB", 0, kMaxCacheMemoryMiB))
+                << 20;
         // After every option is checked: a refused option creates no --out.
         if (!(opts.has("--simulations-only") && targets.empty()))
             checkOutputPlaces(graph, targets, frames, evalOptions.outDir);
@@ -181,7 +189,8 @@ int runCommand(const Args& args)
             throw;
         }
         bar.finish();
-        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const double wall =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         nlohmann::json report = evaluator.report().toJson();
         report["graph"] = opts.positionals()[0];
         report["frames"] = {frames.start, frames.end};
@@ -191,7 +200,8 @@ int runCommand(const Args& args)
         const auto& totals = report["totals"];
         spdlog::info("cooked frames {}..{} in {:.2f} s: {} cooks, {} memory hits, {} disk hits",
                      frames.start, frames.end, wall, totals["cooked"].get<std::size_t>(),
-                     totals["memoryHits"].get<std::size_t>(), totals["diskHits"].get<std::size_t>());
+                     totals["memoryHits"].get<std::size_t>(),
+                     totals["diskHits"].get<std::size_t>());
         return kExitOk;
     });
 }

@@ -47,14 +47,13 @@ int soundingCommand(const Args& args)
         const algo::ParcelAscent a = algo::liftParcel(profile, ground);
         const formats::SoundingLevel& g = sounding.levels.front();
 
-        std::printf("%s: %s sounding, %zu levels from %.0f m to %.0f m above sea level\n",
-                    file.c_str(),
-                    sounding.format == formats::SoundingFormat::Wyoming
-                        ? "University of Wyoming text"
-                        : "CSV",
-                    sounding.levels.size(), ground, profile.topHeight());
-        std::printf("  ground:  %.1f C, dew point %.1f C, %.1f hPa\n", g.temperatureC,
-                    g.dewpointC, profile.pressure(ground));
+        std::printf(
+            "%s: %s sounding, %zu levels from %.0f m to %.0f m above sea level\n", file.c_str(),
+            sounding.format == formats::SoundingFormat::Wyoming ? "University of Wyoming text"
+                                                                : "CSV",
+            sounding.levels.size(), ground, profile.topHeight());
+        std::printf("  ground:  %.1f C, dew point %.1f C, %.1f hPa\n", g.temperatureC, g.dewpointC,
+                    profile.pressure(ground));
         std::printf("  parcel lifted from the ground:\n");
         std::printf("  LCL:     %s, %.1f C\n", level(a.lclM, profile).c_str(), a.lclTemperatureC);
         std::printf("  LFC:     %s\n", level(a.lfcM, profile).c_str());

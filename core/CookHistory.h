@@ -26,8 +26,7 @@ public:
     /// `inputs` the input keys at this frame; `frameKey` names the frame ("all" for a node
     /// whose output ignores the frame). Thread-safe.
     std::string explain(const std::string& name, const nlohmann::json& identity,
-                        const std::string& frameKey, const nlohmann::json& inputs,
-                        bool simulation);
+                        const std::string& frameKey, const nlohmann::json& inputs, bool simulation);
     /// Makes this batch's records the reference and stores them on disk.
     void commit();
 

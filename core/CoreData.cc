@@ -70,8 +70,9 @@ bool TextData::serialize(ByteWriter& out) const
 // by the bytes left before anything is allocated.
 void registerCoreDataTypes(Registry& registry)
 {
-    registry.addDataType({"Float", "a number",
-                          [](ByteReader& in) -> DataPtr { return std::make_shared<FloatData>(in.f64()); }});
+    registry.addDataType({"Float", "a number", [](ByteReader& in) -> DataPtr {
+                              return std::make_shared<FloatData>(in.f64());
+                          }});
     registry.addDataType({"Int", "an integer", [](ByteReader& in) -> DataPtr {
                               return std::make_shared<IntData>(static_cast<std::int64_t>(in.u64()));
                           }});

@@ -299,8 +299,8 @@ OutputMap DiskCache::decodePayload(const unsigned char* payload, std::size_t pay
         fail(countAt, std::to_string(count) + " ports stored, the node has " +
                           std::to_string(declared->size()));
     // Each port takes at least three u64 lengths: rejects absurd counts up front.
-    if (count > in.remaining() / 24) fail(countAt, "port count " + std::to_string(count) +
-                                                       " does not fit in the payload");
+    if (count > in.remaining() / 24)
+        fail(countAt, "port count " + std::to_string(count) + " does not fit in the payload");
     OutputMap outputs;
     for (std::uint64_t i = 0; i < count; ++i) {
         const std::size_t portAt = in.offset();
@@ -360,9 +360,10 @@ std::optional<OutputMap> DiskCache::load(const Key& key, const Registry& registr
         if (fileSize >= kHeaderSize) readAt(file->fd, header, kHeaderSize, 0);
         const std::uint64_t payloadSize = checkHeader(key, header, fileSize);
         if (payloadSize > loadableBytes()) {
-            spdlog::warn("disk cache: entry {} ({} bytes) does not fit in the memory available "
-                         "now; recooking",
-                         path.string(), payloadSize);
+            spdlog::warn(
+                "disk cache: entry {} ({} bytes) does not fit in the memory available "
+                "now; recooking",
+                path.string(), payloadSize);
             return std::nullopt;
         }
         std::vector<unsigned char> payload(static_cast<std::size_t>(payloadSize));

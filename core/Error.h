@@ -13,7 +13,8 @@ class InputError : public std::runtime_error {
 public:
     InputError(std::string where, const std::string& message)
         : std::runtime_error(where.empty() ? message : where + ": " + message),
-          mWhere(std::move(where)), mMessage(message)
+          mWhere(std::move(where)),
+          mMessage(message)
     {
     }
     const std::string& where() const { return mWhere; }
@@ -38,7 +39,8 @@ public:
               const std::string& what, bool inputFault)
         : std::runtime_error(where + ": node '" + nodeId + "' frame " + std::to_string(frame) +
                              ": " + what),
-          mNodeId(nodeId), mInputFault(inputFault)
+          mNodeId(nodeId),
+          mInputFault(inputFault)
     {
     }
     const std::string& nodeId() const { return mNodeId; }

@@ -53,7 +53,8 @@ nlohmann::json smallValues(const OutputMap& outputs)
 /// The state of one cookFrames() call: key memo, simulation states in flight, progress.
 class Evaluator::Session {
 public:
-    Session(Evaluator& ev, const Graph& graph) : mEv(ev), mGraph(graph), mWritten(ev.mOptions.diskCache, ev.mOptions.outDir)
+    Session(Evaluator& ev, const Graph& graph)
+        : mEv(ev), mGraph(graph), mWritten(ev.mOptions.diskCache, ev.mOptions.outDir)
     {
         const auto& nodes = graph.nodes();
         const std::size_t n = nodes.size();
@@ -72,8 +73,9 @@ public:
         }
         // Disk records are per graph file and node id, so two graphs don't explain each other.
         Hasher h;
-        h.str(graph.source.empty() ? std::string("<memory>")
-                                   : std::filesystem::absolute(graph.source).lexically_normal().string());
+        h.str(graph.source.empty()
+                  ? std::string("<memory>")
+                  : std::filesystem::absolute(graph.source).lexically_normal().string());
         mRecordPrefix = h.finish().hex().substr(0, 12) + "-";
     }
 
@@ -318,7 +320,8 @@ private:
             const OutputsPtr& upOut = results[up];
             if (!upOut) throw std::logic_error("input of '" + node.id + "' was not evaluated");
             auto it = upOut->find(conn.port);
-            if (it == upOut->end()) throw std::logic_error("'" + conn.node + "' lacks output '" + conn.port + "'");
+            if (it == upOut->end())
+                throw std::logic_error("'" + conn.node + "' lacks output '" + conn.port + "'");
             ctx.setInput(portName, it->second);
             inputKeys[portName] = keyOf(up, frame).hex();
         }
@@ -328,8 +331,9 @@ private:
                                       mTimeVarying[idx] ? std::to_string(frame) : "all", inputKeys,
                                       decl.simulation);
         if (decl.writesFiles)
-            reason = (WrittenFiles::keepsRecords(decl) ? "writes files (none verified from an earlier run); "
-                                                       : "writes files (cooks on every run); ") +
+            reason = (WrittenFiles::keepsRecords(decl)
+                          ? "writes files (none verified from an earlier run); "
+                          : "writes files (cooks on every run); ") +
                      reason;
 
         OutputMap out;
@@ -338,7 +342,8 @@ private:
             instance->cook(ctx);
             out = ctx.takeOutputs();
             for (const PortDecl& p : decl.outputs)
-                if (!out.count(p.name)) throw std::logic_error("did not set output '" + p.name + "'");
+                if (!out.count(p.name))
+                    throw std::logic_error("did not set output '" + p.name + "'");
         } catch (const Cancelled&) {
             throw;
         } catch (const CookError&) {
@@ -447,7 +452,9 @@ void removeOrphansWhereWritersWrite(const Graph& graph, const std::vector<std::s
 }  // namespace
 
 Evaluator::Evaluator(const Registry& registry, EvaluatorOptions options)
-    : mRegistry(registry), mOptions(std::move(options)), mMemory(mOptions.memoryBudgetBytes),
+    : mRegistry(registry),
+      mOptions(std::move(options)),
+      mMemory(mOptions.memoryBudgetBytes),
       mHistory(mOptions.diskCache)
 {
     if (!mOptions.cancel) mOptions.cancel = std::make_shared<CancelToken>();
@@ -458,7 +465,8 @@ void Evaluator::cookFrames(const Graph& graph, int first, int last,
 {
     if (first > last) throw std::invalid_argument("frame range is empty");
     if (first < graph.frames.start)
-        throw std::invalid_argument("frame " + std::to_string(first) + " is before the graph's start frame");
+        throw std::invalid_argument("frame " + std::to_string(first) +
+                                    " is before the graph's start frame");
     Session session(*this, graph);
     std::vector<std::size_t> targetIdx;
     if (targets.empty()) {

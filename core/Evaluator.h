@@ -32,7 +32,7 @@ struct Progress {
     std::size_t done = 0;   ///< node-frames finished
     std::size_t total = 0;  ///< node-frames this run will visit
     int frame = 0;
-    std::string node;       ///< the node whose frame just finished (cooked or from a cache)
+    std::string node;  ///< the node whose frame just finished (cooked or from a cache)
 };
 
 struct EvaluatorOptions {

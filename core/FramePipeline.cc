@@ -29,7 +29,9 @@ using Ready = std::vector<std::pair<Frame*, std::size_t>>;
 
 FramePipeline::FramePipeline(const std::vector<std::vector<std::size_t>>& upstream, int window,
                              std::vector<bool> anyOrder)
-    : mUpstream(upstream), mDownstream(upstream.size()), mInOrder(upstream.size(), true),
+    : mUpstream(upstream),
+      mDownstream(upstream.size()),
+      mInOrder(upstream.size(), true),
       mWindow(window < 1 ? 1 : window)
 {
     for (std::size_t i = 0; i < anyOrder.size() && i < upstream.size(); ++i)

@@ -8,9 +8,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/Error.h"
+#include "core/JsonParse.h"
 #include "util/FramePattern.h"
 #include "util/InputFile.h"
-#include "core/JsonParse.h"
 
 namespace cg {
 

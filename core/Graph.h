@@ -101,7 +101,6 @@ public:
     std::string locate(const std::string& pointer) const;
 
 private:
-
     std::string mSourceName;
     std::vector<GraphNode> mNodes;  ///< sorted by id after finalize()
     bool mSorted = true;            ///< mNodes is sorted by id (binary search works)

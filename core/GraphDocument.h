@@ -53,8 +53,7 @@ public:
     /// Loads a graph file (errors name the file and JSON pointer, as the CLI's do). A graph
     /// being built may still lack nodes or wires: cook and save check it whole.
     static std::unique_ptr<GraphDocument> load(const std::filesystem::path& path,
-                                               const Registry& registry,
-                                               LoadOptions options = {});
+                                               const Registry& registry, LoadOptions options = {});
     /// A graph from JSON text; `name` prefixes error locations, relative input files are
     /// found under `baseDir`.
     static std::unique_ptr<GraphDocument> parse(const std::string& text, const std::string& name,
@@ -94,8 +93,8 @@ public:
     /// cancel() from another thread stops it (Cancelled): nothing partial is cached. Whatever
     /// it throws (a `cache` that cannot be made: InputError), the cook is over: the next
     /// one may start.
-    DataPtr cook(const Graph& graph, const std::string& node, const std::string& port,
-                 int frame, const std::string& cache, const std::string& out,
+    DataPtr cook(const Graph& graph, const std::string& node, const std::string& port, int frame,
+                 const std::string& cache, const std::string& out,
                  const std::vector<std::string>& alsoCook = {});
     /// Cancels the cook under way, if any.
     void cancel();
@@ -110,12 +109,12 @@ private:
     /// Marks the cook over and keeps its report (`evaluator` null: none was made).
     void endCook(Evaluator* evaluator) noexcept;
 
-    Graph mGraph;  ///< loaded with requireComplete off
+    Graph mGraph;                            ///< loaded with requireComplete off
     mutable std::optional<Graph> mComplete;  ///< completeGraph() until the next edit
     std::string mLayout;  ///< the file's text as last loaded or saved: what save() keeps
     const Registry& mRegistry;
     std::map<std::pair<std::string, std::string>, std::unique_ptr<Evaluator>> mEvaluators;
-    mutable std::mutex mCookMutex;  ///< guards mCancel, mLastReport and mProgress
+    mutable std::mutex mCookMutex;         ///< guards mCancel, mLastReport and mProgress
     std::shared_ptr<CancelToken> mCancel;  ///< the cook under way's token
     std::string mLastReport = "{}";
     CookProgress mProgress;

@@ -21,7 +21,7 @@ using OrderedJson = nlohmann::ordered_json;
 std::size_t keyRank(std::string_view key)
 {
     constexpr std::array<std::string_view, 12> kOrder = {
-        "cloudgraph", "description", "frames", "start", "end",    "timeStep",
+        "cloudgraph", "description", "frames", "start",  "end",     "timeStep",
         "seed",       "type",        "inputs", "params", "comment", "nodes"};
     const auto it = std::find(kOrder.begin(), kOrder.end(), key);
     return static_cast<std::size_t>(it - kOrder.begin());
@@ -35,20 +35,20 @@ OrderedJson inWritingOrder(const Json& value)
         return out;
     }
     switch (value.type()) {
-    case Json::value_t::object:
-        break;
-    case Json::value_t::boolean:
-        return value.get<bool>();
-    case Json::value_t::number_integer:
-        return value.get<std::int64_t>();
-    case Json::value_t::number_unsigned:
-        return value.get<std::uint64_t>();
-    case Json::value_t::number_float:
-        return value.get<double>();
-    case Json::value_t::string:
-        return value.get<std::string>();
-    default:
-        return nullptr;  // null: graph files hold no binary values
+        case Json::value_t::object:
+            break;
+        case Json::value_t::boolean:
+            return value.get<bool>();
+        case Json::value_t::number_integer:
+            return value.get<std::int64_t>();
+        case Json::value_t::number_unsigned:
+            return value.get<std::uint64_t>();
+        case Json::value_t::number_float:
+            return value.get<double>();
+        case Json::value_t::string:
+            return value.get<std::string>();
+        default:
+            return nullptr;  // null: graph files hold no binary values
     }
     std::vector<std::string> keys;
     for (const auto& item : value.items()) keys.push_back(item.key());
@@ -95,9 +95,8 @@ void keepStatedDefaults(const Graph& graph, const OrderedJson& was, Json& now)
 
 bool isFlatArray(const OrderedJson& value)
 {
-    return value.is_array() && std::none_of(value.begin(), value.end(), [](const auto& v) {
-               return v.is_structured();
-           });
+    return value.is_array() && std::none_of(value.begin(), value.end(),
+                                            [](const auto& v) { return v.is_structured(); });
 }
 
 void write(std::string& out, const OrderedJson& value, int depth)

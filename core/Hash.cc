@@ -29,9 +29,12 @@ bool Key::fromHex(std::string_view text, Key& out)
     for (std::size_t i = 0; i < 32; ++i) {
         const char c = text[i];
         std::uint64_t d;
-        if (c >= '0' && c <= '9') d = static_cast<std::uint64_t>(c - '0');
-        else if (c >= 'a' && c <= 'f') d = static_cast<std::uint64_t>(c - 'a' + 10);
-        else return false;
+        if (c >= '0' && c <= '9')
+            d = static_cast<std::uint64_t>(c - '0');
+        else if (c >= 'a' && c <= 'f')
+            d = static_cast<std::uint64_t>(c - 'a' + 10);
+        else
+            return false;
         parts[i / 16] = (parts[i / 16] << 4) | d;
     }
     out.hi = parts[0];
@@ -39,10 +42,7 @@ bool Key::fromHex(std::string_view text, Key& out)
     return true;
 }
 
-Hasher::Hasher() : mState(XXH3_createState())
-{
-    XXH3_128bits_reset(state(mState));
-}
+Hasher::Hasher() : mState(XXH3_createState()) { XXH3_128bits_reset(state(mState)); }
 
 Hasher::~Hasher() { XXH3_freeState(state(mState)); }
 

@@ -32,7 +32,8 @@ DataPtr CookContext::rawPrevious(const std::string& port) const
         throw std::logic_error("node type '" + mDecl.type + "' is not a simulation");
     if (!mPrevious) return nullptr;
     auto it = mPrevious->find(port);
-    if (it == mPrevious->end()) throw std::logic_error("previous frame lacks output '" + port + "'");
+    if (it == mPrevious->end())
+        throw std::logic_error("previous frame lacks output '" + port + "'");
     return it->second;
 }
 
@@ -45,7 +46,8 @@ void CookContext::badType(const std::string& port, const char* want, const std::
 void CookContext::setOutput(const std::string& port, DataPtr value)
 {
     const PortDecl* decl = mDecl.findOutput(port);
-    if (!decl) throw std::logic_error("node type '" + mDecl.type + "' has no output '" + port + "'");
+    if (!decl)
+        throw std::logic_error("node type '" + mDecl.type + "' has no output '" + port + "'");
     if (!value || value->typeName() != decl->type)
         throw std::logic_error("output '" + port + "' must be a " + decl->type);
     mOutputs[port] = std::move(value);

@@ -16,19 +16,26 @@ const T* findByName(const std::vector<T>& items, const std::string& name)
 }
 }  // namespace
 
-const PortDecl* NodeDecl::findInput(const std::string& name) const { return findByName(inputs, name); }
+const PortDecl* NodeDecl::findInput(const std::string& name) const
+{
+    return findByName(inputs, name);
+}
 const PortDecl* NodeDecl::findOutput(const std::string& name) const
 {
     return findByName(outputs, name);
 }
-const ParamDecl* NodeDecl::findParam(const std::string& name) const { return findByName(params, name); }
+const ParamDecl* NodeDecl::findParam(const std::string& name) const
+{
+    return findByName(params, name);
+}
 
 void ParamChecker::fail(const std::string& param, const std::string& message) const
 {
     throw InputError(nodePointer + "/params/" + param, message);
 }
 
-void ParamChecker::checkAllocation(const std::string& param, const std::vector<std::int64_t>& counts,
+void ParamChecker::checkAllocation(const std::string& param,
+                                   const std::vector<std::int64_t>& counts,
                                    std::uint64_t bytesPerItem) const
 {
     std::uint64_t total = bytesPerItem;
@@ -36,8 +43,9 @@ void ParamChecker::checkAllocation(const std::string& param, const std::vector<s
         if (c < 0) fail(param, "size " + std::to_string(c) + " is negative");
         const auto n = static_cast<std::uint64_t>(c);
         if (n != 0 && total > std::numeric_limits<std::uint64_t>::max() / n) {
-            fail(param, "size overflows 64-bit arithmetic; it would exceed the allocation limit of " +
-                            std::to_string(allocationLimitBytes) + " bytes");
+            fail(param,
+                 "size overflows 64-bit arithmetic; it would exceed the allocation limit of " +
+                     std::to_string(allocationLimitBytes) + " bytes");
         }
         total *= n;
     }

@@ -18,8 +18,8 @@ class Hasher;
 
 struct PortDecl {
     std::string name;
-    std::string type;  ///< a registered data type name, e.g. "Float"
-    std::string doc;   ///< one line
+    std::string type;       ///< a registered data type name, e.g. "Float"
+    std::string doc;        ///< one line
     bool optional = false;  ///< inputs only: may be left unconnected
 };
 
@@ -27,10 +27,10 @@ struct PortDecl {
 struct ParamChecker;
 
 struct NodeDecl {
-    std::string type;       ///< unique type name, e.g. "NoiseMap"
-    int version = 1;        ///< bump when the output for the same inputs changes
-    std::string category;   ///< for the reference: "atmosphere", "util", ...
-    std::string doc;        ///< a paragraph: what it computes, which equations
+    std::string type;      ///< unique type name, e.g. "NoiseMap"
+    int version = 1;       ///< bump when the output for the same inputs changes
+    std::string category;  ///< for the reference: "atmosphere", "util", ...
+    std::string doc;       ///< a paragraph: what it computes, which equations
     std::vector<PortDecl> inputs;
     std::vector<PortDecl> outputs;
     std::vector<ParamDecl> params;
@@ -80,8 +80,8 @@ struct NodeDecl {
 
 /// Passed to NodeDecl::validate: names the failing parameter with its JSON pointer.
 struct ParamChecker {
-    std::string nodePointer;              ///< e.g. /nodes/noise
-    std::uint64_t allocationLimitBytes;   ///< the most one node may allocate
+    std::string nodePointer;             ///< e.g. /nodes/noise
+    std::uint64_t allocationLimitBytes;  ///< the most one node may allocate
     [[noreturn]] void fail(const std::string& param, const std::string& message) const;
     /// Throws unless count * bytesPerItem fits in the limit, with overflow-checked 64-bit
     /// arithmetic. `counts` are the user-given sizes (e.g. nx, ny); negative counts fail.

@@ -19,8 +19,8 @@ using Vec3 = std::array<double, 3>;
 enum class ParamType { Float, Int, Bool, String, Vector3, FloatList, IntList };
 
 /// Index order matches ParamType.
-using ParamValue = std::variant<double, std::int64_t, bool, std::string, Vec3,
-                                std::vector<double>, std::vector<std::int64_t>>;
+using ParamValue = std::variant<double, std::int64_t, bool, std::string, Vec3, std::vector<double>,
+                                std::vector<std::int64_t>>;
 
 /// What a string parameter names, so the engine can check and resolve it.
 enum class ParamRole {
@@ -53,7 +53,8 @@ struct ParamDecl {
 
 /// Converts JSON to a value of decl's type, checking type, finiteness, range and choices.
 /// Throws InputError naming `pointer` (a JSON pointer such as /nodes/a/params/beta).
-ParamValue paramFromJson(const nlohmann::json& j, const ParamDecl& decl, const std::string& pointer);
+ParamValue paramFromJson(const nlohmann::json& j, const ParamDecl& decl,
+                         const std::string& pointer);
 nlohmann::json paramToJson(const ParamValue& v);
 /// Human-readable value ("2.5", "[1, 2]", "\"a\"").
 std::string paramToString(const ParamValue& v);
@@ -73,7 +74,10 @@ public:
     std::optional<std::size_t> indexOf(const std::string& name) const;
 
     double getFloat(const std::string& name) const { return std::get<double>(value(name)); }
-    std::int64_t getInt(const std::string& name) const { return std::get<std::int64_t>(value(name)); }
+    std::int64_t getInt(const std::string& name) const
+    {
+        return std::get<std::int64_t>(value(name));
+    }
     bool getBool(const std::string& name) const { return std::get<bool>(value(name)); }
     const std::string& getString(const std::string& name) const
     {

@@ -88,8 +88,9 @@ void loadPlugin(const std::filesystem::path& path, Registry& registry)
     }
 #if defined(__ELF__)
     if (!stamp)
-        throw InputError(where, "not a CloudGraph plugin: no ABI stamp (a plugin is built with "
-                                "the CLOUDGRAPH_PLUGIN macro of core/Plugin.h)");
+        throw InputError(where,
+                         "not a CloudGraph plugin: no ABI stamp (a plugin is built with "
+                         "the CLOUDGRAPH_PLUGIN macro of core/Plugin.h)");
 #endif
     if (stamp && *stamp != CLOUDGRAPH_PLUGIN_ABI_VERSION) throw abiMismatch(where, *stamp);
 
@@ -101,10 +102,10 @@ void loadPlugin(const std::filesystem::path& path, Registry& registry)
         void* sym = dlsym(handle, name);
         if (!sym || !isFunction(sym)) {
             dlclose(handle);
-            throw InputError(where, std::string("not a CloudGraph plugin: ") +
-                                        (sym ? "entry point '" + std::string(name) +
-                                                   "' is not a function"
-                                             : "missing entry point '" + std::string(name) + "'"));
+            throw InputError(where,
+                             std::string("not a CloudGraph plugin: ") +
+                                 (sym ? "entry point '" + std::string(name) + "' is not a function"
+                                      : "missing entry point '" + std::string(name) + "'"));
         }
         return sym;
     };
@@ -141,8 +142,7 @@ void loadPlugin(const std::filesystem::path& path, Registry& registry)
             failure = "unknown exception";
         }
     }
-    if (failed)
-        throw InputError(where, "plugin failed to register: " + failure);
+    if (failed) throw InputError(where, "plugin failed to register: " + failure);
 
     std::string list;
     for (const std::string& t : added) list += (list.empty() ? "" : ", ") + t;

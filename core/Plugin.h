@@ -19,18 +19,18 @@
 /// Bump whenever a public engine header changes in a way that breaks compiled plugins.
 #define CLOUDGRAPH_PLUGIN_ABI_VERSION 1
 
-#define CLOUDGRAPH_PLUGIN(registerFunction)                                               \
-    extern "C" __attribute__((visibility("default"), used, section(".cloudgraph_plugin")))  \
-    const cg::PluginStamp cloudgraph_plugin_stamp = {"CloudGraphPlugn",                   \
-                                                     CLOUDGRAPH_PLUGIN_ABI_VERSION};      \
-    extern "C" __attribute__((visibility("default"))) int cloudgraph_plugin_abi_version() \
-    {                                                                                     \
-        return CLOUDGRAPH_PLUGIN_ABI_VERSION;                                             \
-    }                                                                                     \
-    extern "C" __attribute__((visibility("default"))) void cloudgraph_plugin_register(    \
-        cg::Registry* registry)                                                           \
-    {                                                                                     \
-        registerFunction(*registry);                                                      \
+#define CLOUDGRAPH_PLUGIN(registerFunction)                                                \
+    extern "C" __attribute__((visibility("default"), used, section(".cloudgraph_plugin"))) \
+    const cg::PluginStamp cloudgraph_plugin_stamp = {"CloudGraphPlugn",                    \
+                                                     CLOUDGRAPH_PLUGIN_ABI_VERSION};       \
+    extern "C" __attribute__((visibility("default"))) int cloudgraph_plugin_abi_version()  \
+    {                                                                                      \
+        return CLOUDGRAPH_PLUGIN_ABI_VERSION;                                              \
+    }                                                                                      \
+    extern "C" __attribute__((visibility("default"))) void cloudgraph_plugin_register(     \
+        cg::Registry* registry)                                                            \
+    {                                                                                      \
+        registerFunction(*registry);                                                       \
     }
 
 namespace cg {

@@ -31,13 +31,12 @@ constexpr std::uint16_t kMachine = EM_AARCH64;
 constexpr std::uint16_t kMachine = EM_NONE;
 #endif
 
-void readExactly(const ByteSource& read, std::uint64_t fileSize, std::uint64_t offset,
-                 void* out, std::uint64_t size, const char* what)
+void readExactly(const ByteSource& read, std::uint64_t fileSize, std::uint64_t offset, void* out,
+                 std::uint64_t size, const char* what)
 {
     if (offset > fileSize || size > fileSize - offset)
         bad(std::string(what) + " lies outside the file");
-    if (!read(offset, out, static_cast<std::size_t>(size)))
-        bad(std::string("cannot read ") + what);
+    if (!read(offset, out, static_cast<std::size_t>(size))) bad(std::string("cannot read ") + what);
 }
 #endif
 
@@ -59,8 +58,7 @@ std::optional<std::int32_t> readPluginStamp(const ByteSource& read, std::uint64_
     if (eh.e_type != ET_DYN) bad("not a shared library");
     if (kMachine != EM_NONE && eh.e_machine != kMachine)
         bad("built for another architecture (ELF machine " + std::to_string(eh.e_machine) + ")");
-    if (eh.e_shentsize != sizeof(Elf64_Shdr) || eh.e_shnum == 0 ||
-        eh.e_shstrndx >= eh.e_shnum)
+    if (eh.e_shentsize != sizeof(Elf64_Shdr) || eh.e_shnum == 0 || eh.e_shstrndx >= eh.e_shnum)
         bad("malformed ELF section header table");
 
     std::vector<Elf64_Shdr> sections(eh.e_shnum);

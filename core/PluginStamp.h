@@ -15,7 +15,7 @@
 namespace cg {
 
 struct PluginStamp {
-    char magic[16];       ///< kPluginStampMagic
+    char magic[16];  ///< kPluginStampMagic
     std::int32_t abiVersion;
 };
 

@@ -22,7 +22,7 @@ public:
 
     const NodeDecl* findNode(const std::string& type) const;
     const DataTypeInfo* findDataType(const std::string& name) const;
-    std::vector<const NodeDecl*> nodes() const;       ///< sorted by type name
+    std::vector<const NodeDecl*> nodes() const;          ///< sorted by type name
     std::vector<const DataTypeInfo*> dataTypes() const;  ///< sorted by name
 
 private:

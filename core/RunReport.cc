@@ -8,10 +8,14 @@ namespace cg {
 const char* cookStatusName(CookStatus s)
 {
     switch (s) {
-    case CookStatus::Cooked: return "cooked";
-    case CookStatus::MemoryHit: return "memory-hit";
-    case CookStatus::DiskHit: return "disk-hit";
-    case CookStatus::Verified: return "verified";
+        case CookStatus::Cooked:
+            return "cooked";
+        case CookStatus::MemoryHit:
+            return "memory-hit";
+        case CookStatus::DiskHit:
+            return "disk-hit";
+        case CookStatus::Verified:
+            return "verified";
     }
     return "?";
 }
@@ -44,9 +48,9 @@ std::vector<CookRecord> RunReport::records() const
 std::size_t RunReport::cookCount(const std::string& node) const
 {
     std::lock_guard<std::mutex> lock(mMutex);
-    return static_cast<std::size_t>(std::count_if(mRecords.begin(), mRecords.end(), [&](const CookRecord& r) {
-        return r.node == node && r.status == CookStatus::Cooked;
-    }));
+    return static_cast<std::size_t>(std::count_if(
+        mRecords.begin(), mRecords.end(),
+        [&](const CookRecord& r) { return r.node == node && r.status == CookStatus::Cooked; }));
 }
 
 nlohmann::json RunReport::toJson() const

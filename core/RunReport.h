@@ -25,8 +25,8 @@ struct CookRecord {
     int frame = 0;
     std::size_t order = 0;  ///< topological index, to list records in a stable order
     CookStatus status = CookStatus::Cooked;
-    std::string reason;     ///< why it cooked; empty for hits
-    double seconds = 0.0;   ///< wall time of the cook or the lookup
+    std::string reason;    ///< why it cooked; empty for hits
+    double seconds = 0.0;  ///< wall time of the cook or the lookup
     Key key;
     std::size_t bytes = 0;
     /// Small values among the outputs (numbers, short text), so a report shows e.g. counts.

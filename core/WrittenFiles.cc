@@ -4,8 +4,8 @@
 #include <sstream>
 #include <vector>
 
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include "core/CoreData.h"
 
@@ -25,7 +25,10 @@ std::vector<std::string> pathsIn(const std::string& files)
     return out;
 }
 
-std::string absolutePath(const std::string& path) { return fs::absolute(path).lexically_normal().string(); }
+std::string absolutePath(const std::string& path)
+{
+    return fs::absolute(path).lexically_normal().string();
+}
 
 /// Size and content hash of a regular file; nullopt when it cannot be read whole.
 std::optional<std::pair<std::uintmax_t, std::string>> fingerprint(const std::string& path)
@@ -82,12 +85,14 @@ void WrittenFiles::record(const Key& key, const OutputMap& outputs) const
         for (const std::string& path : pathsIn(text->value)) {
             const auto print = fingerprint(path);
             if (!print) return;  // nothing to verify it by later
-            files.push_back({{"path", absolutePath(path)}, {"size", print->first}, {"xxh3", print->second}});
+            files.push_back(
+                {{"path", absolutePath(path)}, {"size", print->first}, {"xxh3", print->second}});
         }
     }
     try {
-        mCache->storeRecord(recordName(key), {{"key", key.hex()}, {"out", mOutDir}, {"outputs", ports},
-                                              {"files", files}});
+        mCache->storeRecord(
+            recordName(key),
+            {{"key", key.hex()}, {"out", mOutDir}, {"outputs", ports}, {"files", files}});
     } catch (const std::exception& e) {
         spdlog::warn("cannot record the files written for key {}: {}", key.hex(), e.what());
     }
@@ -99,17 +104,21 @@ std::optional<OutputMap> WrittenFiles::verified(const Key& key, const NodeDecl& 
     const auto record = mCache->loadRecord(recordName(key));
     if (!record) return std::nullopt;
     try {
-        if (record->at("key").get<std::string>() != key.hex() || record->at("out").get<std::string>() != mOutDir)
+        if (record->at("key").get<std::string>() != key.hex() ||
+            record->at("out").get<std::string>() != mOutDir)
             return std::nullopt;
         OutputMap outputs;
         for (const PortDecl& port : decl.outputs)
-            outputs[port.name] = std::make_shared<TextData>(record->at("outputs").at(port.name).get<std::string>());
+            outputs[port.name] =
+                std::make_shared<TextData>(record->at("outputs").at(port.name).get<std::string>());
         // The files must be exactly those the outputs name, each with its recorded bytes.
-        const std::vector<std::string> named = pathsIn(record->at("outputs").at("files").get<std::string>());
+        const std::vector<std::string> named =
+            pathsIn(record->at("outputs").at("files").get<std::string>());
         const nlohmann::json& files = record->at("files");
         if (!files.is_array() || files.size() != named.size()) return std::nullopt;
         for (std::size_t i = 0; i < named.size(); ++i) {
-            if (files[i].at("path").get<std::string>() != absolutePath(named[i])) return std::nullopt;
+            if (files[i].at("path").get<std::string>() != absolutePath(named[i]))
+                return std::nullopt;
             const auto print = fingerprint(named[i]);
             if (!print || print->first != files[i].at("size").get<std::uintmax_t>() ||
                 print->second != files[i].at("xxh3").get<std::string>())

@@ -41,9 +41,9 @@ void writeCloudPly(const std::filesystem::path& path, std::size_t count, const f
     writeBinaryPly(path, count, cloudProperties(count, positions, levels, sources), comment, poll);
 }
 
-CloudPlyChunkWriter::CloudPlyChunkWriter(std::filesystem::path path,
-                                         std::vector<std::pair<std::uint64_t, std::uint64_t>> chunks,
-                                         const std::string& comment)
+CloudPlyChunkWriter::CloudPlyChunkWriter(
+    std::filesystem::path path, std::vector<std::pair<std::uint64_t, std::uint64_t>> chunks,
+    const std::string& comment)
     : mPath(std::move(path))
 {
     std::sort(chunks.begin(), chunks.end());

@@ -19,10 +19,14 @@ std::size_t sizeOf(PlyType t) { return t == PlyType::UChar ? 1 : 4; }
 const char* nameOf(PlyType t)
 {
     switch (t) {
-    case PlyType::Float: return "float";
-    case PlyType::Int: return "int";
-    case PlyType::UInt: return "uint";
-    case PlyType::UChar: return "uchar";
+        case PlyType::Float:
+            return "float";
+        case PlyType::Int:
+            return "int";
+        case PlyType::UInt:
+            return "uint";
+        case PlyType::UChar:
+            return "uchar";
     }
     return "";
 }
@@ -32,19 +36,19 @@ void pack(const PlyProperty& p, std::size_t i, unsigned char* out)
 {
     const std::size_t at = i * p.stride;
     switch (p.type) {
-    case PlyType::Float:
-        util::putF32(out, p.data ? static_cast<const float*>(p.data)[at] : 0.0f);
-        break;
-    case PlyType::Int:
-        util::putU32(out, static_cast<std::uint32_t>(
-                              p.data ? static_cast<const std::int32_t*>(p.data)[at] : 0));
-        break;
-    case PlyType::UInt:
-        util::putU32(out, p.data ? static_cast<const std::uint32_t*>(p.data)[at] : 0u);
-        break;
-    case PlyType::UChar:
-        *out = p.data ? static_cast<const std::uint8_t*>(p.data)[at] : std::uint8_t{0};
-        break;
+        case PlyType::Float:
+            util::putF32(out, p.data ? static_cast<const float*>(p.data)[at] : 0.0f);
+            break;
+        case PlyType::Int:
+            util::putU32(out, static_cast<std::uint32_t>(
+                                  p.data ? static_cast<const std::int32_t*>(p.data)[at] : 0));
+            break;
+        case PlyType::UInt:
+            util::putU32(out, p.data ? static_cast<const std::uint32_t*>(p.data)[at] : 0u);
+            break;
+        case PlyType::UChar:
+            *out = p.data ? static_cast<const std::uint8_t*>(p.data)[at] : std::uint8_t{0};
+            break;
     }
 }
 
@@ -101,7 +105,8 @@ void writeBinaryPly(const std::filesystem::path& path, std::size_t count,
     if (!out) writeFailed(path);
     out.write(header.data(), static_cast<std::streamsize>(header.size()));
 
-    const std::size_t perChunk = std::max<std::size_t>(1, kChunkBytes / std::max<std::size_t>(1, recordBytes));
+    const std::size_t perChunk =
+        std::max<std::size_t>(1, kChunkBytes / std::max<std::size_t>(1, recordBytes));
     std::vector<unsigned char> chunk(std::min(count, perChunk) * recordBytes);
     for (std::size_t begin = 0; begin < count && out; begin += perChunk) {
         if (poll) poll();

@@ -128,8 +128,10 @@ public:
     std::vector<SoundingLevel> finish(std::size_t lastLine) &&
     {
         if (mLevels.size() < 2)
-            fail(lastLine, "a sounding needs at least two levels with a height and a "
-                           "temperature; found " + std::to_string(mLevels.size()));
+            fail(lastLine,
+                 "a sounding needs at least two levels with a height and a "
+                 "temperature; found " +
+                     std::to_string(mLevels.size()));
         return std::move(mLevels);
     }
 
@@ -217,8 +219,10 @@ std::vector<SoundingLevel> parseWyoming(Lines& lines, std::string_view header,
                              std::string(trim(line).substr(0, 40)) + "'");
         }
         if (rowTokens.size() > names.size())
-            checker.fail(lines.number(), std::to_string(rowTokens.size()) + " fields, the header "
-                                         "names " + std::to_string(names.size()) + " columns");
+            checker.fail(lines.number(), std::to_string(rowTokens.size()) +
+                                             " fields, the header "
+                                             "names " +
+                                             std::to_string(names.size()) + " columns");
         inRows = true;
         const std::size_t n = lines.number();
         SoundingLevel l;
@@ -227,8 +231,8 @@ std::vector<SoundingLevel> parseWyoming(Lines& lines, std::string_view header,
         l.temperatureC = checker.number(field(line, rowTokens, 2), n, "TEMP");
         l.dewpointC = checker.number(field(line, rowTokens, 3), n, "DWPT");
         l.windFromDeg = checker.number(field(line, rowTokens, 6), n, "DRCT");
-        l.windSpeedMs = checker.number(field(line, rowTokens, 7), n, "SKNT") *
-                        kMetresPerSecondPerKnot;
+        l.windSpeedMs =
+            checker.number(field(line, rowTokens, 7), n, "SKNT") * kMetresPerSecondPerKnot;
         // Wyoming lists the standard levels below the ground with a height and nothing else.
         if (std::isnan(l.heightM) || std::isnan(l.temperatureC)) continue;
         checker.add(l, n);
@@ -237,13 +241,11 @@ std::vector<SoundingLevel> parseWyoming(Lines& lines, std::string_view header,
 }
 
 /// CSV with a header line; `header` is that line.
-std::vector<SoundingLevel> parseCsv(Lines& lines, std::string_view header,
-                                    const std::string& name)
+std::vector<SoundingLevel> parseCsv(Lines& lines, std::string_view header, const std::string& name)
 {
     LevelChecker checker(name);
     static constexpr std::array<const char*, 6> kNames = {
-        "height_m", "temperature_C", "dewpoint_C", "pressure_hPa", "wind_dir_deg",
-        "wind_speed_ms"};
+        "height_m", "temperature_C", "dewpoint_C", "pressure_hPa", "wind_dir_deg", "wind_speed_ms"};
     const auto names = split(header, ',');
     std::array<std::size_t, kNames.size()> column{};
     for (std::size_t c = 0; c < kNames.size(); ++c) {
@@ -323,9 +325,10 @@ Sounding parseSounding(std::string_view text, const std::string& name)
         }
         if (lines.number() > 100) break;  // Wyoming's header is a few lines
     }
-    throw FormatError(name, "neither a University of Wyoming text sounding (no PRES HGHT TEMP "
-                            "DWPT column header) nor a CSV whose header names "
-                            "height_m,temperature_C,dewpoint_C");
+    throw FormatError(name,
+                      "neither a University of Wyoming text sounding (no PRES HGHT TEMP "
+                      "DWPT column header) nor a CSV whose header names "
+                      "height_m,temperature_C,dewpoint_C");
 }
 
 Sounding readSounding(const std::filesystem::path& path)

@@ -27,12 +27,12 @@ namespace cg::formats {
 
 /// One level; NaN marks a missing value (never height or temperature).
 struct SoundingLevel {
-    double heightM = 0.0;       ///< above mean sea level
+    double heightM = 0.0;  ///< above mean sea level
     double temperatureC = 0.0;
-    double dewpointC = 0.0;     ///< <= temperatureC (+ 0.5 C of rounding)
-    double pressureHPa = 0.0;   ///< decreasing with height where given
-    double windFromDeg = 0.0;   ///< the direction the wind blows from, clockwise from north
-    double windSpeedMs = 0.0;   ///< m/s (Wyoming's knots converted)
+    double dewpointC = 0.0;    ///< <= temperatureC (+ 0.5 C of rounding)
+    double pressureHPa = 0.0;  ///< decreasing with height where given
+    double windFromDeg = 0.0;  ///< the direction the wind blows from, clockwise from north
+    double windSpeedMs = 0.0;  ///< m/s (Wyoming's knots converted)
 };
 
 enum class SoundingFormat { Wyoming, Csv };

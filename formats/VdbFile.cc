@@ -44,11 +44,14 @@ auto guarded(const std::filesystem::path& path, const std::string& what, Fn&& re
         // The sizes this file records were checked against the limit before OpenVDB read it,
         // so an allocation that fails now was asked for by a damaged size inside the grid's
         // data (OpenVDB allocates a compressed block's stated size before reading it).
-        throw FormatError(path.string(), what + ": the file is damaged: a size inside the "
-                                                "grid's data asks for more memory than there is");
+        throw FormatError(path.string(), what +
+                                             ": the file is damaged: a size inside the "
+                                             "grid's data asks for more memory than there is");
     } catch (const std::exception& e) {
-        throw FormatError(path.string(), what + ": the file is damaged, truncated or not a VDB "
-                                                "file (OpenVDB: " + e.what() + ")");
+        throw FormatError(path.string(), what +
+                                             ": the file is damaged, truncated or not a VDB "
+                                             "file (OpenVDB: " +
+                                             e.what() + ")");
     }
 }
 
@@ -80,9 +83,9 @@ struct Fd {
 /// (strings, delayed-load tables, types it does not know).
 long fixedMetadataSize(const std::string& type)
 {
-    static const char* const kFixed[] = {"bool",  "int32", "int64", "float", "double",
-                                         "vec2i", "vec2s", "vec2d", "vec3i", "vec3s",
-                                         "vec3d", "vec4i", "vec4s", "vec4d", "mat4s", "mat4d"};
+    static const char* const kFixed[] = {"bool",  "int32", "int64", "float", "double", "vec2i",
+                                         "vec2s", "vec2d", "vec3i", "vec3s", "vec3d",  "vec4i",
+                                         "vec4s", "vec4d", "mat4s", "mat4d"};
     for (const char* fixed : kFixed)
         if (type == fixed && openvdb::Metadata::isRegisteredType(type))
             return static_cast<long>(openvdb::Metadata::createMetadata(type)->size());
@@ -93,8 +96,8 @@ long fixedMetadataSize(const std::string& type)
 /// states is checked against the bytes left before anything is allocated for it.
 class Cursor {
 public:
-    Cursor(const std::filesystem::path& path, const std::string& what, int fd,
-           std::uint64_t pos, std::uint64_t end)
+    Cursor(const std::filesystem::path& path, const std::string& what, int fd, std::uint64_t pos,
+           std::uint64_t end)
         : mPath(path), mWhat(what), mFd(fd), mPos(pos), mEnd(end)
     {
     }
@@ -104,15 +107,15 @@ public:
     std::string bytes(std::uint64_t n, const char* field)
     {
         if (n > left())
-            refuse(mPath, mWhat, "the file is truncated or damaged: " + std::string(field) +
-                                     " at byte " + std::to_string(mPos) + " needs " +
-                                     std::to_string(n) + " bytes, " + std::to_string(left()) +
-                                     " are left");
+            refuse(mPath, mWhat,
+                   "the file is truncated or damaged: " + std::string(field) + " at byte " +
+                       std::to_string(mPos) + " needs " + std::to_string(n) + " bytes, " +
+                       std::to_string(left()) + " are left");
         std::string out(static_cast<std::size_t>(n), '\0');
         std::size_t done = 0;
         while (done < out.size()) {
-            const ssize_t r = ::pread(mFd, out.data() + done, out.size() - done,
-                                      static_cast<off_t>(mPos + done));
+            const ssize_t r =
+                ::pread(mFd, out.data() + done, out.size() - done, static_cast<off_t>(mPos + done));
             if (r <= 0)
                 refuse(mPath, mWhat, "cannot read the file at byte " + std::to_string(mPos));
             done += static_cast<std::size_t>(r);
@@ -136,8 +139,8 @@ public:
     void skipMetadata()
     {
         const std::uint32_t count = u32("metadata count");
-        if (count > left() / 12) refuse(mPath, mWhat, "the file is damaged: metadata count " +
-                                                          std::to_string(count));
+        if (count > left() / 12)
+            refuse(mPath, mWhat, "the file is damaged: metadata count " + std::to_string(count));
         for (std::uint32_t k = 0; k < count; ++k) {
             const std::string name = str("metadata name");
             const std::string type = str("metadata type");
@@ -146,8 +149,9 @@ public:
             // different size would put its reading out of step with this check.
             const long fixed = fixedMetadataSize(type);
             if (fixed >= 0 && size != static_cast<std::uint64_t>(fixed))
-                refuse(mPath, mWhat, "the file is damaged: metadata '" + name + "' of type " +
-                                         type + " states " + std::to_string(size) + " bytes");
+                refuse(mPath, mWhat,
+                       "the file is damaged: metadata '" + name + "' of type " + type + " states " +
+                           std::to_string(size) + " bytes");
             skip(size, "metadata value");
         }
     }
@@ -164,7 +168,7 @@ struct Descriptor {
     std::string uniqueName;  ///< "name", or "name\x1eN" for the N-th grid of that name
     std::string type;        ///< "Tree_float_5_4_3", without the half-float suffix
     bool half = false;
-    bool instance = false;   ///< shares the tree of another grid
+    bool instance = false;  ///< shares the tree of another grid
     std::uint64_t start = 0, gridPos = 0, blockPos = 0, endPos = 0;
 
     std::string name() const { return uniqueName.substr(0, uniqueName.find('\x1e')); }
@@ -215,9 +219,10 @@ std::unique_ptr<Layout> readLayout(const std::filesystem::path& path, const std:
         refuse(path, what, "not a VDB file (no VDB magic number at its start)");
     layout->version = in.u32("file version");
     if (layout->version < kOldestVersion || layout->version > kNewestVersion)
-        refuse(path, what, "VDB file format version " + std::to_string(layout->version) +
-                               "; this build reads versions " + std::to_string(kOldestVersion) +
-                               " to " + std::to_string(kNewestVersion));
+        refuse(path, what,
+               "VDB file format version " + std::to_string(layout->version) +
+                   "; this build reads versions " + std::to_string(kOldestVersion) + " to " +
+                   std::to_string(kNewestVersion));
     layout->library.first = in.u32("library version");
     layout->library.second = in.u32("library version");
     if (in.bytes(1, "grid offsets flag")[0] == 0)
@@ -238,8 +243,8 @@ std::unique_ptr<Layout> readLayout(const std::filesystem::path& path, const std:
         d.uniqueName = in.str("grid name");
         d.type = in.str("grid type");
         const std::size_t suffix = sizeof kHalfSuffix - 1;
-        if (d.type.size() > suffix && d.type.compare(d.type.size() - suffix, suffix,
-                                                     kHalfSuffix) == 0) {
+        if (d.type.size() > suffix &&
+            d.type.compare(d.type.size() - suffix, suffix, kHalfSuffix) == 0) {
             d.half = true;
             d.type.resize(d.type.size() - suffix);
         }
@@ -249,10 +254,10 @@ std::unique_ptr<Layout> readLayout(const std::filesystem::path& path, const std:
         // The grid follows its descriptor; its parts in order; the end inside the file.
         if (grid != static_cast<std::int64_t>(in.pos()) || block < grid || end < block ||
             static_cast<std::uint64_t>(end) > layout->size)
-            refuse(path, what, "the file is truncated or damaged: grid '" +
-                                   d.displayName() + "' claims bytes " + std::to_string(grid) +
-                                   " to " + std::to_string(end) + " of a file of " +
-                                   std::to_string(layout->size));
+            refuse(path, what,
+                   "the file is truncated or damaged: grid '" + d.displayName() +
+                       "' claims bytes " + std::to_string(grid) + " to " + std::to_string(end) +
+                       " of a file of " + std::to_string(layout->size));
         d.gridPos = static_cast<std::uint64_t>(grid);
         d.blockPos = static_cast<std::uint64_t>(block);
         d.endPos = static_cast<std::uint64_t>(end);
@@ -355,13 +360,12 @@ openvdb::GridBase::Ptr readHeaderOf(const Layout& layout, const Descriptor& d,
 }
 
 /// The whole grid, read by OpenVDB from a stream of the file's header and this grid alone.
-openvdb::GridBase::Ptr readWhole(const Layout& layout, const Descriptor& d,
-                                 const std::string& what)
+openvdb::GridBase::Ptr readWhole(const Layout& layout, const Descriptor& d, const std::string& what)
 {
     return guarded(layout.path, what, [&] {
         std::string prefix = layout.header;
-        prefix.append(4, '\0');            // no file metadata
-        prefix.append("\x01\0\0\0", 4);    // one grid
+        prefix.append(4, '\0');          // no file metadata
+        prefix.append("\x01\0\0\0", 4);  // one grid
         RangeBuf buf(layout.fd.fd, std::move(prefix), d.start, d.endPos);
         std::istream is(&buf);
         is.exceptions(std::ios_base::failbit | std::ios_base::badbit);
@@ -397,9 +401,10 @@ void checkHeader(const std::filesystem::path& path, const std::string& what,
     const std::string type = grid.valueType();
     const openvdb::GridClass cls = grid.getGridClass();
     if (cls == openvdb::GRID_LEVEL_SET)
-        fail("is a level set (signed distances to a surface), not a fog volume of densities; "
-             "convert it to a fog volume first (Houdini: VDB Convert, to Fog Volume; OpenVDB: "
-             "tools::sdfToFogVolume)");
+        fail(
+            "is a level set (signed distances to a surface), not a fog volume of densities; "
+            "convert it to a fog volume first (Houdini: VDB Convert, to Fog Volume; OpenVDB: "
+            "tools::sdfToFogVolume)");
     if (cls != openvdb::GRID_FOG_VOLUME && cls != openvdb::GRID_UNKNOWN)
         fail("is of class '" + G::gridClassToString(cls) + "', not a fog volume");
     const openvdb::math::Transform& xf = grid.transform();
@@ -445,19 +450,22 @@ std::string cleanValues(openvdb::FloatGrid& grid)
     std::atomic<std::size_t> firstBad{kNone};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.leafCount()),
                       [&](const tbb::blocked_range<std::size_t>& range) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-            float* v = leaves.leaf(i).buffer().data();
-            bool bad = false;
-            for (openvdb::Index k = 0; k < openvdb::FloatTree::LeafNodeType::SIZE; ++k) {
-                if (!std::isfinite(v[k])) bad = true;
-                else if (v[k] < 0.0f) v[k] = 0.0f;
-            }
-            if (!bad) continue;
-            std::size_t seen = firstBad.load();
-            while (i < seen && !firstBad.compare_exchange_weak(seen, i)) {
-            }
-        }
-    });
+                          for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                              float* v = leaves.leaf(i).buffer().data();
+                              bool bad = false;
+                              for (openvdb::Index k = 0; k < openvdb::FloatTree::LeafNodeType::SIZE;
+                                   ++k) {
+                                  if (!std::isfinite(v[k]))
+                                      bad = true;
+                                  else if (v[k] < 0.0f)
+                                      v[k] = 0.0f;
+                              }
+                              if (!bad) continue;
+                              std::size_t seen = firstBad.load();
+                              while (i < seen && !firstBad.compare_exchange_weak(seen, i)) {
+                              }
+                          }
+                      });
     const auto name = [](const openvdb::Coord& c, float v) {
         return "the value at voxel (" + std::to_string(c.x()) + ", " + std::to_string(c.y()) +
                ", " + std::to_string(c.z()) + ") is " + std::to_string(v) +
@@ -524,8 +532,7 @@ VdbGridSummary summaryOf(const Descriptor& d, const openvdb::GridBase& grid)
 
 }  // namespace
 
-std::vector<VdbGridSummary> listVdbGrids(const std::filesystem::path& path,
-                                         std::uint64_t maxBytes)
+std::vector<VdbGridSummary> listVdbGrids(const std::filesystem::path& path, std::uint64_t maxBytes)
 {
     openvdb::initialize();
     const auto layout = readLayout(path, "grids", maxBytes);
@@ -559,15 +566,16 @@ Inspected inspect(const std::filesystem::path& path, const std::string& gridName
     if (!r.grid) {
         std::string list;
         for (const Descriptor& d : r.layout->grids)
-            list += (list.empty() ? "" : ", ") + ("'" + d.displayName() + "' (" +
-                                                 d.valueType() + ")");
-        refuse(path, what, "no such grid; " + (list.empty() ? std::string("the file has no grids")
-                                                             : "its grids: " + list));
+            list +=
+                (list.empty() ? "" : ", ") + ("'" + d.displayName() + "' (" + d.valueType() + ")");
+        refuse(path, what,
+               "no such grid; " +
+                   (list.empty() ? std::string("the file has no grids") : "its grids: " + list));
     }
     const std::string type = r.grid->valueType();
     if (type != "float" && type != "double")
-        refuse(path, what, "holds " + type +
-                               " values; a fog volume is a grid of float (or double) densities");
+        refuse(path, what,
+               "holds " + type + " values; a fog volume is a grid of float (or double) densities");
     if (r.grid->instance)
         refuse(path, what, "is an instance sharing another grid's voxels; save it on its own");
     double background = 0.0;
@@ -606,8 +614,8 @@ openvdb::FloatGrid::Ptr readVdbFogVolume(const std::filesystem::path& path,
             if (!doubles) fail("holds " + base->valueType() + " values, not float");
             // The tree's converting copy; a double beyond float's range becomes infinite and is
             // refused below.
-            grid = openvdb::FloatGrid::create(
-                std::make_shared<openvdb::FloatTree>(doubles->tree()));
+            grid =
+                openvdb::FloatGrid::create(std::make_shared<openvdb::FloatTree>(doubles->tree()));
             grid->setTransform(doubles->transform().copy());
             grid->insertMeta(*doubles);
         }

@@ -46,9 +46,9 @@ namespace cg::formats {
 /// What a VDB file records for one grid, read without its voxels.
 struct VdbGridSummary {
     std::string name;
-    std::string valueType;     ///< "float", "double", "vec3s", ...
-    std::string gridClass;     ///< "fog volume", "level set", "unknown", ...
-    bool halfFloat = false;    ///< stored as 16-bit floats
+    std::string valueType;           ///< "float", "double", "vec3s", ...
+    std::string gridClass;           ///< "fog volume", "level set", "unknown", ...
+    bool halfFloat = false;          ///< stored as 16-bit floats
     std::uint64_t activeVoxels = 0;  ///< as the file records it (0 when it does not)
     std::uint64_t memoryBytes = 0;   ///< the tree's memory as recorded (0 when not recorded)
     /// The active voxels' bounding box as recorded ("file_bbox_min", "file_bbox_max"), when
@@ -58,14 +58,13 @@ struct VdbGridSummary {
 
 /// The grids of the VDB file `path`, in file order, from its header and grid metadata only.
 /// Throws FormatError when the file cannot be read as a VDB file.
-std::vector<VdbGridSummary> listVdbGrids(const std::filesystem::path& path,
-                                         std::uint64_t maxBytes);
+std::vector<VdbGridSummary> listVdbGrids(const std::filesystem::path& path, std::uint64_t maxBytes);
 
 /// Checks everything readVdbFogVolume checks before reading the voxels: the file, the grid's
 /// presence, value type, class, transform, recorded size and background (read from the start
 /// of the tree). Throws FormatError.
-VdbGridSummary inspectVdbFogVolume(const std::filesystem::path& path,
-                                   const std::string& gridName, std::uint64_t maxBytes);
+VdbGridSummary inspectVdbFogVolume(const std::filesystem::path& path, const std::string& gridName,
+                                   std::uint64_t maxBytes);
 
 /// Reads grid `gridName` of `path` as a fog volume (see above). Throws FormatError.
 openvdb::FloatGrid::Ptr readVdbFogVolume(const std::filesystem::path& path,

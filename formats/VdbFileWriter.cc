@@ -34,19 +34,22 @@ void setContentUuid(const std::filesystem::path& path)
 {
     std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
     if (!file) throw std::runtime_error("cannot open " + path.string() + " to set its UUID");
-    const std::vector<char> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    const std::vector<char> bytes((std::istreambuf_iterator<char>(file)),
+                                  std::istreambuf_iterator<char>());
     // magic (8), file version (4), library version (2 x 4), grid offsets flag (1),
     // before version 222 a compression flag (1), then the UUID as 36 characters.
     std::int64_t magic = 0;
     if (bytes.size() >= 8) std::memcpy(&magic, bytes.data(), sizeof magic);
-    const std::size_t uuidAt = bytes.size() >= 12 && u32At(bytes, 8) < kNodeMaskCompression ? 22 : 21;
+    const std::size_t uuidAt =
+        bytes.size() >= 12 && u32At(bytes, 8) < kNodeMaskCompression ? 22 : 21;
     if (magic != kVdbMagic || bytes.size() < uuidAt + kUuidChars)
         throw std::runtime_error(path.string() + " is not a VDB file: cannot set its UUID");
 
     XXH3_state_t* state = XXH3_createState();
     XXH3_128bits_reset(state);
     XXH3_128bits_update(state, bytes.data(), uuidAt);
-    XXH3_128bits_update(state, bytes.data() + uuidAt + kUuidChars, bytes.size() - uuidAt - kUuidChars);
+    XXH3_128bits_update(state, bytes.data() + uuidAt + kUuidChars,
+                        bytes.size() - uuidAt - kUuidChars);
     const XXH128_hash_t h = XXH3_128bits_digest(state);
     XXH3_freeState(state);
     // Laid out as a version 4 (random) UUID, which is what the hash stands in for.
@@ -55,7 +58,8 @@ void setContentUuid(const std::filesystem::path& path)
     char uuid[kUuidChars + 1];
     std::snprintf(uuid, sizeof uuid, "%08x-%04x-%04x-%04x-%012llx", static_cast<unsigned>(hi >> 32),
                   static_cast<unsigned>((hi >> 16) & 0xFFFF), static_cast<unsigned>(hi & 0xFFFF),
-                  static_cast<unsigned>(lo >> 48), static_cast<unsigned long long>(lo & 0xFFFFFFFFFFFFull));
+                  static_cast<unsigned>(lo >> 48),
+                  static_cast<unsigned long long>(lo & 0xFFFFFFFFFFFFull));
     file.clear();
     file.seekp(static_cast<std::streamoff>(uuidAt));
     file.write(uuid, kUuidChars);

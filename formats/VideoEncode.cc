@@ -82,8 +82,7 @@ std::string number(double v)
 void encodeVideo(const VideoEncodeSettings& s, const fs::path& output,
                  const std::function<void()>& poll)
 {
-    if (!(s.fps > 0.0) || !std::isfinite(s.fps))
-        throw std::invalid_argument("fps must be > 0");
+    if (!(s.fps > 0.0) || !std::isfinite(s.fps)) throw std::invalid_argument("fps must be > 0");
     if (s.crf < 0 || s.crf > 51) throw std::invalid_argument("crf must be in 0..51");
     if (s.lastFrame < s.firstFrame)
         throw std::invalid_argument("last frame " + std::to_string(s.lastFrame) +
@@ -97,20 +96,18 @@ void encodeVideo(const VideoEncodeSettings& s, const fs::path& output,
     for (int f = s.firstFrame; f <= s.lastFrame; ++f) {
         const fs::path p = util::framePath(s.images, f);
         if (!fs::is_regular_file(p))
-            throw std::invalid_argument("frame " + std::to_string(f) + " is missing: " +
-                                        p.string());
+            throw std::invalid_argument("frame " + std::to_string(f) +
+                                        " is missing: " + p.string());
     }
 
     const FileGuard log{fs::path(output.string() + ".ffmpeg.log")};
     const std::vector<std::string> argv = {
-        s.program, "-nostdin", "-hide_banner", "-loglevel", "error", "-y",
-        "-framerate", number(s.fps), "-start_number", std::to_string(s.firstFrame),
-        "-i", ffmpegPattern(s.images),
+        s.program, "-nostdin", "-hide_banner", "-loglevel", "error", "-y", "-framerate",
+        number(s.fps), "-start_number", std::to_string(s.firstFrame), "-i", ffmpegPattern(s.images),
         "-frames:v", std::to_string(s.lastFrame - s.firstFrame + 1),
         // yuv420p halves the chroma resolution, so both sizes must be even.
-        "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-        "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", std::to_string(s.crf),
-        "-movflags", "+faststart", "-f", "mp4", output.string()};
+        "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf",
+        std::to_string(s.crf), "-movflags", "+faststart", "-f", "mp4", output.string()};
     std::vector<char*> args;
     for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
@@ -125,8 +122,7 @@ void encodeVideo(const VideoEncodeSettings& s, const fs::path& output,
     // posix_spawnp searches PATH like execvp; glibc reports a failed exec as its result.
     const int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
-    if (rc != 0)
-        throw ProgramNotFound("cannot run '" + s.program + "': " + std::strerror(rc));
+    if (rc != 0) throw ProgramNotFound("cannot run '" + s.program + "': " + std::strerror(rc));
 
     int status = 0;
     for (;;) {

@@ -15,14 +15,14 @@ public:
 };
 
 struct VideoEncodeSettings {
-    std::string program = "ffmpeg";     ///< a name looked up on PATH, or a path
+    std::string program = "ffmpeg";  ///< a name looked up on PATH, or a path
     /// The frames: a file name in which the first run of '#' is the zero-padded frame number,
     /// e.g. /out/frames/cloud.####.png. Every frame firstFrame..lastFrame must exist.
     std::filesystem::path images;
     int firstFrame = 0;
     int lastFrame = 0;
-    double fps = 24.0;                  ///< frames per second of the video
-    int crf = 18;                       ///< x264 constant rate factor: 0 lossless .. 51 worst
+    double fps = 24.0;  ///< frames per second of the video
+    int crf = 18;       ///< x264 constant rate factor: 0 lossless .. 51 worst
 };
 
 /// Encodes the frames into an MP4 at `output` (H.264 via libx264, yuv420p so that every

@@ -5,8 +5,8 @@
 #include "nodes/data/DataTypes.h"
 #include "nodes/fluid/FluidNodes.h"
 #include "nodes/io/IoNodes.h"
-#include "nodes/render/RenderNodes.h"
 #include "nodes/mapping/MappingNodes.h"
+#include "nodes/render/RenderNodes.h"
 #include "nodes/util/UtilNodes.h"
 #include "nodes/volume/VolumeNodes.h"
 

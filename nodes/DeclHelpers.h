@@ -116,7 +116,8 @@ inline PortDecl port(std::string name, std::string type, std::string doc, bool o
 /// A writer: one input, an OutputPath parameter "file", an int parameter "every" (write on
 /// every Nth frame from the start frame; see writesThisFrame), a Text output "files" with the
 /// paths written; cooks on every run and per frame (#### in the name becomes the frame).
-inline NodeDecl writerDecl(std::string type, std::string doc, PortDecl input, std::string defaultFile)
+inline NodeDecl writerDecl(std::string type, std::string doc, PortDecl input,
+                           std::string defaultFile)
 {
     NodeDecl d;
     d.type = std::move(type);
@@ -126,9 +127,10 @@ inline NodeDecl writerDecl(std::string type, std::string doc, PortDecl input, st
     d.frameDependent = true;
     d.inputs = {std::move(input)};
     d.outputs = {port("files", "Text", "the path written")};
-    d.params = {outputPathParam("file", std::move(defaultFile), "file name, relative to --out"),
-                intParam("every", 1, "frames",
-                         "write frames start, start + every, start + 2 every, ...; skip the rest", 1)};
+    d.params = {
+        outputPathParam("file", std::move(defaultFile), "file name, relative to --out"),
+        intParam("every", 1, "frames",
+                 "write frames start, start + every, start + 2 every, ...; skip the rest", 1)};
     return d;
 }
 

@@ -33,8 +33,8 @@ std::string outputFileProblem(const std::string& path)
     if (p.parent_path().string().find('#') != std::string::npos)
         return "'" + path + "': #### (the frame number) may only be in the file name";
     if (const auto run = firstHashRun(name); run && run->width() > kMaxFrameDigits)
-        return "'" + path + "' has a run of " + std::to_string(run->width()) +
-               " '#'; at most " + std::to_string(kMaxFrameDigits) + " (frames have at most 7 digits)";
+        return "'" + path + "' has a run of " + std::to_string(run->width()) + " '#'; at most " +
+               std::to_string(kMaxFrameDigits) + " (frames have at most 7 digits)";
     return "";
 }
 

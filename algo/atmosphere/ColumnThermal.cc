@@ -51,10 +51,10 @@ void columnThermalStep(const ColumnThermalSettings& s, const ParticleStart& m,
         const float z = in.z[i];
         const float u = in.vz[i];
         const float t = in.temperature[i];
-        const float environment =
-            profile ? c.at(c.temperature, z)
-                    : static_cast<float>(p.groundTemperature) -
-                          static_cast<float>(p.environmentLapse) * z;  // Eq. 9
+        const float environment = profile
+                                      ? c.at(c.temperature, z)
+                                      : static_cast<float>(p.groundTemperature) -
+                                            static_cast<float>(p.environmentLapse) * z;  // Eq. 9
         float acceleration = s.buoyancy == Buoyancy::Paper
                                  ? accelerationPerDegree * (t - environment) - gravity  // Eq. 6
                                  : gravity * (t - environment) / (environment + kelvin);

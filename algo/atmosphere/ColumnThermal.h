@@ -36,11 +36,11 @@ struct ColumnThermalSettings {
     double time = 0.0;
 };
 
-/// What each particle brought from its emission. Its moisture: with a profile its dew point at start is the profile's at its start
-/// height, and it falls kParcelDewpointLapse per metre as the particle rises (a lifted parcel
-/// keeps its mixing ratio); without one it is the paper's constant T_dp. `dewpointOffset`, when
-/// not null, adds each particle's own perturbation (irregular bases). `releaseTime`, when not
-/// null: a particle stays at its start until that many seconds after t0.
+/// What each particle brought from its emission. Its moisture: with a profile its dew point at
+/// start is the profile's at its start height, and it falls kParcelDewpointLapse per metre as the
+/// particle rises (a lifted parcel keeps its mixing ratio); without one it is the paper's constant
+/// T_dp. `dewpointOffset`, when not null, adds each particle's own perturbation (irregular bases).
+/// `releaseTime`, when not null: a particle stays at its start until that many seconds after t0.
 struct ParticleStart {
     const float* startZ = nullptr;
     const float* dewpointOffset = nullptr;

@@ -35,7 +35,8 @@ CondensationState condenseWhere(const CondensationState* previous, const float* 
 }  // namespace
 
 CondensationState condenseStep(const CondensationState* previous, const float* temperature,
-                               const float* z, std::size_t count, double dewPoint, std::int32_t frame)
+                               const float* z, std::size_t count, double dewPoint,
+                               std::int32_t frame)
 {
     return condenseWhere(previous, z, count, frame,
                          [&](std::size_t i) { return temperature[i] < dewPoint; });

@@ -20,7 +20,8 @@ struct CondensationState {
 /// never turns back. Throws std::invalid_argument when the particle count differs from the
 /// previous frame's.
 CondensationState condenseStep(const CondensationState* previous, const float* temperature,
-                               const float* z, std::size_t count, double dewPoint, std::int32_t frame);
+                               const float* z, std::size_t count, double dewPoint,
+                               std::int32_t frame);
 
 /// The same with a dew point per particle: particle i condenses when temperature[i] <
 /// dewpoints[i].

@@ -123,7 +123,8 @@ std::vector<float> noiseMap(const NoiseMapSettings& s, const std::function<void(
     //    kx = 0 .. nx/2; ky runs 0 .. ny-1 and is signed by wrapping the upper half.
     //    Frequencies under fMin (wavelengths over largestWavelength) are dropped.
     const double halfBeta = 0.5 * s.beta;
-    const double fMin2 = s.largestWavelength > 0.0 ? 1.0 / (s.largestWavelength * s.largestWavelength) : 0.0;
+    const double fMin2 =
+        s.largestWavelength > 0.0 ? 1.0 / (s.largestWavelength * s.largestWavelength) : 0.0;
     for (std::size_t j = 0; j < ny; ++j) {
         if ((j * nxc) % kCancelEvery < nxc) cancel();
         const double ky = (2 * j <= ny) ? double(j) : double(j) - double(ny);

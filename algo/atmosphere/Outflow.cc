@@ -52,7 +52,8 @@ std::vector<std::uint32_t> towerIds(const float* x0, const float* y0, std::size_
                 stack.pop_back();
                 const std::size_t cx = c % nx, cy = c / nx;
                 for (std::size_t yy = cy > 0 ? cy - 1 : 0; yy <= std::min(ny - 1, cy + 1); ++yy)
-                    for (std::size_t xx = cx > 0 ? cx - 1 : 0; xx <= std::min(nx - 1, cx + 1); ++xx) {
+                    for (std::size_t xx = cx > 0 ? cx - 1 : 0; xx <= std::min(nx - 1, cx + 1);
+                         ++xx) {
                         const std::size_t k = yy * nx + xx;
                         if (occupied[k] && label[k] == kNone) {
                             label[k] = next;

@@ -19,7 +19,6 @@ std::vector<std::uint32_t> towerIds(const float* x0, const float* y0, std::size_
 /// `bottom` (m), summed in particle order so the result does not depend on threads. Particles
 /// of a tower with none there get their own position.
 void towerAxes(const std::vector<std::uint32_t>& ids, const float* x, const float* y,
-               const float* z, float bottom, std::vector<float>& axisX,
-               std::vector<float>& axisY);
+               const float* z, float bottom, std::vector<float>& axisX, std::vector<float>& axisY);
 
 }  // namespace cg::algo

@@ -80,8 +80,9 @@ double liftingCondensationHeight(double t, double td)
 ParcelAscent liftParcel(const EnvironmentProfile& env, double startM, double stepM)
 {
     if (!(stepM > 0.0) || !(startM < env.topHeight()))
-        throw std::invalid_argument("liftParcel: the step must be positive and the start below "
-                                    "the profile's top");
+        throw std::invalid_argument(
+            "liftParcel: the step must be positive and the start below "
+            "the profile's top");
     ParcelAscent a;
     const double t0 = env.temperature(startM);
     a.lclM = startM + liftingCondensationHeight(t0, env.dewpoint(startM));

@@ -22,12 +22,12 @@ struct ParcelPoint {
 };
 
 struct ParcelAscent {
-    double lclM = 0.0;         ///< lifting condensation level, above sea level
+    double lclM = 0.0;  ///< lifting condensation level, above sea level
     double lclTemperatureC = 0.0;
-    double lfcM = 0.0;         ///< level of free convection; NaN when the parcel never rises freely
-    double elM = 0.0;          ///< equilibrium level; NaN without an LFC; the top when never reached
-    double capeJPerKg = 0.0;   ///< g int (T_p - T_e) / T_e dz from the LFC to the EL
-    double cinJPerKg = 0.0;    ///< the same integral below the LFC where it is negative (<= 0)
+    double lfcM = 0.0;        ///< level of free convection; NaN when the parcel never rises freely
+    double elM = 0.0;         ///< equilibrium level; NaN without an LFC; the top when never reached
+    double capeJPerKg = 0.0;  ///< g int (T_p - T_e) / T_e dz from the LFC to the EL
+    double cinJPerKg = 0.0;   ///< the same integral below the LFC where it is negative (<= 0)
     std::vector<ParcelPoint> path;  ///< every `stepM` metres from the start to the profile's top
 };
 

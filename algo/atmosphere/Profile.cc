@@ -47,21 +47,20 @@ void fillPressures(std::vector<ProfileLevel>& levels)
         first = 0;
     }
     for (std::size_t k = first; k-- > 0;)  // downward from the first given
-        levels[k].pressureHPa =
-            thermo::hydrostaticPressure(levels[k + 1].pressureHPa, levels[k + 1].temperatureC,
-                                        levels[k].temperatureC,
-                                        levels[k].heightM - levels[k + 1].heightM);
+        levels[k].pressureHPa = thermo::hydrostaticPressure(
+            levels[k + 1].pressureHPa, levels[k + 1].temperatureC, levels[k].temperatureC,
+            levels[k].heightM - levels[k + 1].heightM);
     for (std::size_t k = first + 1; k < levels.size(); ++k)
         if (std::isnan(levels[k].pressureHPa))
-            levels[k].pressureHPa =
-                thermo::hydrostaticPressure(levels[k - 1].pressureHPa, levels[k - 1].temperatureC,
-                                            levels[k].temperatureC,
-                                            levels[k].heightM - levels[k - 1].heightM);
+            levels[k].pressureHPa = thermo::hydrostaticPressure(
+                levels[k - 1].pressureHPa, levels[k - 1].temperatureC, levels[k].temperatureC,
+                levels[k].heightM - levels[k - 1].heightM);
 }
 
 }  // namespace
 
-EnvironmentProfile::EnvironmentProfile(std::vector<ProfileLevel> levels) : mLevels(std::move(levels))
+EnvironmentProfile::EnvironmentProfile(std::vector<ProfileLevel> levels)
+    : mLevels(std::move(levels))
 {
     if (mLevels.size() < 2) throw std::invalid_argument("a profile needs at least two levels");
     for (std::size_t i = 0; i < mLevels.size(); ++i) {
@@ -104,9 +103,9 @@ EnvironmentProfile::EnvironmentProfile(std::vector<ProfileLevel> levels) : mLeve
 
 std::size_t EnvironmentProfile::segment(double z, double& weight) const
 {
-    const auto above = std::upper_bound(
-        mLevels.begin(), mLevels.end(), z,
-        [](double value, const ProfileLevel& l) { return value < l.heightM; });
+    const auto above =
+        std::upper_bound(mLevels.begin(), mLevels.end(), z,
+                         [](double value, const ProfileLevel& l) { return value < l.heightM; });
     if (above == mLevels.begin()) {
         weight = 0.0;
         return 0;
@@ -175,9 +174,8 @@ EnvironmentProfile standardAtmosphere(double surfaceTemperatureC, double surface
         l.dewpointC = l.temperatureC - depression;
         l.pressureHPa = levels.empty() ? kSeaLevelPressure
                                        : thermo::hydrostaticPressure(
-                                             levels.back().pressureHPa,
-                                             levels.back().temperatureC, l.temperatureC,
-                                             z - levels.back().heightM);
+                                             levels.back().pressureHPa, levels.back().temperatureC,
+                                             l.temperatureC, z - levels.back().heightM);
         levels.push_back(l);
     }
     return EnvironmentProfile(std::move(levels));

@@ -22,7 +22,10 @@ constexpr std::uint8_t kDigits[10][5] = {
 
 class Canvas {
 public:
-    Canvas(int width, int height) : mImage{width, height, std::vector<std::uint8_t>(3u * width * height, 255)} {}
+    Canvas(int width, int height)
+        : mImage{width, height, std::vector<std::uint8_t>(3u * width * height, 255)}
+    {
+    }
 
     void dot(int x, int y, const std::uint8_t* c)
     {
@@ -34,14 +37,16 @@ public:
     /// A line `thickness` pixels wide (a square brush), clipped to the canvas.
     void line(double x0, double y0, double x1, double y1, const std::uint8_t* c, int thickness = 1)
     {
-        const int steps = static_cast<int>(std::ceil(std::max(std::fabs(x1 - x0), std::fabs(y1 - y0)))) + 1;
+        const int steps =
+            static_cast<int>(std::ceil(std::max(std::fabs(x1 - x0), std::fabs(y1 - y0)))) + 1;
         if (steps > 100000) return;  // off any sane canvas
         for (int k = 0; k <= steps; ++k) {
             const double t = static_cast<double>(k) / steps;
             const int x = static_cast<int>(std::lround(x0 + t * (x1 - x0)));
             const int y = static_cast<int>(std::lround(y0 + t * (y1 - y0)));
             for (int dy = 0; dy < thickness; ++dy)
-                for (int dx = 0; dx < thickness; ++dx) dot(x + dx - thickness / 2, y + dy - thickness / 2, c);
+                for (int dx = 0; dx < thickness; ++dx)
+                    dot(x + dx - thickness / 2, y + dy - thickness / 2, c);
         }
     }
 
@@ -56,7 +61,8 @@ public:
             for (int row = 0; row < 5; ++row)
                 for (int col = 0; col < 3; ++col)
                     if (glyph[row] & (4 >> col))
-                        for (int s = 0; s < 4; ++s) dot(x + 2 * col + s % 2, y + 2 * row + s / 2, kLabel);
+                        for (int s = 0; s < 4; ++s)
+                            dot(x + 2 * col + s % 2, y + 2 * row + s / 2, kLabel);
         }
     }
 
@@ -73,7 +79,8 @@ SkewTAxes::SkewTAxes(const SkewTOptions& o)
       mPixelsPerLog(o.height / std::log(o.bottomHPa / o.topHPa)),
       mPixelsPerC(o.width / (o.rightC - o.leftC))
 {
-    if (!(o.width > 0 && o.height > 0 && o.bottomHPa > o.topHPa && o.topHPa > 0.0 && o.rightC > o.leftC))
+    if (!(o.width > 0 && o.height > 0 && o.bottomHPa > o.topHPa && o.topHPa > 0.0 &&
+          o.rightC > o.leftC))
         throw std::invalid_argument("skew-T: bad diagram settings");
 }
 
@@ -97,7 +104,9 @@ SkewTImage drawSkewT(const EnvironmentProfile& profile, const ParcelAscent& parc
     const double kappa = thermo::kDryGasConstant / thermo::kDryHeatCapacity;
     for (double theta = -30.0; theta <= 200.0; theta += 10.0)
         for (double p = o.bottomHPa; p > o.topHPa; p -= 10.0) {
-            const auto t = [&](double q) { return (theta + thermo::kKelvin) * std::pow(q / 1000.0, kappa) - thermo::kKelvin; };
+            const auto t = [&](double q) {
+                return (theta + thermo::kKelvin) * std::pow(q / 1000.0, kappa) - thermo::kKelvin;
+            };
             canvas.line(a.x(t(p), p), a.y(p), a.x(t(p - 10.0), p - 10.0), a.y(p - 10.0), kAdiabat);
         }
     for (double c = -120.0; c <= o.rightC; c += 10.0)
@@ -115,7 +124,8 @@ SkewTImage drawSkewT(const EnvironmentProfile& profile, const ParcelAscent& parc
         canvas.line(a.x(l0.dewpointC, l0.pressureHPa), a.y(l0.pressureHPa),
                     a.x(l1.dewpointC, l1.pressureHPa), a.y(l1.pressureHPa), kSkewTDewpoint, 2);
         canvas.line(a.x(l0.temperatureC, l0.pressureHPa), a.y(l0.pressureHPa),
-                    a.x(l1.temperatureC, l1.pressureHPa), a.y(l1.pressureHPa), kSkewTEnvironment, 2);
+                    a.x(l1.temperatureC, l1.pressureHPa), a.y(l1.pressureHPa), kSkewTEnvironment,
+                    2);
     }
     for (std::size_t i = 1; i < parcel.path.size(); ++i) {
         const ParcelPoint& q0 = parcel.path[i - 1];

@@ -19,8 +19,8 @@ struct SkewTOptions {
     int height = 720;
     double bottomHPa = 1050.0;  ///< the diagram's pressure range
     double topHPa = 100.0;
-    double leftC = -40.0;       ///< temperature at the bottom-left corner
-    double rightC = 50.0;       ///< temperature at the bottom-right corner
+    double leftC = -40.0;  ///< temperature at the bottom-left corner
+    double rightC = 50.0;  ///< temperature at the bottom-right corner
     /// A cloud drawn beside the ticks, base and top above sea level (m); NaN: none.
     double cloudBaseM = std::numeric_limits<double>::quiet_NaN();
     double cloudTopM = std::numeric_limits<double>::quiet_NaN();

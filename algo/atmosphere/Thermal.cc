@@ -14,7 +14,8 @@ namespace {
 /// loop (the state is float anyway). The branches are selects: every lane does the same work.
 void stepKernel(const float* __restrict zIn, const float* __restrict vzIn,
                 const float* __restrict tIn, float* __restrict zOut, float* __restrict vzOut,
-                float* __restrict tOut, std::size_t begin, std::size_t end, const ThermalSettings& s)
+                float* __restrict tOut, std::size_t begin, std::size_t end,
+                const ThermalSettings& s)
 {
     const float dt = static_cast<float>(s.timeStep);
     const float accelerationPerDegree = static_cast<float>(s.buoyancyCoefficient / s.mass);
@@ -30,15 +31,15 @@ void stepKernel(const float* __restrict zIn, const float* __restrict vzIn,
         const float z = zIn[i];
         const float u = vzIn[i];
         const float t = tIn[i];
-        const float environment = groundTemperature - environmentLapse * z;         // Eq. 9
+        const float environment = groundTemperature - environmentLapse * z;  // Eq. 9
         // Eq. 6 divided by m: f/m = (C_b/m)(T_v - T_e) - g
         const float acceleration = accelerationPerDegree * (t - environment) - gravity;
-        float uNext = u + dt * acceleration;                                        // Eq. 7
-        float zNext = z + dt * u;                                                   // Eq. 7
+        float uNext = u + dt * acceleration;  // Eq. 7
+        float zNext = z + dt * u;             // Eq. 7
         const bool belowGround = zNext < floorHeight;
         zNext = belowGround ? floorHeight : zNext;
         uNext = belowGround ? std::max(uNext, 0.0f) : uNext;
-        const float lapse = t >= dewPoint ? dryLapse : moistLapse;                  // Eq. 8
+        const float lapse = t >= dewPoint ? dryLapse : moistLapse;  // Eq. 8
         zOut[i] = zNext;
         vzOut[i] = uNext;
         tOut[i] = t - lapse * (zNext - z);

@@ -20,9 +20,8 @@ double moistAdiabaticLapse(double temperatureC, double pressureHPa)
     const double t = temperatureC + kKelvin;
     const double r = saturationMixingRatio(temperatureC, pressureHPa);
     const double numerator = kGravity * (1.0 + kLatentHeat * r / (kDryGasConstant * t));
-    const double denominator =
-        kDryHeatCapacity +
-        kLatentHeat * kLatentHeat * r * kMolarMassRatio / (kDryGasConstant * t * t);
+    const double denominator = kDryHeatCapacity + kLatentHeat * kLatentHeat * r * kMolarMassRatio /
+                                                      (kDryGasConstant * t * t);
     return numerator / denominator;
 }
 

@@ -6,11 +6,11 @@
 
 namespace cg::algo::thermo {
 
-constexpr double kGravity = 9.80665;             ///< standard gravity, m/s^2 (ICAO)
-constexpr double kDryGasConstant = 287.053;      ///< R_d, J/(kg K) (ICAO)
-constexpr double kDryHeatCapacity = 1005.0;      ///< c_pd, J/(kg K)
-constexpr double kLatentHeat = 2.501e6;          ///< L_v at 0 C, J/kg
-constexpr double kMolarMassRatio = 0.622;        ///< epsilon = R_d / R_v
+constexpr double kGravity = 9.80665;         ///< standard gravity, m/s^2 (ICAO)
+constexpr double kDryGasConstant = 287.053;  ///< R_d, J/(kg K) (ICAO)
+constexpr double kDryHeatCapacity = 1005.0;  ///< c_pd, J/(kg K)
+constexpr double kLatentHeat = 2.501e6;      ///< L_v at 0 C, J/kg
+constexpr double kMolarMassRatio = 0.622;    ///< epsilon = R_d / R_v
 constexpr double kKelvin = 273.15;
 /// Gamma_d = g / c_pd: a dry parcel cools 9.76 C per km.
 constexpr double kDryAdiabaticLapse = kGravity / kDryHeatCapacity;

@@ -48,9 +48,9 @@ Wind WindProfile::at(double heightM) const
     if (mLevels.empty()) return {};
     if (heightM <= mLevels.front().heightM) return {mLevels.front().east, mLevels.front().north};
     if (heightM >= mLevels.back().heightM) return {mLevels.back().east, mLevels.back().north};
-    const auto above = std::upper_bound(
-        mLevels.begin(), mLevels.end(), heightM,
-        [](double value, const WindLevel& l) { return value < l.heightM; });
+    const auto above =
+        std::upper_bound(mLevels.begin(), mLevels.end(), heightM,
+                         [](double value, const WindLevel& l) { return value < l.heightM; });
     const WindLevel& hi = *above;
     const WindLevel& lo = *(above - 1);
     const double w = (heightM - lo.heightM) / (hi.heightM - lo.heightM);

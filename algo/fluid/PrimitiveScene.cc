@@ -97,7 +97,8 @@ PrimitiveResult simulatePrimitive(const PrimitiveSettings& s, const std::functio
         }
         for (std::uint32_t i : cloud)
             for (int a = 0; a < 3; ++a)
-                out.positions.push_back(static_cast<float>(x[3 * std::size_t{i} + a] - out.origin[a]));
+                out.positions.push_back(
+                    static_cast<float>(x[3 * std::size_t{i} + a] - out.origin[a]));
         if (progress) progress(f);
     }
     out.pressureIterations = solver.totalPressureIterations();

@@ -36,11 +36,11 @@ struct PrimitiveResult {
     /// The cloud origin in box coordinates (m): the first cloud particles' mean x and y at
     /// their lowest z; (0, 0, 0) when nothing condenses.
     double origin[3] = {0.0, 0.0, 0.0};
-    std::size_t fluidParticles = 0;     ///< fluid particles simulated
-    long long subSteps = 0;             ///< CFL sub-steps taken in all
-    long long pressureIterations = 0;   ///< pressure-solve iterations in all
-    double maxDensityError = 0.0;       ///< largest max |rho - rho0| / rho0 over the run
-    double meanDensityError = 0.0;      ///< largest mean solver error over the run
+    std::size_t fluidParticles = 0;    ///< fluid particles simulated
+    long long subSteps = 0;            ///< CFL sub-steps taken in all
+    long long pressureIterations = 0;  ///< pressure-solve iterations in all
+    double maxDensityError = 0.0;      ///< largest max |rho - rho0| / rho0 over the run
+    double meanDensityError = 0.0;     ///< largest mean solver error over the run
 };
 
 /// Fluid particles the box of `s` needs (for allocation checks), without building anything.

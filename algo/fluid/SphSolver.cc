@@ -15,8 +15,8 @@ namespace cg::algo {
 namespace {
 
 constexpr std::size_t kMaxNeighbours = 96;  // more means the flow blew up
-constexpr std::size_t kStrideMargin = 8;     // spare slots per row over the last fullest row
-constexpr std::size_t kGrain = 1024;  // fixed split for the deterministic reductions
+constexpr std::size_t kStrideMargin = 8;    // spare slots per row over the last fullest row
+constexpr std::size_t kGrain = 1024;        // fixed split for the deterministic reductions
 
 template <typename F>
 void forParticles(std::size_t n, F&& f)

@@ -8,7 +8,8 @@ std::optional<float> condensationLevel(const CondensationView& c)
 {
     std::optional<float> lowest;
     for (std::size_t i = 0; i < c.count; ++i)
-        if (c.condensedFrame[i] >= 0 && (!lowest || c.condensedZ[i] < *lowest)) lowest = c.condensedZ[i];
+        if (c.condensedFrame[i] >= 0 && (!lowest || c.condensedZ[i] < *lowest))
+            lowest = c.condensedZ[i];
     return lowest;
 }
 
@@ -45,7 +46,8 @@ CloudChunk chunkAbove(const CloudChunk& chunk, float zMin, KeptParticles& kept)
     kept.sources.clear();
     for (std::uint64_t i = 0; i < chunk.count; ++i) {
         if (!survives(chunk.positions[3 * i + 2], zMin)) continue;
-        kept.positions.insert(kept.positions.end(), chunk.positions + 3 * i, chunk.positions + 3 * i + 3);
+        kept.positions.insert(kept.positions.end(), chunk.positions + 3 * i,
+                              chunk.positions + 3 * i + 3);
         if (chunk.levels) kept.levels.push_back(chunk.levels[i]);
         if (chunk.sources) kept.sources.push_back(chunk.sources[i]);
     }

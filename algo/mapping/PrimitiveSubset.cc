@@ -6,12 +6,13 @@ namespace cg::algo {
 
 std::uint32_t subsetStride(std::uint64_t lastCount, std::uint64_t target)
 {
-    return static_cast<std::uint32_t>(std::max<std::uint64_t>(1, (lastCount + target - 1) / target));
+    return static_cast<std::uint32_t>(
+        std::max<std::uint64_t>(1, (lastCount + target - 1) / target));
 }
 
-void everyKthParticle(const std::vector<std::uint32_t>& counts,
-                      const std::vector<float>& positions, std::uint32_t k,
-                      std::vector<std::uint32_t>& keptCounts, std::vector<float>& keptPositions)
+void everyKthParticle(const std::vector<std::uint32_t>& counts, const std::vector<float>& positions,
+                      std::uint32_t k, std::vector<std::uint32_t>& keptCounts,
+                      std::vector<float>& keptPositions)
 {
     keptCounts.clear();
     keptCounts.reserve(counts.size());

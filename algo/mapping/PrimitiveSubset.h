@@ -15,8 +15,8 @@ std::uint32_t subsetStride(std::uint64_t lastCount, std::uint64_t target);
 /// layout of PrimitiveSetData). Ids appear in order, so frame s keeps ceil(N_f(s) / k)
 /// particles and the subset is again a primitive set (stable ids in order of appearance,
 /// N_f non-decreasing); each kept particle follows its physical trajectory. `k` >= 1.
-void everyKthParticle(const std::vector<std::uint32_t>& counts,
-                      const std::vector<float>& positions, std::uint32_t k,
-                      std::vector<std::uint32_t>& keptCounts, std::vector<float>& keptPositions);
+void everyKthParticle(const std::vector<std::uint32_t>& counts, const std::vector<float>& positions,
+                      std::uint32_t k, std::vector<std::uint32_t>& keptCounts,
+                      std::vector<float>& keptPositions);
 
 }  // namespace cg::algo

@@ -11,7 +11,8 @@ namespace cg::algo {
 
 /// Perlin-style gradient noise (quintic fade, 12 edge gradients), about [−1, 1], lattice
 /// spacing 1. With period > 0 the lattice wraps every `period` cells, so the noise tiles.
-inline double gradientNoise(double x, double y, double z, std::uint64_t seed, std::int64_t period = 0)
+inline double gradientNoise(double x, double y, double z, std::uint64_t seed,
+                            std::int64_t period = 0)
 {
     const double fx = std::floor(x), fy = std::floor(y), fz = std::floor(z);
     const auto ix = static_cast<std::int64_t>(fx);
@@ -20,7 +21,9 @@ inline double gradientNoise(double x, double y, double z, std::uint64_t seed, st
     const double rx = x - fx, ry = y - fy, rz = z - fz;
     const auto fade = [](double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); };
     const double u = fade(rx), v = fade(ry), w = fade(rz);
-    const auto wrap = [period](std::int64_t i) { return period > 0 ? ((i % period) + period) % period : i; };
+    const auto wrap = [period](std::int64_t i) {
+        return period > 0 ? ((i % period) + period) % period : i;
+    };
     const auto corner = [&](int dx, int dy, int dz) {
         const std::uint64_t h =
             mix64(mix64(mix64(seed ^ static_cast<std::uint64_t>(wrap(ix + dx))) ^
@@ -28,18 +31,30 @@ inline double gradientNoise(double x, double y, double z, std::uint64_t seed, st
                   static_cast<std::uint64_t>(wrap(iz + dz)));
         const double px = rx - dx, py = ry - dy, pz = rz - dz;
         switch (h % 12) {  // the 12 edge directions of a cube
-        case 0: return px + py;
-        case 1: return -px + py;
-        case 2: return px - py;
-        case 3: return -px - py;
-        case 4: return px + pz;
-        case 5: return -px + pz;
-        case 6: return px - pz;
-        case 7: return -px - pz;
-        case 8: return py + pz;
-        case 9: return -py + pz;
-        case 10: return py - pz;
-        default: return -py - pz;
+            case 0:
+                return px + py;
+            case 1:
+                return -px + py;
+            case 2:
+                return px - py;
+            case 3:
+                return -px - py;
+            case 4:
+                return px + pz;
+            case 5:
+                return -px + pz;
+            case 6:
+                return px - pz;
+            case 7:
+                return -px - pz;
+            case 8:
+                return py + pz;
+            case 9:
+                return -py + pz;
+            case 10:
+                return py - pz;
+            default:
+                return -py - pz;
         }
     };
     const auto lerp = [](double a, double b, double t) { return a + (b - a) * t; };

@@ -101,7 +101,8 @@ const std::vector<float>& texture()
                     const double p[3] = {static_cast<double>(i) / kPerlinWorleyTexelsPerCycle,
                                          static_cast<double>(j) / kPerlinWorleyTexelsPerCycle,
                                          static_cast<double>(k) / kPerlinWorleyTexelsPerCycle};
-                    t[(static_cast<std::size_t>(i) * kSize + j) * kSize + k] = perlinWorleyAt(p, coarse, fine);
+                    t[(static_cast<std::size_t>(i) * kSize + j) * kSize + k] =
+                        perlinWorleyAt(p, coarse, fine);
                 }
         });
         return t;

@@ -37,8 +37,12 @@ struct Column {
     int iterations = 0;
 
     Column(const std::vector<double>& rhs, std::vector<double>& solution, std::size_t blocks)
-        : b(rhs), x(solution), r(new double[rhs.size()]), z(new double[rhs.size()]),
-          p(new double[rhs.size()]), Ap(new double[rhs.size()])
+        : b(rhs),
+          x(solution),
+          r(new double[rhs.size()]),
+          z(new double[rhs.size()]),
+          p(new double[rhs.size()]),
+          Ap(new double[rhs.size()])
     {
         for (auto& sums : partial) sums.assign(blocks, 0.0);
     }

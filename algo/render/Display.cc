@@ -49,21 +49,21 @@ std::vector<std::uint8_t> displayRgb8(const std::vector<float>& rgba, int width,
     std::vector<std::uint8_t> out(n * 3);
     // Every pixel writes only its own bytes and the dither is keyed by its index: the same
     // bytes for any thread count.
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-            for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                for (std::size_t c = 0; c < 3; ++c) {
-                    const double y = toneMap(scale * rgba[i * 4 + c], s.curve);
-                    double d = 0.0;
-                    if (s.dither) {  // triangular PDF on (−1, 1) code values
-                        const std::uint64_t k = i * 3 + c;
-                        d = counterUniform(s.seed, 2 * k, 0x44495448ull) -
-                            counterUniform(s.seed, 2 * k + 1, 0x44495448ull);
-                    }
-                    out[i * 3 + c] = codeValue(y, d);
-                }
-            }
-        });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                              for (std::size_t c = 0; c < 3; ++c) {
+                                  const double y = toneMap(scale * rgba[i * 4 + c], s.curve);
+                                  double d = 0.0;
+                                  if (s.dither) {  // triangular PDF on (−1, 1) code values
+                                      const std::uint64_t k = i * 3 + c;
+                                      d = counterUniform(s.seed, 2 * k, 0x44495448ull) -
+                                          counterUniform(s.seed, 2 * k + 1, 0x44495448ull);
+                                  }
+                                  out[i * 3 + c] = codeValue(y, d);
+                              }
+                          }
+                      });
     return out;
 }
 

@@ -12,8 +12,8 @@ namespace cg::algo {
 struct DisplaySettings {
     double exposure = 0.0;  ///< stops: radiance is multiplied by 2^exposure
     ToneCurve curve = ToneCurve::Aces;
-    bool dither = true;     ///< ±1 code-value triangular dither against banding (counter-based)
-    std::uint64_t seed = 0; ///< dither seed
+    bool dither = true;      ///< ±1 code-value triangular dither against banding (counter-based)
+    std::uint64_t seed = 0;  ///< dither seed
 };
 
 /// RGB8 from linear RGBA floats (4 per pixel; alpha ignored, the image is already

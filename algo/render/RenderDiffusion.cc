@@ -22,8 +22,8 @@ constexpr std::size_t kMaxCells = std::size_t(1) << 21;
 
 constexpr std::size_t kVoxelBatch = std::size_t(1) << 18;  ///< voxels shared out at a time
 constexpr int kMaxIterations = 400;
-constexpr int kLimiterPasses = 3;  ///< solves of the sun with the flux limiter updated
-constexpr double kMostLimit = 4.0;  ///< the limiter's largest R, per cell width
+constexpr int kLimiterPasses = 3;    ///< solves of the sun with the flux limiter updated
+constexpr double kMostLimit = 4.0;   ///< the limiter's largest R, per cell width
 constexpr double kTolerance = 1e-3;  ///< relative residual at which the solve stops
 /// The same for the solves before the last (the flux limiter's, and the first solve of all
 /// lights, which only feeds the gather): R and the clouds' glow need not be exact.
@@ -317,7 +317,7 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
     };
     letIn({});
 
-    const auto assemble = [&](SparseSystem& A, std::vector<double> (&rhs)[kLights]) {
+    const auto assemble = [&](SparseSystem& A, std::vector<double>(&rhs)[kLights]) {
         A.diag.assign(n, 0.0);
         A.neighbour.resize(6 * n);
         A.coupling.assign(6 * n, 0.0f);
@@ -504,8 +504,8 @@ RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLig
                 for (int f = 0; f < 6; ++f) {
                     int nb[3] = {i, j, k};
                     nb[f / 2] += f % 2 ? 1 : -1;
-                    if (nb[0] < 0 || nb[1] < 0 || nb[2] < 0 || nb[0] >= mN[0] ||
-                        nb[1] >= mN[1] || nb[2] >= mN[2])
+                    if (nb[0] < 0 || nb[1] < 0 || nb[2] < 0 || nb[0] >= mN[0] || nb[1] >= mN[1] ||
+                        nb[2] >= mN[2])
                         continue;
                     const std::int32_t row = id[index(nb[0], nb[1], nb[2])];
                     if (row < 0) continue;

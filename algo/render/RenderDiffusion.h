@@ -84,14 +84,15 @@ public:
     DiffuseLight coloured(const RenderVec3 (&radiance)[kLights]) const;
 
     bool empty() const { return mPhi[Sun].empty(); }
-    double cell() const { return mH; }  ///< m
+    double cell() const { return mH; }              ///< m
     int iterations() const { return mIterations; }  ///< of the longest of the solves
 
 private:
     std::size_t index(int i, int j, int k) const
     {
         return (static_cast<std::size_t>(i) * static_cast<std::size_t>(mN[1]) +
-                static_cast<std::size_t>(j)) * static_cast<std::size_t>(mN[2]) +
+                static_cast<std::size_t>(j)) *
+                   static_cast<std::size_t>(mN[2]) +
                static_cast<std::size_t>(k);
     }
 
@@ -99,13 +100,13 @@ private:
     /// Its inverse Jacobian transpose (index-space gradient to world), held as a matrix: the
     /// map's applyIJT goes through a shared pointer copy, an atomic count per call.
     openvdb::Mat3d mGradientToWorld = openvdb::Mat3d::identity();
-    openvdb::Coord mFirstVoxel;       ///< first voxel of cell (0, 0, 0)
-    int mVoxels = 1;                  ///< cell edge, voxels
-    double mH = 0.0;                  ///< cell edge, m (the smallest voxel edge × mVoxels)
+    openvdb::Coord mFirstVoxel;  ///< first voxel of cell (0, 0, 0)
+    int mVoxels = 1;             ///< cell edge, voxels
+    double mH = 0.0;             ///< cell edge, m (the smallest voxel edge × mVoxels)
     int mN[3] = {0, 0, 0};
     std::vector<float> mPhi[kLights];  ///< per light, per cell, dense
-    std::vector<float> mD;          ///< diffusion coefficient per cell, m
-    std::vector<float> mDrift;      ///< 3 D Q1 per cell (x, y, z): the sun part's flux source
+    std::vector<float> mD;             ///< diffusion coefficient per cell, m
+    std::vector<float> mDrift;         ///< 3 D Q1 per cell (x, y, z): the sun part's flux source
     /// With a ground: the map of its points, and per point and light the ground's radiance
     /// per unit of that light (its sky light and the clouds' glow; no direct sun).
     GroundGrid mGround;

@@ -15,8 +15,8 @@
 namespace cg::algo {
 
 RenderLightMap::RenderLightMap(const openvdb::FloatGrid& grid, const RenderOccupancy& occupancy,
-                               const RenderVec3& towardLight, double extinction,
-                               double texelVoxels, double stepVoxels, std::size_t maxTexels,
+                               const RenderVec3& towardLight, double extinction, double texelVoxels,
+                               double stepVoxels, std::size_t maxTexels,
                                const std::function<bool()>& cancelled)
 {
     const openvdb::CoordBBox active = grid.evalActiveVoxelBoundingBox();
@@ -88,8 +88,8 @@ RenderLightMap::RenderLightMap(const openvdb::FloatGrid& grid, const RenderOccup
                                   // constant up to the node before the first.
                                   Column& c = mColumns[col];
                                   c.lo = std::max(0, static_cast<int>(spans.front().t0 / mH));
-                                  c.hi = std::min(mN[2] - 1, static_cast<int>(
-                                                                 std::ceil(spans.back().t1 / mH)));
+                                  c.hi = std::min(
+                                      mN[2] - 1, static_cast<int>(std::ceil(spans.back().t1 / mH)));
                               }
                           });
         std::size_t stored = 0;
@@ -107,35 +107,35 @@ RenderLightMap::RenderLightMap(const openvdb::FloatGrid& grid, const RenderOccup
     const int nSub = std::max(1, static_cast<int>(std::ceil(mH / (stepVoxels * voxel))));
     const double ds = mH / nSub;
     const double length = mH * (mN[2] - 1);
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, mColumns.size(), 16),
-        [&](const tbb::blocked_range<std::size_t>& range) {
-            if (cancelled && cancelled()) return;
-            TrilinearDensity density(grid, occupancy);
-            std::vector<RenderOccupancy::Span> spans;
-            for (std::size_t col = range.begin(); col != range.end(); ++col) {
-                const Column& c = mColumns[col];
-                if (c.hi < c.lo) continue;
-                const RenderVec3 base = columnBase(col);
-                spans.clear();
-                occupancy.spans(base, wIdx, 0.0, length, spans);
-                float* tau = mTau.data() + c.offset;  // tau[iw - lo]
-                // From the light end (τ(hi) = 0) down, one texel at a time.
-                double sum = 0.0;
-                std::size_t si = spans.size();  // spans are in increasing s; walk backwards
-                for (int iw = c.hi; iw > c.lo; --iw) {
-                    for (int k = 0; k < nSub; ++k) {
-                        const double s = iw * mH - (k + 0.5) * ds;
-                        while (si > 0 && spans[si - 1].t0 > s) --si;
-                        if (si == 0) break;
-                        if (s > spans[si - 1].t1) continue;
-                        const double d = density.sample(base + wIdx * s);
-                        if (d > 0.0) sum += extinction * d * ds;
-                    }
-                    tau[iw - 1 - c.lo] = static_cast<float>(sum);
-                }
-            }
-        });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mColumns.size(), 16),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                          if (cancelled && cancelled()) return;
+                          TrilinearDensity density(grid, occupancy);
+                          std::vector<RenderOccupancy::Span> spans;
+                          for (std::size_t col = range.begin(); col != range.end(); ++col) {
+                              const Column& c = mColumns[col];
+                              if (c.hi < c.lo) continue;
+                              const RenderVec3 base = columnBase(col);
+                              spans.clear();
+                              occupancy.spans(base, wIdx, 0.0, length, spans);
+                              float* tau = mTau.data() + c.offset;  // tau[iw - lo]
+                              // From the light end (τ(hi) = 0) down, one texel at a time.
+                              double sum = 0.0;
+                              std::size_t si =
+                                  spans.size();  // spans are in increasing s; walk backwards
+                              for (int iw = c.hi; iw > c.lo; --iw) {
+                                  for (int k = 0; k < nSub; ++k) {
+                                      const double s = iw * mH - (k + 0.5) * ds;
+                                      while (si > 0 && spans[si - 1].t0 > s) --si;
+                                      if (si == 0) break;
+                                      if (s > spans[si - 1].t1) continue;
+                                      const double d = density.sample(base + wIdx * s);
+                                      if (d > 0.0) sum += extinction * d * ds;
+                                  }
+                                  tau[iw - 1 - c.lo] = static_cast<float>(sum);
+                              }
+                          }
+                      });
 }
 
 double RenderLightMap::opticalDepth(const RenderVec3& p) const { return lookup(p, false); }
@@ -168,8 +168,8 @@ double RenderLightMap::lookup(const RenderVec3& p, bool farEnd) const
     double result = 0.0;
     for (int c = 0; c < 8; ++c) {
         const int du = c & 1, dv = (c >> 1) & 1, dw = (c >> 2) & 1;
-        const double w = (du ? w1[0] : 1.0 - w1[0]) * (dv ? w1[1] : 1.0 - w1[1]) *
-                         (dw ? w1[2] : 1.0 - w1[2]);
+        const double w =
+            (du ? w1[0] : 1.0 - w1[0]) * (dv ? w1[1] : 1.0 - w1[1]) * (dw ? w1[2] : 1.0 - w1[2]);
         if (w > 0.0) result += w * tau[dw][dv][du];
     }
     return result;

@@ -50,7 +50,7 @@ public:
     bool empty() const { return mTau.empty(); }
     std::size_t storedTexels() const { return mTau.size(); }
     const RenderVec3& towardLight() const { return mW; }  ///< unit, world
-    double texel() const { return mH; }  ///< m
+    double texel() const { return mH; }                   ///< m
 
 private:
     double lookup(const RenderVec3& p, bool farEnd) const;
@@ -71,7 +71,7 @@ private:
 
     RenderVec3 mOrigin{0.0, 0.0, 0.0};  ///< world position of node (0, 0, 0)
     RenderVec3 mU{1.0, 0.0, 0.0}, mV{0.0, 1.0, 0.0}, mW{0.0, 0.0, 1.0};  ///< mW toward light
-    double mH = 1.0;     ///< texel, m
+    double mH = 1.0;                                                     ///< texel, m
     int mN[3] = {0, 0, 0};
     std::vector<Column> mColumns;  ///< index iu * nv + iv
     std::vector<float> mTau;       ///< the columns' stored texels, one after another

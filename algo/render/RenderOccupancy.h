@@ -92,7 +92,8 @@ private:
     std::size_t blockIndex(int i, int j, int k) const
     {
         return (static_cast<std::size_t>(i) * static_cast<std::size_t>(mN[1]) +
-                static_cast<std::size_t>(j)) * static_cast<std::size_t>(mN[2]) +
+                static_cast<std::size_t>(j)) *
+                   static_cast<std::size_t>(mN[2]) +
                static_cast<std::size_t>(k);
     }
 
@@ -112,7 +113,7 @@ private:
     int mMin[3] = {0, 0, 0};  ///< first block, in block units
     int mN[3] = {0, 0, 0};    ///< blocks per axis
     std::vector<std::uint8_t> mOcc;
-    std::vector<float> mMax;  ///< per block; empty unless majorants were asked for
+    std::vector<float> mMax;             ///< per block; empty unless majorants were asked for
     std::vector<std::uint64_t> mBricks;  ///< per block; empty over a domain too large for them
 };
 
@@ -152,8 +153,8 @@ void RenderOccupancy::walk(const RenderVec3& origin, const RenderVec3& dir, doub
 
     double t = t0;
     for (;;) {
-        const int axis = tNext[0] < tNext[1] ? (tNext[0] < tNext[2] ? 0 : 2)
-                                             : (tNext[1] < tNext[2] ? 1 : 2);
+        const int axis =
+            tNext[0] < tNext[1] ? (tNext[0] < tNext[2] ? 0 : 2) : (tNext[1] < tNext[2] ? 1 : 2);
         const double tExit = std::min(tNext[axis], t1);
         if (!fn(blockIndex(cell[0], cell[1], cell[2]), t, tExit)) return;
         t = tExit;

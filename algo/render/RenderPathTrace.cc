@@ -61,8 +61,11 @@ RenderVec3 aroundAxis(const RenderVec3& axis, double cosTheta, double phi)
 class PathTracer {
 public:
     PathTracer(const openvdb::FloatGrid& grid, const RenderSettings& settings)
-        : mS(settings), mGrid(grid), mOcc(grid.tree(), /*majorants=*/true),
-          mRays(settings.camera), mPhase(phaseOf(settings.medium))
+        : mS(settings),
+          mGrid(grid),
+          mOcc(grid.tree(), /*majorants=*/true),
+          mRays(settings.camera),
+          mPhase(phaseOf(settings.medium))
     {
         renderVoxelSize(grid);  // refuses a non-linear transform
         if (settings.pathTrace.samples < 1 || settings.pathTrace.maxBounces < 1)
@@ -205,7 +208,8 @@ private:
                 beta *= mS.ground.albedo;
                 // Cosine-weighted bounce: albedo × cos / π over pdf cos / π leaves the albedo.
                 const double u = rng.uniform();
-                dir = aroundAxis(RenderVec3(0, 0, 1), std::sqrt(1.0 - u), 2.0 * kPi * rng.uniform());
+                dir =
+                    aroundAxis(RenderVec3(0, 0, 1), std::sqrt(1.0 - u), 2.0 * kPi * rng.uniform());
             }
             if (event >= kPathRouletteAfter) {
                 const double q = std::max({beta.x(), beta.y(), beta.z()});

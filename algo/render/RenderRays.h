@@ -82,8 +82,7 @@ inline RenderVec3 skyRadiance(const RenderSky& sky, const RenderVec3& dir)
 
 /// The camera's view of a ground point at distance `distance`: its radiance faded toward the
 /// horizon colour as exp(−distance / hazeDistance) (no haze when hazeDistance is 0).
-inline RenderVec3 hazedGround(const RenderSettings& s, const RenderVec3& radiance,
-                              double distance)
+inline RenderVec3 hazedGround(const RenderSettings& s, const RenderVec3& radiance, double distance)
 {
     if (!(s.ground.hazeDistance > 0.0)) return radiance;
     const double f = std::exp(-distance / s.ground.hazeDistance);

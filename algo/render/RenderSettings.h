@@ -33,8 +33,8 @@ struct RenderSun {
 struct RenderSky {
     RenderVec3 zenith{0.16, 0.33, 0.75};
     RenderVec3 horizon{0.55, 0.65, 0.80};
-    double ambient = 1.0;       ///< 1 = physically as bright as the visible sky
-    double occlusion = 0.3;     ///< sky light inside the cloud falls as exp(−occlusion τ_up)
+    double ambient = 1.0;    ///< 1 = physically as bright as the visible sky
+    double occlusion = 0.3;  ///< sky light inside the cloud falls as exp(−occlusion τ_up)
 };
 
 /// An infinite Lambertian ground at z = 0 that receives the cloud's shadow.
@@ -55,9 +55,9 @@ struct RenderMedium {
     double extinction = 0.05;  ///< 1/m per unit density
     double albedo = 0.99;      ///< single-scattering albedo
     PhaseModel phase = PhaseModel::TwoLobeHenyeyGreenstein;
-    double g = 0.8;            ///< HG asymmetry of the main (forward) lobe
-    double g2 = -0.3;          ///< HG asymmetry of the second (backward) lobe
-    double lobeBlend = 0.2;    ///< weight of the second lobe, 0 = single lobe
+    double g = 0.8;                 ///< HG asymmetry of the main (forward) lobe
+    double g2 = -0.3;               ///< HG asymmetry of the second (backward) lobe
+    double lobeBlend = 0.2;         ///< weight of the second lobe, 0 = single lobe
     double dropletDiameter = 20.0;  ///< μm, with PhaseModel::Mie (fit valid for 5 to 50)
 };
 
@@ -77,18 +77,18 @@ struct RenderMultiScatter {
     MultiScatterModel model = MultiScatterModel::Diffusion;
     int cellVoxels = 2;  ///< diffusion: lattice cell edge, voxels (grown to fit 2M cells)
     int octaves = 4;
-    double attenuation = 0.5;    ///< a
-    double contribution = 0.5;   ///< b
-    double eccentricity = 0.5;   ///< c
+    double attenuation = 0.5;   ///< a
+    double contribution = 0.5;  ///< b
+    double eccentricity = 0.5;  ///< c
 };
 
 /// Ray-marching controls. Steps are in voxels of the fog volume.
 struct RenderMarch {
-    double step = 0.5;            ///< camera-ray step, voxels
-    double lightTexel = 1.0;      ///< light-map texel, voxels (grown if the map would be huge)
-    double lightStep = 1.0;       ///< step when filling the light maps, voxels
-    bool jitter = true;           ///< offset each pixel's samples by a per-pixel random fraction
-    std::uint64_t seed = 0;       ///< seed of that offset and of the path tracer's paths
+    double step = 0.5;               ///< camera-ray step, voxels
+    double lightTexel = 1.0;         ///< light-map texel, voxels (grown if the map would be huge)
+    double lightStep = 1.0;          ///< step when filling the light maps, voxels
+    bool jitter = true;              ///< offset each pixel's samples by a per-pixel random fraction
+    std::uint64_t seed = 0;          ///< seed of that offset and of the path tracer's paths
     double minTransmittance = 1e-3;  ///< stop a ray once less than this gets through
     /// Once less than this gets through, a ray's samples stand for two steps each (0: never).
     double coarseTransmittance = 0.2;
@@ -96,8 +96,8 @@ struct RenderMarch {
 
 /// The reference path tracer (renderPathTraced).
 struct RenderPathTrace {
-    int samples = 64;        ///< paths per pixel
-    int maxBounces = 1000;   ///< scattering events and ground bounces before a path is cut
+    int samples = 64;       ///< paths per pixel
+    int maxBounces = 1000;  ///< scattering events and ground bounces before a path is cut
 };
 
 struct RenderSettings {

@@ -82,15 +82,15 @@ struct Frame {
     bool useDiffusion = false;
     PhaseFunction phase;
     std::optional<PhaseTwice> phaseTwice;  ///< with the diffusion model
-    DeltaEddington split;       ///< of the phase function
-    double peakless = 1.0;      ///< 1 − ω f: the sun beam's extinction, forward peak f out
+    DeltaEddington split;                  ///< of the phase function
+    double peakless = 1.0;  ///< 1 − ω f: the sun beam's extinction, forward peak f out
     double dt = 1.0;
-    RenderVec3 sunDir;        ///< unit, toward the sun
-    RenderVec3 sunIrradiance; ///< colour × intensity
-    RenderVec3 skyUp;         ///< ambient × mean radiance of the upper sky hemisphere
-    RenderVec3 below;         ///< ambient × radiance from below (ground bounce or horizon)
-    RenderVec3 groundSky;     ///< ground radiance from sky light alone
-    double groundSun = 0.0;   ///< cos of the sun's zenith angle, clamped at 0
+    RenderVec3 sunDir;         ///< unit, toward the sun
+    RenderVec3 sunIrradiance;  ///< colour × intensity
+    RenderVec3 skyUp;          ///< ambient × mean radiance of the upper sky hemisphere
+    RenderVec3 below;          ///< ambient × radiance from below (ground bounce or horizon)
+    RenderVec3 groundSky;      ///< ground radiance from sky light alone
+    double groundSun = 0.0;    ///< cos of the sun's zenith angle, clamped at 0
     CameraRays rays;
     int octaves = 1;
     double octaveWeight[kMaxOctaves];  ///< b^i
@@ -99,7 +99,10 @@ struct Frame {
 
     Frame(const openvdb::FloatGrid& g, const RenderSettings& settings,
           const std::function<bool()>& cancelled)
-        : s(settings), grid(g), occupancy(g.tree()), phase(phaseOf(settings.medium)),
+        : s(settings),
+          grid(g),
+          occupancy(g.tree()),
+          phase(phaseOf(settings.medium)),
           rays(settings.camera)
     {
         const double voxel = renderVoxelSize(g);
@@ -135,9 +138,8 @@ struct Frame {
         const bool needSun = s.sun.intensity > 0.0;
         const bool needSky = !useDiffusion && s.sky.ambient > 0.0 && s.sky.occlusion > 0.0;
         if (needSun)
-            sunMap = RenderLightMap(g, occupancy, sunDir, s.medium.extinction,
-                                    s.march.lightTexel, s.march.lightStep,
-                                    std::size_t(8) << 20, cancelled);
+            sunMap = RenderLightMap(g, occupancy, sunDir, s.medium.extinction, s.march.lightTexel,
+                                    s.march.lightStep, std::size_t(8) << 20, cancelled);
         const bool litGround = s.ground.enabled && needSun && groundSun > 0.0;
         split = phase.deltaEddington();
         peakless = 1.0 - s.medium.albedo * split.peak;
@@ -216,47 +218,45 @@ struct Frame {
         const bool skyOcclusion = !skyMap.empty();
         double T = 1.0;
         RenderVec3 L(0.0);
-        marchRay(occupancy, sampler, toIndexRay(grid.transform(), origin, dir), tGround, dt, offset,
-                 spans, [&](double t, double density, double width) {
-                     const double sigmaT = ext * density;
-                     const double segT = std::exp(-sigmaT * width);
-                     const RenderVec3 p = origin + dir * t;
-                     const double tauSun = sunMap.opticalDepth(p);
-                     if (useDiffusion) {
-                         // One octave. Sun light scattered into the phase function's forward
-                         // peak goes on along the sun's beam (δ-Eddington), a little spread:
-                         // it scatters toward the camera as if scattered twice in a row.
-                         const double sunT = std::exp(-tauSun);
-                         const double peaked = std::exp(-peakless * tauSun) - sunT;
-                         RenderVec3 source =
-                             sunIrradiance * (sunPhase[0] * sunT + peakPhase * peaked);
-                         const DiffuseLight::Sample field = diffuse.at(p);
-                         for (int c = 0; c < 3; ++c)
-                             source[c] +=
-                                 diffuseScattered(field.phi[c], field.flux[c], -dir, split);
-                         L += source * (T * albedo * (1.0 - segT));
-                         T *= segT;
-                         return next(T);
-                     }
-                     double sun = 0.0;
-                     for (int i = 0; i < octaves; ++i)
-                         sun += sunPhase[i] * std::exp(-octaveAtten[i] * tauSun);
-                     // Sky light from above and bounce light from below, each dimmed by the
-                     // optical depth of the cloud above or below the sample.
-                     double upT = 1.0, downT = 1.0;
-                     if (skyOcclusion) {
-                         const double tauUp = skyMap.opticalDepth(p);
-                         const double down = std::max(0.0, skyMap.columnDepth(p) - tauUp);
-                         upT = std::exp(-s.sky.occlusion * tauUp);
-                         downT = std::exp(-s.sky.occlusion * down);
-                     }
-                     const RenderVec3 source =
-                         sunIrradiance * sun + (skyUp * upT + below * downT) * 0.5;
-                     // Source constant over the step: ∫ T σ_s S ds = T albedo S (1 − segT).
-                     L += source * (T * albedo * (1.0 - segT));
-                     T *= segT;
-                     return next(T);
-                 });
+        marchRay(
+            occupancy, sampler, toIndexRay(grid.transform(), origin, dir), tGround, dt, offset,
+            spans, [&](double t, double density, double width) {
+                const double sigmaT = ext * density;
+                const double segT = std::exp(-sigmaT * width);
+                const RenderVec3 p = origin + dir * t;
+                const double tauSun = sunMap.opticalDepth(p);
+                if (useDiffusion) {
+                    // One octave. Sun light scattered into the phase function's forward
+                    // peak goes on along the sun's beam (δ-Eddington), a little spread:
+                    // it scatters toward the camera as if scattered twice in a row.
+                    const double sunT = std::exp(-tauSun);
+                    const double peaked = std::exp(-peakless * tauSun) - sunT;
+                    RenderVec3 source = sunIrradiance * (sunPhase[0] * sunT + peakPhase * peaked);
+                    const DiffuseLight::Sample field = diffuse.at(p);
+                    for (int c = 0; c < 3; ++c)
+                        source[c] += diffuseScattered(field.phi[c], field.flux[c], -dir, split);
+                    L += source * (T * albedo * (1.0 - segT));
+                    T *= segT;
+                    return next(T);
+                }
+                double sun = 0.0;
+                for (int i = 0; i < octaves; ++i)
+                    sun += sunPhase[i] * std::exp(-octaveAtten[i] * tauSun);
+                // Sky light from above and bounce light from below, each dimmed by the
+                // optical depth of the cloud above or below the sample.
+                double upT = 1.0, downT = 1.0;
+                if (skyOcclusion) {
+                    const double tauUp = skyMap.opticalDepth(p);
+                    const double down = std::max(0.0, skyMap.columnDepth(p) - tauUp);
+                    upT = std::exp(-s.sky.occlusion * tauUp);
+                    downT = std::exp(-s.sky.occlusion * down);
+                }
+                const RenderVec3 source = sunIrradiance * sun + (skyUp * upT + below * downT) * 0.5;
+                // Source constant over the step: ∫ T σ_s S ds = T albedo S (1 − segT).
+                L += source * (T * albedo * (1.0 - segT));
+                T *= segT;
+                return next(T);
+            });
         const RenderVec3 bg = background(dir, tGround);
         L += bg * T;
         behind[0] = static_cast<float>(bg.x());

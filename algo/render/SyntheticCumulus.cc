@@ -63,49 +63,51 @@ openvdb::FloatGrid::Ptr rasterizeCumulus(const std::vector<CumulusBlob>& blobs,
 
     std::vector<std::unique_ptr<Leaf>> leaves(origins.size());
     const double soft = std::max(1e-3, s.edgeSoftness);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, origins.size(), 4),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-        std::vector<std::size_t> near;
-        for (std::size_t li = range.begin(); li != range.end(); ++li) {
-            const openvdb::CoordBBox leafBox = openvdb::CoordBBox::createCube(origins[li], kLeafDim);
-            near.clear();
-            for (std::size_t b = 0; b < blobs.size(); ++b)
-                if (boxes[b].hasOverlap(leafBox)) near.push_back(b);
-            auto leaf = std::make_unique<Leaf>(origins[li], 0.0f, false);
-            bool any = false;
-            for (auto it = leafBox.begin(); it; ++it) {
-                const openvdb::Coord ijk = *it;
-                const double x = ijk.x() * voxel, y = ijk.y() * voxel, z = ijk.z() * voxel;
-                // Shape: summed soft spheres, 1 in each core, fading over `soft` of the radius.
-                double shape = 0.0;
-                for (const std::size_t b : near) {
-                    const CumulusBlob& c = blobs[b];
-                    const double dx = x - c.x, dy = y - c.y, dz = z - c.z;
-                    const double d2 = dx * dx + dy * dy + dz * dz;
-                    if (d2 >= c.radius * c.radius) continue;
-                    shape += smoothstep(0.0, soft, 1.0 - std::sqrt(d2) / c.radius);
-                    if (shape >= 1.0) break;
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, origins.size(), 4),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+            std::vector<std::size_t> near;
+            for (std::size_t li = range.begin(); li != range.end(); ++li) {
+                const openvdb::CoordBBox leafBox =
+                    openvdb::CoordBBox::createCube(origins[li], kLeafDim);
+                near.clear();
+                for (std::size_t b = 0; b < blobs.size(); ++b)
+                    if (boxes[b].hasOverlap(leafBox)) near.push_back(b);
+                auto leaf = std::make_unique<Leaf>(origins[li], 0.0f, false);
+                bool any = false;
+                for (auto it = leafBox.begin(); it; ++it) {
+                    const openvdb::Coord ijk = *it;
+                    const double x = ijk.x() * voxel, y = ijk.y() * voxel, z = ijk.z() * voxel;
+                    // Shape: summed soft spheres, 1 in each core, fading over `soft` of the radius.
+                    double shape = 0.0;
+                    for (const std::size_t b : near) {
+                        const CumulusBlob& c = blobs[b];
+                        const double dx = x - c.x, dy = y - c.y, dz = z - c.z;
+                        const double d2 = dx * dx + dy * dy + dz * dz;
+                        if (d2 >= c.radius * c.radius) continue;
+                        shape += smoothstep(0.0, soft, 1.0 - std::sqrt(d2) / c.radius);
+                        if (shape >= 1.0) break;
+                    }
+                    if (shape <= 0.0) continue;
+                    shape = std::min(shape, 1.0);
+                    // Erode the edges with billow noise: thin shape values vanish where the noise
+                    // is high, the core (shape 1) stays; the base is cut flat over about a voxel.
+                    double d = shape;
+                    if (s.noiseAmplitude > 0.0) {
+                        const double n = billowNoise(x, y, z, s.noiseScale, 4, s.seed * 0x9e37ull);
+                        const double e = s.noiseAmplitude * n;
+                        d = std::clamp((shape - e) / (1.0 - e + 1e-9), 0.0, 1.0);
+                    }
+                    d *= smoothstep(s.baseHeight - 0.5 * voxel, s.baseHeight + voxel, z);
+                    const auto v = static_cast<float>(d * s.density);
+                    if (v > 1e-4f) {
+                        leaf->setValueOn(ijk, v);
+                        any = true;
+                    }
                 }
-                if (shape <= 0.0) continue;
-                shape = std::min(shape, 1.0);
-                // Erode the edges with billow noise: thin shape values vanish where the noise
-                // is high, the core (shape 1) stays; the base is cut flat over about a voxel.
-                double d = shape;
-                if (s.noiseAmplitude > 0.0) {
-                    const double n = billowNoise(x, y, z, s.noiseScale, 4, s.seed * 0x9e37ull);
-                    const double e = s.noiseAmplitude * n;
-                    d = std::clamp((shape - e) / (1.0 - e + 1e-9), 0.0, 1.0);
-                }
-                d *= smoothstep(s.baseHeight - 0.5 * voxel, s.baseHeight + voxel, z);
-                const auto v = static_cast<float>(d * s.density);
-                if (v > 1e-4f) {
-                    leaf->setValueOn(ijk, v);
-                    any = true;
-                }
+                if (any) leaves[li] = std::move(leaf);
             }
-            if (any) leaves[li] = std::move(leaf);
-        }
-    });
+        });
 
     auto& tree = grid->tree();
     for (auto& leaf : leaves)

@@ -47,9 +47,14 @@ inline double toneMap(double x, ToneCurve curve)
     if (!(x > 0.0)) return 0.0;  // also NaN
     double y = x;
     switch (curve) {
-    case ToneCurve::Aces: y = acesFitted(x); break;
-    case ToneCurve::Hable: y = hableFilmic(x); break;
-    case ToneCurve::Clamp: break;
+        case ToneCurve::Aces:
+            y = acesFitted(x);
+            break;
+        case ToneCurve::Hable:
+            y = hableFilmic(x);
+            break;
+        case ToneCurve::Clamp:
+            break;
     }
     return std::clamp(y, 0.0, 1.0);
 }

@@ -29,10 +29,9 @@ openvdb::FloatGrid::Ptr combineFogVolumes(const openvdb::FloatGrid& a, const ope
                                           CombineMode mode)
 {
     if (a.transform() != b.transform())
-        throw std::invalid_argument("the volumes have different transforms (voxel size " +
-                                    metres(a.voxelSize()[0]) + " against " +
-                                    metres(b.voxelSize()[0]) +
-                                    "): give both Voxelizers the same voxelSize");
+        throw std::invalid_argument(
+            "the volumes have different transforms (voxel size " + metres(a.voxelSize()[0]) +
+            " against " + metres(b.voxelSize()[0]) + "): give both Voxelizers the same voxelSize");
     // The composite operators take their operands' trees: work on copies.
     openvdb::FloatGrid::Ptr out = a.deepCopy();
     openvdb::FloatGrid::Ptr other = b.deepCopy();
@@ -40,9 +39,10 @@ openvdb::FloatGrid::Ptr combineFogVolumes(const openvdb::FloatGrid& a, const ope
         openvdb::tools::compMax(*out, *other);
     } else {
         openvdb::tools::compSum(*out, *other);
-        openvdb::tools::foreach(out->beginValueOn(), [](const openvdb::FloatGrid::ValueOnIter& it) {
-            if (*it > 1.0f) it.setValue(1.0f);
-        });
+        openvdb::tools::foreach (out->beginValueOn(),
+                                 [](const openvdb::FloatGrid::ValueOnIter& it) {
+                                     if (*it > 1.0f) it.setValue(1.0f);
+                                 });
     }
     out->setName("density");
     out->setGridClass(openvdb::GRID_FOG_VOLUME);

@@ -155,7 +155,8 @@ CopyOriginField::Block CopyOriginField::block(const double lo[3], const double h
         for (int j = 0; j < b.mDim[1]; ++j)
             for (int k = 0; k < b.mDim[2]; ++k, ++n) {
                 const int c[3] = {b.mLo[0] + i, b.mLo[1] + j, b.mLo[2] + k};
-                if (!coordKeyable(c[0]) || !coordKeyable(c[1]) || !coordKeyable(c[2])) continue;  // beyond every particle: empty
+                if (!coordKeyable(c[0]) || !coordKeyable(c[1]) || !coordKeyable(c[2]))
+                    continue;  // beyond every particle: empty
                 const auto it = mIndex.find(key(c[0], c[1], c[2]));
                 if (it != mIndex.end()) b.mCells[n] = mCells[it->second];
             }

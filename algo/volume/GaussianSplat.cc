@@ -213,10 +213,12 @@ void GaussianSplatter::add(const float* xyz, std::size_t count)
         for (int a = 0; a < 3; ++a) {
             const float q = xyz[3 * i + a] * d.invVoxel;
             if (!(std::fabs(q) < kMaxIndex))  // also catches NaN
-                throw std::invalid_argument("voxelize: a particle position is not finite or lies "
-                                            "beyond 2^20 voxels from the origin");
+                throw std::invalid_argument(
+                    "voxelize: a particle position is not finite or lies "
+                    "beyond 2^20 voxels from the origin");
             c[a] = floorInt(q);
-            const std::int32_t f = static_cast<std::int32_t>((q - static_cast<float>(c[a])) * kAxisUnit + 0.5f);
+            const std::int32_t f =
+                static_cast<std::int32_t>((q - static_cast<float>(c[a])) * kAxisUnit + 0.5f);
             w[a][0] = kAxisUnit - f;
             w[a][1] = f;
         }
@@ -315,7 +317,8 @@ openvdb::FloatGrid::Ptr GaussianSplatter::finish(const std::function<void()>& ch
         const openvdb::Coord lo = origin - openvdb::Coord(reach);  // first voxel of `in`
         // in[x][y][z]: the deposit over [lo, lo + span)^3, gathered block by block.
         std::fill(s.in.begin(), s.in.end(), 0.0f);
-        const openvdb::Coord firstBlock(lo.x() >> kBlockLog2, lo.y() >> kBlockLog2, lo.z() >> kBlockLog2);
+        const openvdb::Coord firstBlock(lo.x() >> kBlockLog2, lo.y() >> kBlockLog2,
+                                        lo.z() >> kBlockLog2);
         const openvdb::Coord lastBlock((lo.x() + span - 1) >> kBlockLog2,
                                        (lo.y() + span - 1) >> kBlockLog2,
                                        (lo.z() + span - 1) >> kBlockLog2);
@@ -336,7 +339,8 @@ openvdb::FloatGrid::Ptr GaussianSplatter::finish(const std::function<void()>& ch
                     for (int x = from[0]; x < to[0]; ++x)
                         for (int y = from[1]; y < to[1]; ++y) {
                             const std::int64_t* src = b + blockIndex(x - b0.x(), y - b0.y(), 0);
-                            float* dst = &s.in[(std::size_t(x - lo.x()) * span + (y - lo.y())) * span];
+                            float* dst =
+                                &s.in[(std::size_t(x - lo.x()) * span + (y - lo.y())) * span];
                             for (int z = from[2]; z < to[2]; ++z)
                                 dst[z - lo.z()] = static_cast<float>(
                                     static_cast<double>(src[z - b0.z()]) * scale);

@@ -219,10 +219,7 @@ void radixSortByKey(Scratch<E>& a, Scratch<E>& tmp, std::size_t n, int keyBits)
 constexpr int kPad = 8;
 constexpr int kRow = kBrick + 2 * kPad;
 constexpr int kAccSize = kBrick * kBrick * kRow;
-inline int accIndex(int x, int y, int z)
-{
-    return ((x << kBrickLog2) + y) * kRow + kPad + z;
-}
+inline int accIndex(int x, int y, int z) { return ((x << kBrickLog2) + y) * kRow + kPad + z; }
 
 /// Four floats in an SSE register (GCC/Clang vector extension): the same IEEE operations as
 /// the scalar code, lane by lane, so the sums are bit-identical.
@@ -327,7 +324,7 @@ void splatClipped(const E* begin, const E* end, const Kernel& k, const openvdb::
 
 template <class E>
 void splatBrick(const E* begin, const E* end, const Kernel& k, const openvdb::Coord& origin,
-               float* acc)
+                float* acc)
 {
     // Widest footprint along an axis: floor(q + rv) - ceil(q - rv) + 1 <= 2 rv + 1, plus slack
     // for the rounding of q +- rv (at most 1/8 voxel at |q| < 2^20).
@@ -349,7 +346,8 @@ inline void forEachBrick(const Footprint& f, const KeyCodec& codec, F&& fn)
 {
     for (int lx = brickOf(f.lo[0]); lx <= brickOf(f.hi[0]); ++lx)
         for (int ly = brickOf(f.lo[1]); ly <= brickOf(f.hi[1]); ++ly)
-            for (int lz = brickOf(f.lo[2]); lz <= brickOf(f.hi[2]); ++lz) fn(codec.encode(lx, ly, lz));
+            for (int lz = brickOf(f.lo[2]); lz <= brickOf(f.hi[2]); ++lz)
+                fn(codec.encode(lx, ly, lz));
 }
 
 /// Particles per block of the counting sort: few blocks, so that their per-brick histograms
@@ -609,8 +607,9 @@ openvdb::FloatGrid::Ptr voxelizeParticles(const float* xyz, std::size_t count,
     ChunkInfo all;
     for (std::size_t c = 0; c < chunks; ++c) {
         if (info[c].bad)
-            throw std::invalid_argument("voxelize: a particle position is not finite or lies "
-                                        "beyond 2^20 voxels from the origin");
+            throw std::invalid_argument(
+                "voxelize: a particle position is not finite or lies "
+                "beyond 2^20 voxels from the origin");
         for (int a = 0; a < 3; ++a) {
             all.lo[a] = std::min(all.lo[a], info[c].lo[a]);
             all.hi[a] = std::max(all.hi[a], info[c].hi[a]);
@@ -624,9 +623,8 @@ openvdb::FloatGrid::Ptr voxelizeParticles(const float* xyz, std::size_t count,
         if (bound > settings.maxBytes)
             throw VoxelizeTooLarge(
                 "voxelize: " + std::to_string(count) + " particles with a radius of " +
-                std::to_string(k.rv) + " voxels would need up to " +
-                std::to_string(bound >> 20) + " MiB, over the limit of " +
-                std::to_string(settings.maxBytes >> 20) +
+                std::to_string(k.rv) + " voxels would need up to " + std::to_string(bound >> 20) +
+                " MiB, over the limit of " + std::to_string(settings.maxBytes >> 20) +
                 " MiB; use larger voxels (voxelSize) or a smaller radius");
     }
 
@@ -645,8 +643,7 @@ openvdb::FloatGrid::Ptr voxelizeParticles(const float* xyz, std::size_t count,
         codec.shiftX = bits[1] + bits[2];
         codec.bits = bits[0] + bits[1] + bits[2];
         grid = codec.bits <= 32
-                   ? voxelizeWith<PackedEntry>(xyz, count, k, settings.clamp, codec,
-                                               checkCancelled)
+                   ? voxelizeWith<PackedEntry>(xyz, count, k, settings.clamp, codec, checkCancelled)
                    : voxelizeWith<WideEntry>(xyz, count, k, settings.clamp, codec, checkCancelled);
     }
     grid->setName("density");
@@ -670,10 +667,17 @@ void filterVolume(openvdb::FloatGrid& grid, VoxelFilter filter, int width, int i
     if (filter == VoxelFilter::None || iterations <= 0 || width <= 0) return;
     openvdb::tools::Filter<openvdb::FloatGrid> f(grid);
     switch (filter) {
-    case VoxelFilter::Mean: f.mean(width, iterations); break;
-    case VoxelFilter::Gaussian: f.gaussian(width, iterations); break;
-    case VoxelFilter::Median: f.median(width, iterations); break;
-    case VoxelFilter::None: break;
+        case VoxelFilter::Mean:
+            f.mean(width, iterations);
+            break;
+        case VoxelFilter::Gaussian:
+            f.gaussian(width, iterations);
+            break;
+        case VoxelFilter::Median:
+            f.median(width, iterations);
+            break;
+        case VoxelFilter::None:
+            break;
     }
 }
 

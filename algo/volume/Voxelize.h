@@ -41,13 +41,13 @@ VoxelKernel voxelKernelFromName(const std::string& name);
 double kernelIntegral(VoxelKernel kernel, double radius);
 
 struct VoxelizeSettings {
-    double voxelSize = 4.0;               ///< voxel edge, metres (> 0)
-    double radius = 8.0;                  ///< kernel radius R, metres (> 0, <= 32 voxels)
+    double voxelSize = 4.0;  ///< voxel edge, metres (> 0)
+    double radius = 8.0;     ///< kernel radius R, metres (> 0, <= 32 voxels)
     VoxelKernel kernel = VoxelKernel::Smooth;
     /// What one particle adds at its own centre (density is dimensionless, fog volume
     /// convention: 1 = fully dense). A voxel at distance r gets density * w(r).
     double density = 0.25;
-    bool clamp = true;                    ///< clamp summed values to [0, 1] (fog volume)
+    bool clamp = true;  ///< clamp summed values to [0, 1] (fog volume)
     /// Refuse (VoxelizeTooLarge) when the estimated peak memory exceeds this; 0: no limit.
     std::uint64_t maxBytes = 0;
 };

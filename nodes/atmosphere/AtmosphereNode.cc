@@ -52,9 +52,9 @@ algo::WindProfile groundWindFrom(const ParamSet& p, const algo::EnvironmentProfi
 {
     const std::string& kind = p.getString("wind");
     if (kind == "layers")
-        return algo::WindProfile::fromSpeedAndDirection(
-            p.getFloatList("windHeights"), p.getFloatList("windSpeeds"),
-            p.getFloatList("windDirections"));
+        return algo::WindProfile::fromSpeedAndDirection(p.getFloatList("windHeights"),
+                                                        p.getFloatList("windSpeeds"),
+                                                        p.getFloatList("windDirections"));
     if (kind == "sounding" && profile) {
         std::vector<algo::WindLevel> levels;
         for (const algo::ProfileLevel& l : profile->levels())
@@ -94,7 +94,8 @@ public:
     void cook(CookContext& ctx) override
     {
         try {
-            ctx.setOutput("atmosphere", std::make_shared<AtmosphereData>(atmosphereFrom(ctx.params())));
+            ctx.setOutput("atmosphere",
+                          std::make_shared<AtmosphereData>(atmosphereFrom(ctx.params())));
         } catch (const formats::FormatError& e) {
             throw InputError(e.where(), e.message());  // a bad file is bad input: exit 2
         } catch (const std::invalid_argument& e) {
@@ -135,16 +136,18 @@ void registerAtmosphereNode(Registry& registry)
     d.type = "Atmosphere";
     d.version = 3;
     d.category = "atmosphere";
-    d.doc = "The environment of Sec. 5.1: by default the paper's, ground temperature and "
-            "environmental lapse rate (Eq. 9, T_e = T_sl_max - C_e z), one dew-point threshold "
-            "and the particle lapse rates of Eq. 8, and gravity (Eq. 6); the defaults put the "
-            "cloud base of the default VapourEmitter at 1.4 km. Ours ("
-            "docs/atmosphere.md): profile 'sounding' (a University of Wyoming or CSV sounding "
-            "file; its parsed levels, not its path, enter the cache key) or 'standard' (ICAO) "
-            "replaces Eq. 9 and the one T_dp: each particle then condenses at its own lifting "
-            "condensation level and, saturated, cools at the moist adiabatic rate. A wind "
-            "from the sounding or from layers moves the particles horizontally.";
-    d.outputs = {port("atmosphere", "Atmosphere", "the environment, for ThermalIntegrator and Condensation")};
+    d.doc =
+        "The environment of Sec. 5.1: by default the paper's, ground temperature and "
+        "environmental lapse rate (Eq. 9, T_e = T_sl_max - C_e z), one dew-point threshold "
+        "and the particle lapse rates of Eq. 8, and gravity (Eq. 6); the defaults put the "
+        "cloud base of the default VapourEmitter at 1.4 km. Ours ("
+        "docs/atmosphere.md): profile 'sounding' (a University of Wyoming or CSV sounding "
+        "file; its parsed levels, not its path, enter the cache key) or 'standard' (ICAO) "
+        "replaces Eq. 9 and the one T_dp: each particle then condenses at its own lifting "
+        "condensation level and, saturated, cools at the moist adiabatic rate. A wind "
+        "from the sounding or from layers moves the particles horizontally.";
+    d.outputs = {port("atmosphere", "Atmosphere",
+                      "the environment, for ThermalIntegrator and Condensation")};
     using L = AtmosphereLimits;  // the ranges a stored Atmosphere is checked against
     d.params = {
         floatParam("groundTemperature", 20.0, "degC",
@@ -153,16 +156,20 @@ void registerAtmosphereNode(Registry& registry)
                    L::kMinTemperature, L::kMaxTemperature),
         floatParam("environmentLapseRate", 6.4, "degC/km",
                    "C_e of Eq. 9: environment cooling with height (paper: 6.4; profile "
-                   "'linear' only)", 0, L::kMaxEnvironmentLapsePerKm),
+                   "'linear' only)",
+                   0, L::kMaxEnvironmentLapsePerKm),
         floatParam("dewPoint", 16.0, "degC",
                    "T_dp of Eq. 8: a particle colder than this condenses (value ours; profile "
-                   "'linear' only)", L::kMinTemperature, L::kMaxTemperature),
+                   "'linear' only)",
+                   L::kMinTemperature, L::kMaxTemperature),
         floatParam("dryLapseRate", 10.0, "degC/km",
                    "C of Eq. 8 while T_v >= T_dp: dry particle cooling (paper: 10; the dry "
-                   "adiabat is 9.76)", 0, L::kMaxParticleLapsePerKm),
+                   "adiabat is 9.76)",
+                   0, L::kMaxParticleLapsePerKm),
         floatParam("moistLapseRate", 6.0, "degC/km",
                    "C of Eq. 8 once T_v < T_dp: moist particle cooling (paper: 6; with a "
-                   "profile only when moistAdiabat is false)", 0, L::kMaxParticleLapsePerKm),
+                   "profile only when moistAdiabat is false)",
+                   0, L::kMaxParticleLapsePerKm),
         floatParam("gravity", 9.81, "m/s^2", "g of Eq. 6", 0, L::kMaxGravity),
         stringParam("profile", "linear",
                     "ours: 'linear' (the paper's Eq. 9), 'sounding' (soundingFile) or "
@@ -177,10 +184,11 @@ void registerAtmosphereNode(Registry& registry)
                    L::kMinTemperature, L::kMaxTemperature),
         floatParam("surfaceDewPoint", 17.0, "degC",
                    "profile 'standard': dew point at sea level; its depression is kept at "
-                   "every height (value ours)", L::kMinTemperature, L::kMaxTemperature),
+                   "every height (value ours)",
+                   L::kMinTemperature, L::kMaxTemperature),
         floatParam("tropopauseHeight", 11000.0, "m",
-                   "profile 'standard': where the temperature stops falling (ICAO: 11000)",
-                   1000.0, 19000.0),
+                   "profile 'standard': where the temperature stops falling (ICAO: 11000)", 1000.0,
+                   19000.0),
         boolParam("moistAdiabat", true,
                   "with a profile: saturated particles cool at the moist adiabatic rate of "
                   "their temperature and the profile's pressure (ours); false: moistLapseRate"),
@@ -190,12 +198,14 @@ void registerAtmosphereNode(Registry& registry)
                     {"off", "layers", "sounding"}),
         floatListParam("windHeights", {}, "m",
                        "wind 'layers': heights above the ground, increasing; linear between, "
-                       "held outside (none: calm)", 0.0, L::kMaxProfileDepth),
+                       "held outside (none: calm)",
+                       0.0, L::kMaxProfileDepth),
         floatListParam("windSpeeds", {}, "m/s", "wind 'layers': speed at each height", 0.0,
                        L::kMaxWindSpeed),
         floatListParam("windDirections", {}, "deg",
                        "wind 'layers': the direction the wind blows from at each height, "
-                       "clockwise from north (270: from the west, toward +x)", 0.0, 360.0),
+                       "clockwise from north (270: from the west, toward +x)",
+                       0.0, 360.0),
         stringParam("windFrame", "ground",
                     "ours: 'ground' (winds as the sounding or layers give them) or 'storm' "
                     "(minus the 0-6 km mean wind, the usual estimate of an ordinary storm's "

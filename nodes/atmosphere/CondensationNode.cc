@@ -29,7 +29,8 @@ std::vector<float> particleDewpoints(const AtmosphereData& a, const VapourPartic
     m.dewpointOffset = st.dewpointOffset.empty() ? nullptr : st.dewpointOffset.data();
     std::vector<float> dewpoints(particles.size());
     for (std::size_t i = 0; i < dewpoints.size(); ++i)
-        dewpoints[i] = algo::particleDewpoint(a.column, a.atmosphere.dewPoint, m, i, particles.z[i]);
+        dewpoints[i] =
+            algo::particleDewpoint(a.column, a.atmosphere.dewPoint, m, i, particles.z[i]);
     return dewpoints;
 }
 
@@ -51,19 +52,21 @@ public:
             if (atmosphere.profile || !particles->statics->dewpointOffset.empty()) {
                 const std::vector<float> dewpoints = particleDewpoints(*data, *particles);
                 now = algo::condenseStep(before ? &*before : nullptr, particles->temperature.data(),
-                                         dewpoints.data(), particles->z.data(), particles->size(), frame);
+                                         dewpoints.data(), particles->z.data(), particles->size(),
+                                         frame);
             } else {
                 now = algo::condenseStep(before ? &*before : nullptr, particles->temperature.data(),
-                                         particles->z.data(), particles->size(), atmosphere.dewPoint, frame);
+                                         particles->z.data(), particles->size(),
+                                         atmosphere.dewPoint, frame);
             }
         } catch (const std::invalid_argument& e) {
             throw InputError(ctx.nodeId(), e.what());
         }
         ctx.setOutput("firstFrame", std::make_shared<IntData>(now.firstFrame));
         ctx.setOutput("count", std::make_shared<IntData>(static_cast<std::int64_t>(now.count)));
-        ctx.setOutput("condensation",
-                      std::make_shared<CondensationData>(particles, std::move(now.condensedFrame),
-                                                         std::move(now.condensedHeight), now.firstFrame));
+        ctx.setOutput("condensation", std::make_shared<CondensationData>(
+                                          particles, std::move(now.condensedFrame),
+                                          std::move(now.condensedHeight), now.firstFrame));
     }
 };
 
@@ -74,22 +77,24 @@ void registerCondensationNode(Registry& registry)
     NodeDecl d;
     d.type = "Condensation";
     d.category = "atmosphere";
-    d.doc = "Marks vapour particles whose temperature T_v has fallen below the dew point T_dp as "
-            "condensation particles (pseudocode lines 9-14) and remembers the frame at which each "
-            "condensed and its height then (its condensation level); once condensed, a particle "
-            "stays a condensation particle. Also gives the frame at which the first condensation "
-            "particle appeared: t_s[1] of Sec. 5.2. A "
-            "simulation: each frame builds on the previous one. Ours (docs/atmosphere.md): with an "
-            "Atmosphere profile each particle has its own dew point, the profile's at its start "
-            "height falling 1.8 degC/km as it rises, so it condenses at its lifting condensation "
-            "level; a VapourEmitter moisture map adds each particle's perturbation.";
+    d.doc =
+        "Marks vapour particles whose temperature T_v has fallen below the dew point T_dp as "
+        "condensation particles (pseudocode lines 9-14) and remembers the frame at which each "
+        "condensed and its height then (its condensation level); once condensed, a particle "
+        "stays a condensation particle. Also gives the frame at which the first condensation "
+        "particle appeared: t_s[1] of Sec. 5.2. A "
+        "simulation: each frame builds on the previous one. Ours (docs/atmosphere.md): with an "
+        "Atmosphere profile each particle has its own dew point, the profile's at its start "
+        "height falling 1.8 degC/km as it rises, so it condenses at its lifting condensation "
+        "level; a VapourEmitter moisture map adds each particle's perturbation.";
     d.version = 2;  // each version's change: CHANGES.md, "Node versions"
     d.simulation = true;
     d.inputs = {port("particles", "VapourParticles", "the particles at this frame"),
                 port("atmosphere", "Atmosphere", "the environment (its dew point T_dp)")};
-    d.outputs = {port("condensation", "Condensation", "the particles with their condensation frames"),
-                 port("firstFrame", "Int", "frame of the first condensation (t_s[1]); -1 if none yet"),
-                 port("count", "Int", "number of condensation particles at this frame (N_v(t))")};
+    d.outputs = {
+        port("condensation", "Condensation", "the particles with their condensation frames"),
+        port("firstFrame", "Int", "frame of the first condensation (t_s[1]); -1 if none yet"),
+        port("count", "Int", "number of condensation particles at this frame (N_v(t))")};
     d.create = [] { return std::make_unique<CondensationNode>(); };
     registry.addNode(std::move(d));
 }

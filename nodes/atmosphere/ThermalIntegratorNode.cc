@@ -60,11 +60,11 @@ public:
         const Atmosphere& atmosphere = data->atmosphere;
         const algo::ThermalSettings paper = settingsFrom(ctx, atmosphere);
         const ParamSet& p = ctx.params();
-        const bool beyondPaper = atmosphere.beyondPaper() || p.getString("buoyancy") != "paper" ||
-                                 p.getFloat("drag") > 0.0 || p.getFloat("outflowDivergence") > 0.0 ||
-                                 !previous->statics->dewpointOffset.empty() ||
-                                 !previous->statics->releaseTime.empty() ||
-                                 previous->movedHorizontally();
+        const bool beyondPaper =
+            atmosphere.beyondPaper() || p.getString("buoyancy") != "paper" ||
+            p.getFloat("drag") > 0.0 || p.getFloat("outflowDivergence") > 0.0 ||
+            !previous->statics->dewpointOffset.empty() || !previous->statics->releaseTime.empty() ||
+            previous->movedHorizontally();
         ctx.setOutput("particles", beyondPaper ? stepThroughColumn(ctx, paper, *data, *previous)
                                                : stepAsPaper(ctx, paper, *previous));
     }
@@ -77,9 +77,9 @@ private:
     {
         const std::size_t n = previous.size();
         std::vector<float> z(n), vz(n), temperature(n);
-        algo::thermalStepParallel(s, {previous.z.data(), previous.vz.data(), previous.temperature.data()},
-                                  {z.data(), vz.data(), temperature.data()}, n,
-                                  [&ctx] { ctx.checkCancelled(); });
+        algo::thermalStepParallel(
+            s, {previous.z.data(), previous.vz.data(), previous.temperature.data()},
+            {z.data(), vz.data(), temperature.data()}, n, [&ctx] { ctx.checkCancelled(); });
         return std::make_shared<VapourParticlesData>(previous.statics, std::move(z), std::move(vz),
                                                      std::move(temperature));
     }
@@ -92,7 +92,8 @@ private:
         const Atmosphere& atmosphere = data.atmosphere;
         algo::ColumnThermalSettings s;
         s.paper = paper;
-        s.buoyancy = p.getString("buoyancy") == "parcel" ? algo::Buoyancy::Parcel : algo::Buoyancy::Paper;
+        s.buoyancy =
+            p.getString("buoyancy") == "parcel" ? algo::Buoyancy::Parcel : algo::Buoyancy::Paper;
         s.drag = p.getFloat("drag");
         s.column = &data.column;
         s.moistAdiabat = atmosphere.moistAdiabat;
@@ -111,11 +112,14 @@ private:
                             axisY);
         }
         std::vector<float> xNext(n), yNext(n), z(n), vz(n), temperature(n);
-        const auto orNull = [](const std::vector<float>& v) { return v.empty() ? nullptr : v.data(); };
+        const auto orNull = [](const std::vector<float>& v) {
+            return v.empty() ? nullptr : v.data();
+        };
         algo::columnThermalStepParallel(
             s, {st.startZ.data(), orNull(st.dewpointOffset), orNull(st.releaseTime)},
             {orNull(axisX), orNull(axisY)},
-            {x.data(), y.data(), previous.z.data(), previous.vz.data(), previous.temperature.data()},
+            {x.data(), y.data(), previous.z.data(), previous.vz.data(),
+             previous.temperature.data()},
             {xNext.data(), yNext.data(), z.data(), vz.data(), temperature.data()}, n,
             [&ctx] { ctx.checkCancelled(); });
         // Particles nothing moves sideways keep sharing the emission's x, y.
@@ -136,18 +140,19 @@ void registerThermalIntegratorNode(Registry& registry)
     NodeDecl d;
     d.type = "ThermalIntegrator";
     d.category = "atmosphere";
-    d.doc = "Vapour particles rising under the thermal effect (Sec. 5.1, pseudocode lines 29-35). "
-            "On the start frame (t0) the particles are the emitted ones; each later frame is "
-            "one explicit Euler step of the graph's timeStep (Delta t) from the previous frame: "
-            "T_e = T_sl_max - C_e z (Eq. 9), f = C_b (T_v - T_e) - m g (Eq. 6, vertical only), "
-            "U += dt f / m and P += dt U(t) (Eq. 7, position advanced with the old velocity), "
-            "T_v -= C dz with C = 10 C/km while T_v >= T_dp and 6 C/km after (Eq. 8). With the "
-            "paper's atmosphere and the defaults below this is the paper's step exactly, and x, y "
-            "never change. Ours (docs/atmosphere.md): with an Atmosphere profile, T_e "
-            "is the profile's, each particle condenses at its own lifting condensation level "
-            "and, saturated, cools at the moist adiabatic rate; a wind moves x, y by the wind at "
-            "the particle's height; 'parcel' buoyancy, drag and the outflow at the top of a "
-            "tower (anvils) are below.";
+    d.doc =
+        "Vapour particles rising under the thermal effect (Sec. 5.1, pseudocode lines 29-35). "
+        "On the start frame (t0) the particles are the emitted ones; each later frame is "
+        "one explicit Euler step of the graph's timeStep (Delta t) from the previous frame: "
+        "T_e = T_sl_max - C_e z (Eq. 9), f = C_b (T_v - T_e) - m g (Eq. 6, vertical only), "
+        "U += dt f / m and P += dt U(t) (Eq. 7, position advanced with the old velocity), "
+        "T_v -= C dz with C = 10 C/km while T_v >= T_dp and 6 C/km after (Eq. 8). With the "
+        "paper's atmosphere and the defaults below this is the paper's step exactly, and x, y "
+        "never change. Ours (docs/atmosphere.md): with an Atmosphere profile, T_e "
+        "is the profile's, each particle condenses at its own lifting condensation level "
+        "and, saturated, cools at the moist adiabatic rate; a wind moves x, y by the wind at "
+        "the particle's height; 'parcel' buoyancy, drag and the outflow at the top of a "
+        "tower (anvils) are below.";
     d.simulation = true;
     d.readsTimeStep = true;
     d.inputs = {port("particles", "VapourParticles", "the emitted vapour particles at t0"),
@@ -156,7 +161,8 @@ void registerThermalIntegratorNode(Registry& registry)
     d.params = {
         floatParam("buoyancyCoefficient", 2.0, "N/degC",
                    "C_b of Eq. 6 (value ours: with m = 1 kg, particles stay buoyant up to the "
-                   "default 1.4 km cloud base and keep rising above it)", 0, 1e6),
+                   "default 1.4 km cloud base and keep rising above it)",
+                   0, 1e6),
         floatParam("particleMass", 1.0, "kg", "m of Eq. 6-7 (value ours)", 1e-9, 1e9),
         boolParam("groundStopsParticles", true,
                   "ours, not the paper's: a particle cannot sink below the ground z = 0"),
@@ -167,7 +173,8 @@ void registerThermalIntegratorNode(Registry& registry)
                     {"paper", "parcel"}),
         floatParam("drag", 0.0, "1/m",
                    "ours: quadratic drag, f / m -= drag |U| U, the mixing that keeps updrafts "
-                   "near 10-30 m/s and overshooting tops short (0: none, the paper's)", 0.0, 1.0),
+                   "near 10-30 m/s and overshooting tops short (0: none, the paper's)",
+                   0.0, 1.0),
         floatParam("outflowDivergence", 0.0, "1/s",
                    "ours: saturated particles colder than the environment above the level of "
                    "free convection (the top of a tower) move away from their tower's axis at "

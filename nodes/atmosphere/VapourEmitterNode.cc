@@ -88,7 +88,8 @@ public:
         }
         if (const auto moisture = ctx.input<Map2DData>("moisture")) {
             const double amplitude = ctx.params().getFloat("moistureAmplitude");
-            if (amplitude > 0.0) statics->dewpointOffset = dewpointOffsets(*moisture, *statics, amplitude);
+            if (amplitude > 0.0)
+                statics->dewpointOffset = dewpointOffsets(*moisture, *statics, amplitude);
         }
         ctx.setOutput("particles", std::make_shared<VapourParticlesData>(
                                        std::move(statics), std::move(e.z), std::move(e.vz),
@@ -117,11 +118,13 @@ void registerVapourEmitterNode(Registry& registry)
         "vapour cools as it rises (Eq. 8), so every particle reaches the dew point at the same "
         "altitude and the cloud base is flat. The emission does not change with the frame: "
         "ThermalIntegrator takes it as its start state. A map density outside [0, 1], or more "
-        "than 16 GiB of particles (about 447 million), is refused. Ours (docs/atmosphere.md): an optional moisture map "
+        "than 16 GiB of particles (about 447 million), is refused. Ours (docs/atmosphere.md): an "
+        "optional moisture map "
         "perturbs each "
         "particle's dew point by moistureAmplitude (2 m - 1) C, m the map's value at the "
         "particle, so the cloud base is irregular (the paper's Sec. 7 asks for it); no map or "
-        "amplitude 0 gives the paper's flat base. Also ours: with emissionDuration > 0 each particle waits at its start "
+        "amplitude 0 gives the paper's flat base. Also ours: with emissionDuration > 0 each "
+        "particle waits at its start "
         "until a release time drawn uniformly from [0, emissionDuration) s keyed by (seed, "
         "id), so a source keeps feeding its tower, as a real updraft does, instead of "
         "rising as one bubble.";
@@ -129,7 +132,8 @@ void registerVapourEmitterNode(Registry& registry)
         port("map", "Map2D", "the 1/f^beta density map fNoise(ix, iy) of Eq. 3-5, in [0, 1]"),
         port("moisture", "Map2D",
              "ours, optional: a second map in [0, 1] that perturbs each particle's dew point "
-             "(irregular cloud bases)", true)};
+             "(irregular cloud bases)",
+             true)};
     d.outputs = {port("particles", "VapourParticles",
                       "the vapour particles at t0: position, U_vz = 0 and T_v")};
     d.params = {
@@ -151,10 +155,12 @@ void registerVapourEmitterNode(Registry& registry)
                  9007199254740992.0),
         floatParam("moistureAmplitude", 0.0, "degC",
                    "ours: the largest dew-point perturbation the moisture map gives (0: the "
-                   "paper's flat base)", 0.0, 20.0),
+                   "paper's flat base)",
+                   0.0, 20.0),
         floatParam("emissionDuration", 0.0, "s",
                    "ours: particles leave their start at random times over this long (0: all "
-                   "at t0, the paper's)", 0.0, 1e6)};
+                   "at t0, the paper's)",
+                   0.0, 1e6)};
     d.validate = [](const ParamSet& p, const ParamChecker& check) {
         // Each pair must be an ordered range, or Eq. 3-5 run backwards.
         if (p.getFloat("maxParticlesPerCell") < p.getFloat("minParticlesPerCell"))

@@ -55,7 +55,8 @@ void registerVapourPointsNode(Registry& registry)
         "particle order: feed a Voxelizer with a low density and CombineVolumes to render them "
         "lighter than the cloud particles, as Figure 5 does, or WriteCloudParticles to export "
         "them.";
-    d.inputs = {port("condensation", "Condensation", "the vapour particles and which have condensed")};
+    d.inputs = {
+        port("condensation", "Condensation", "the vapour particles and which have condensed")};
     d.outputs = {port("particles", "CloudParticles", "the selected particles, level 0")};
     d.params = {stringParam("which", "all",
                             "vapour (not yet condensed), condensation, or all particles",

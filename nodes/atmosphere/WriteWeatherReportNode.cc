@@ -33,8 +33,9 @@ algo::EnvironmentProfile profileOf(const Atmosphere& a)
 {
     if (a.profile) return *a.profile;
     const double nan = std::nan("");
-    return algo::EnvironmentProfile({{0.0, a.groundTemperature, a.dewPoint, nan, 0.0, 0.0},
-                                     {20000.0, a.environmentTemperature(20000.0), a.dewPoint, nan, 0.0, 0.0}});
+    return algo::EnvironmentProfile(
+        {{0.0, a.groundTemperature, a.dewPoint, nan, 0.0, 0.0},
+         {20000.0, a.environmentTemperature(20000.0), a.dewPoint, nan, 0.0, 0.0}});
 }
 
 /// A number for JSON: null when not finite.
@@ -63,11 +64,12 @@ void writeJson(const std::filesystem::path& path, const Report& r)
         << ",\n  \"condensed_particles\": " << r.cloud.condensed
         << ",\n  \"cloud_base_m\": " << number(ground + r.cloud.baseM)
         << ",\n  \"cloud_top_m\": " << number(ground + r.cloud.topM)
-        << ",\n  \"lcl_m\": " << number(r.parcel.lclM) << ",\n  \"lfc_m\": " << number(r.parcel.lfcM)
-        << ",\n  \"el_m\": " << number(r.parcel.elM)
+        << ",\n  \"lcl_m\": " << number(r.parcel.lclM)
+        << ",\n  \"lfc_m\": " << number(r.parcel.lfcM) << ",\n  \"el_m\": " << number(r.parcel.elM)
         << ",\n  \"cape_j_per_kg\": " << number(r.parcel.capeJPerKg)
         << ",\n  \"cin_j_per_kg\": " << number(r.parcel.cinJPerKg)
-        << ",\n  \"cloud_fraction\": {\"bin_m\": " << number(r.cloud.binM) << ", \"from_ground\": [";
+        << ",\n  \"cloud_fraction\": {\"bin_m\": " << number(r.cloud.binM)
+        << ", \"from_ground\": [";
     for (std::size_t k = 0; k < r.cloud.fraction.size(); ++k)
         out << (k ? ", " : "") << number(r.cloud.fraction[k]);
     out << "]},\n  \"parcel\": [";
@@ -76,8 +78,9 @@ void writeJson(const std::filesystem::path& path, const Report& r)
         if (std::fmod(p.heightM - ground, 100.0) > 1e-6 && &p != &r.parcel.path.back()) continue;
         out << (first ? "\n    " : ",\n    ") << "{\"height_m\": " << number(p.heightM)
             << ", \"pressure_hpa\": " << number(r.profile.pressure(p.heightM))
-            << ", \"parcel_c\": " << number(p.parcelC) << ", \"environment_c\": "
-            << number(p.environmentC) << ", \"dewpoint_c\": " << number(r.profile.dewpoint(p.heightM)) << "}";
+            << ", \"parcel_c\": " << number(p.parcelC)
+            << ", \"environment_c\": " << number(p.environmentC)
+            << ", \"dewpoint_c\": " << number(r.profile.dewpoint(p.heightM)) << "}";
         first = false;
     }
     out << "\n  ]\n}\n";
@@ -90,7 +93,8 @@ void writeCsv(const std::filesystem::path& path, const Report& r)
     const double ground = r.profile.groundHeight();
     std::ofstream out(path);
     out << "height_m,pressure_hPa,environment_C,dewpoint_C,parcel_C,cloud_fraction\n";
-    const std::size_t rows = static_cast<std::size_t>((r.profile.topHeight() - ground) / r.cloud.binM);
+    const std::size_t rows =
+        static_cast<std::size_t>((r.profile.topHeight() - ground) / r.cloud.binM);
     for (std::size_t k = 0; k < rows; ++k) {
         const double z = ground + (static_cast<double>(k) + 0.5) * r.cloud.binM;
         double parcel = std::nan("");
@@ -122,7 +126,9 @@ public:
                             (ctx.frame() - ctx.startFrame()) * ctx.timeStep()};
 
         const std::filesystem::path base = ctx.outputPath("file");
-        const auto withExtension = [&](const char* ext) { return std::filesystem::path(base.string() + ext); };
+        const auto withExtension = [&](const char* ext) {
+            return std::filesystem::path(base.string() + ext);
+        };
         // All three are written in full before any is committed.
         util::AtomicOutput json(withExtension(".json")), csv(withExtension(".csv")),
             png(withExtension(".png"));

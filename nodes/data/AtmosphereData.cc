@@ -33,8 +33,10 @@ void readProfile(ByteReader& in, Atmosphere& a)
         l.temperatureC = checks::finiteIn(v[k + 1], -150.0, 100.0, kType, "profile temperature");
         l.dewpointC = checks::finiteIn(v[k + 2], -200.0, 100.0, kType, "profile dew point");
         l.pressureHPa = checks::finiteIn(v[k + 3], 1e-6, 1200.0, kType, "profile pressure");
-        l.windEastMs = checks::finiteIn(v[k + 4], -L::kMaxWindSpeed, L::kMaxWindSpeed, kType, "profile wind");
-        l.windNorthMs = checks::finiteIn(v[k + 5], -L::kMaxWindSpeed, L::kMaxWindSpeed, kType, "profile wind");
+        l.windEastMs =
+            checks::finiteIn(v[k + 4], -L::kMaxWindSpeed, L::kMaxWindSpeed, kType, "profile wind");
+        l.windNorthMs =
+            checks::finiteIn(v[k + 5], -L::kMaxWindSpeed, L::kMaxWindSpeed, kType, "profile wind");
         levels.push_back(l);
     }
     if (levels.back().heightM - levels.front().heightM > L::kMaxProfileDepth)
@@ -55,9 +57,10 @@ void readWind(ByteReader& in, Atmosphere& a)
         checks::refuse(kType, "a wind profile of " + std::to_string(v.size()) + " values");
     std::vector<algo::WindLevel> levels;
     for (std::size_t k = 0; k < v.size(); k += kWindFields)
-        levels.push_back({checks::finiteIn(v[k], 0.0, L::kMaxProfileDepth, kType, "wind height"),
-                          checks::finiteIn(v[k + 1], -L::kMaxWindSpeed, L::kMaxWindSpeed, kType, "wind"),
-                          checks::finiteIn(v[k + 2], -L::kMaxWindSpeed, L::kMaxWindSpeed, kType, "wind")});
+        levels.push_back(
+            {checks::finiteIn(v[k], 0.0, L::kMaxProfileDepth, kType, "wind height"),
+             checks::finiteIn(v[k + 1], -L::kMaxWindSpeed, L::kMaxWindSpeed, kType, "wind"),
+             checks::finiteIn(v[k + 2], -L::kMaxWindSpeed, L::kMaxWindSpeed, kType, "wind")});
     try {
         a.wind = algo::WindProfile(std::move(levels));
     } catch (const std::invalid_argument& e) {

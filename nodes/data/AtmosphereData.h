@@ -14,12 +14,12 @@ namespace cg {
 class Registry;
 
 struct Atmosphere {
-    double groundTemperature = 20.0;      ///< T_sl_max of Eq. 9, degrees C
-    double environmentLapse = 6.4e-3;     ///< C_e of Eq. 9, degrees C per metre
-    double dewPoint = 16.0;               ///< T_dp of Eq. 8, degrees C
-    double dryLapse = 10.0e-3;            ///< C of Eq. 8 while T_v >= T_dp, degrees C per metre
-    double moistLapse = 6.0e-3;           ///< C of Eq. 8 once T_v < T_dp, degrees C per metre
-    double gravity = 9.81;                ///< g of Eq. 6, m/s^2
+    double groundTemperature = 20.0;   ///< T_sl_max of Eq. 9, degrees C
+    double environmentLapse = 6.4e-3;  ///< C_e of Eq. 9, degrees C per metre
+    double dewPoint = 16.0;            ///< T_dp of Eq. 8, degrees C
+    double dryLapse = 10.0e-3;         ///< C of Eq. 8 while T_v >= T_dp, degrees C per metre
+    double moistLapse = 6.0e-3;        ///< C of Eq. 8 once T_v < T_dp, degrees C per metre
+    double gravity = 9.81;             ///< g of Eq. 6, m/s^2
 
     /// Ours: the environment of a sounding or the standard atmosphere, in place of
     /// Eq. 9 and the one T_dp. Null: the paper's line.

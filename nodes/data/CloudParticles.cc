@@ -23,7 +23,8 @@ void writeArray(ByteWriter& out, const algo::UninitArray<T>& a)
 template <class T>
 algo::UninitArray<T> readArray(ByteReader& in)
 {
-    if (in.remaining() < sizeof(std::uint64_t)) checks::refuse("CloudParticles", "truncated payload");
+    if (in.remaining() < sizeof(std::uint64_t))
+        checks::refuse("CloudParticles", "truncated payload");
     const std::uint64_t n = in.u64();
     if (n > in.remaining() / sizeof(T)) checks::refuse("CloudParticles", "truncated payload");
     algo::UninitArray<T> a(static_cast<std::size_t>(n));
@@ -159,9 +160,10 @@ bool CloudParticlesData::serialize(ByteWriter& out) const
 
 void registerCloudParticlesType(Registry& registry)
 {
-    registry.addDataType({"CloudParticles",
-                          "cloud particles of one frame: position, level, source id; the copy origin of each source",
-                          readCloudParticles});
+    registry.addDataType(
+        {"CloudParticles",
+         "cloud particles of one frame: position, level, source id; the copy origin of each source",
+         readCloudParticles});
 }
 
 }  // namespace cg

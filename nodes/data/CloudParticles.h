@@ -84,7 +84,8 @@ public:
     /// without a frame-sized array. Levels, sources and copy origins come with the chunks as
     /// `fields` asks.
     void forEachChunk(const std::function<void(const algo::CloudChunk&)>& consume,
-                      CloudChunkFields fields, const std::function<void()>& checkCancelled = {}) const;
+                      CloudChunkFields fields,
+                      const std::function<void()>& checkCancelled = {}) const;
 
     std::string typeName() const override { return "CloudParticles"; }
     std::size_t byteSize() const override;

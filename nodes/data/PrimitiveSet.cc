@@ -37,14 +37,16 @@ PrimitiveSetData::PrimitiveSetData(double frameTime_, std::vector<std::uint32_t>
                                    std::vector<float> positions_)
     : frameTime(frameTime_), counts(std::move(counts_)), positions(std::move(positions_))
 {
-    if (!(frameTime > 0.0)) throw std::invalid_argument("PrimitiveSet: frame time must be positive");
+    if (!(frameTime > 0.0))
+        throw std::invalid_argument("PrimitiveSet: frame time must be positive");
     mOffsets.reserve(counts.size());
     // Bounded by the positions as it grows, so a huge sum of counts cannot wrap around.
     const std::uint64_t particles = positions.size() / 3;
     std::uint64_t total = 0;
     for (std::size_t s = 0; s < counts.size(); ++s) {
         if (s > 0 && counts[s] < counts[s - 1])
-            throw std::invalid_argument("PrimitiveSet: N_f(s) decreases at frame " + std::to_string(s));
+            throw std::invalid_argument("PrimitiveSet: N_f(s) decreases at frame " +
+                                        std::to_string(s));
         mOffsets.push_back(total);
         total += counts[s];
         if (total > particles) break;

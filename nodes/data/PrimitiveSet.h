@@ -18,7 +18,8 @@ class PrimitiveSetData final : public Data {
 public:
     /// `counts[s]` = N_f(s); `positions` holds frame 0's N_f(0) xyz triples, then frame 1's,
     /// and so on. Throws std::invalid_argument if the counts decrease or the sizes disagree.
-    PrimitiveSetData(double frameTime, std::vector<std::uint32_t> counts, std::vector<float> positions);
+    PrimitiveSetData(double frameTime, std::vector<std::uint32_t> counts,
+                     std::vector<float> positions);
 
     const double frameTime;                   ///< Delta s, seconds of physical time per frame
     const std::vector<std::uint32_t> counts;  ///< N_f(s) for s = 0..frames()-1
@@ -27,7 +28,10 @@ public:
     int frames() const { return static_cast<int>(counts.size()); }
     std::uint32_t count(int s) const { return counts[static_cast<std::size_t>(s)]; }
     /// Pointer to frame s's first xyz triple.
-    const float* frame(int s) const { return positions.data() + 3 * mOffsets[static_cast<std::size_t>(s)]; }
+    const float* frame(int s) const
+    {
+        return positions.data() + 3 * mOffsets[static_cast<std::size_t>(s)];
+    }
 
     /// Particle `id` at fractional frame s (Eq. 11 gives s = A (t - t0)), linearly interpolated
     /// between frames floor(s) and floor(s) + 1; s is clamped to [0, frames() - 1]. Returns

@@ -28,8 +28,10 @@ void checkStatics(const VapourStatics& s, const char* type)
         if (!(s.x[i] >= 0.0f && s.y[i] >= 0.0f) || !std::isfinite(s.x[i]) || !std::isfinite(s.y[i]))
             checks::refuse(type, "particle " + std::to_string(i) + " is not on the map");
         // Consumers look the start height up in a profile and add the offset to a dew point.
-        if (!std::isfinite(s.startZ[i]) || (!s.dewpointOffset.empty() && !std::isfinite(s.dewpointOffset[i])) ||
-            (!s.releaseTime.empty() && !(s.releaseTime[i] >= 0.0f && std::isfinite(s.releaseTime[i]))))
+        if (!std::isfinite(s.startZ[i]) ||
+            (!s.dewpointOffset.empty() && !std::isfinite(s.dewpointOffset[i])) ||
+            (!s.releaseTime.empty() &&
+             !(s.releaseTime[i] >= 0.0f && std::isfinite(s.releaseTime[i]))))
             checks::refuse(type, "particle " + std::to_string(i) + " has no finite start");
     }
 }
@@ -52,8 +54,9 @@ std::shared_ptr<const VapourParticlesData> readParticles(ByteReader& in, const c
     const std::size_t n = statics->id.size();
     const auto emptyOrN = [n](const std::vector<float>& v) { return v.empty() || v.size() == n; };
     if (statics->homeCell.size() != n || statics->x.size() != n || statics->y.size() != n ||
-        statics->startZ.size() != n || !emptyOrN(statics->dewpointOffset) || !emptyOrN(statics->releaseTime) || z.size() != n ||
-        vz.size() != n || t.size() != n || !emptyOrN(x) || x.size() != y.size())
+        statics->startZ.size() != n || !emptyOrN(statics->dewpointOffset) ||
+        !emptyOrN(statics->releaseTime) || z.size() != n || vz.size() != n || t.size() != n ||
+        !emptyOrN(x) || x.size() != y.size())
         checks::refuse(type, "particle arrays differ in length");  // before checkStatics reads them
     checkStatics(*statics, type);
     return std::make_shared<VapourParticlesData>(std::move(statics), std::move(x), std::move(y),
@@ -86,8 +89,8 @@ DataPtr readCondensation(ByteReader& in)
         checks::refuse(kType, "first condensation frame " + std::to_string(first) +
                                   " but the earliest is " + std::to_string(earliest));
     // The constructor checks that there is one frame and one height per particle.
-    return std::make_shared<CondensationData>(std::move(particles), std::move(frames), std::move(heights),
-                                              first);
+    return std::make_shared<CondensationData>(std::move(particles), std::move(frames),
+                                              std::move(heights), first);
 }
 
 }  // namespace
@@ -104,24 +107,29 @@ VapourParticlesData::VapourParticlesData(std::shared_ptr<const VapourStatics> st
                                          std::vector<float> x_, std::vector<float> y_,
                                          std::vector<float> z_, std::vector<float> vz_,
                                          std::vector<float> temperature_)
-    : statics(std::move(statics_)), z(std::move(z_)), vz(std::move(vz_)),
-      temperature(std::move(temperature_)), mX(std::move(x_)), mY(std::move(y_))
+    : statics(std::move(statics_)),
+      z(std::move(z_)),
+      vz(std::move(vz_)),
+      temperature(std::move(temperature_)),
+      mX(std::move(x_)),
+      mY(std::move(y_))
 {
     const std::size_t n = statics ? statics->size() : 0;
     if (!statics || statics->homeCell.size() != n || statics->x.size() != n ||
         statics->y.size() != n || statics->startZ.size() != n ||
         (!statics->dewpointOffset.empty() && statics->dewpointOffset.size() != n) ||
-        (!statics->releaseTime.empty() && statics->releaseTime.size() != n) ||
-        z.size() != n || vz.size() != n || temperature.size() != n ||
-        (!mX.empty() && mX.size() != n) || mY.size() != mX.size())
+        (!statics->releaseTime.empty() && statics->releaseTime.size() != n) || z.size() != n ||
+        vz.size() != n || temperature.size() != n || (!mX.empty() && mX.size() != n) ||
+        mY.size() != mX.size())
         throw std::invalid_argument("VapourParticles: arrays differ in length");
 }
 
 std::size_t VapourParticlesData::byteSize() const
 {
     // The statics are shared across frames; count them anyway, as a cache cannot know.
-    return sizeof(*this) + sizeof(VapourStatics) +
-           size() * (5 * 4 + 3 * 4) + (statics->dewpointOffset.size() + statics->releaseTime.size() + mX.size() + mY.size()) * 4;
+    return sizeof(*this) + sizeof(VapourStatics) + size() * (5 * 4 + 3 * 4) +
+           (statics->dewpointOffset.size() + statics->releaseTime.size() + mX.size() + mY.size()) *
+               4;
 }
 
 bool VapourParticlesData::serialize(ByteWriter& out) const
@@ -149,8 +157,10 @@ std::shared_ptr<const VapourParticlesData> VapourParticlesData::deserialize(Byte
 CondensationData::CondensationData(std::shared_ptr<const VapourParticlesData> particles_,
                                    std::vector<std::int32_t> condensedFrame_,
                                    std::vector<float> condensedHeight_, std::int32_t firstFrame_)
-    : particles(std::move(particles_)), condensedFrame(std::move(condensedFrame_)),
-      condensedHeight(std::move(condensedHeight_)), firstFrame(firstFrame_)
+    : particles(std::move(particles_)),
+      condensedFrame(std::move(condensedFrame_)),
+      condensedHeight(std::move(condensedHeight_)),
+      firstFrame(firstFrame_)
 {
     if (!particles || condensedFrame.size() != particles->size() ||
         condensedHeight.size() != particles->size())
@@ -159,8 +169,8 @@ CondensationData::CondensationData(std::shared_ptr<const VapourParticlesData> pa
 
 std::size_t CondensationData::condensedCount() const
 {
-    return static_cast<std::size_t>(
-        std::count_if(condensedFrame.begin(), condensedFrame.end(), [](std::int32_t f) { return f >= 0; }));
+    return static_cast<std::size_t>(std::count_if(condensedFrame.begin(), condensedFrame.end(),
+                                                  [](std::int32_t f) { return f >= 0; }));
 }
 
 std::size_t CondensationData::byteSize() const
@@ -180,10 +190,11 @@ bool CondensationData::serialize(ByteWriter& out) const
 
 void registerVapourParticleTypes(Registry& registry)
 {
-    registry.addDataType({"VapourParticles",
-                          "water vapour particles: id, home cell, start position and moisture, "
-                          "height, vertical velocity, temperature, and x, y once moved",
-                          [](ByteReader& in) -> DataPtr { return VapourParticlesData::deserialize(in); }});
+    registry.addDataType(
+        {"VapourParticles",
+         "water vapour particles: id, home cell, start position and moisture, "
+         "height, vertical velocity, temperature, and x, y once moved",
+         [](ByteReader& in) -> DataPtr { return VapourParticlesData::deserialize(in); }});
     registry.addDataType({"Condensation",
                           "vapour particles with the frame at which each condensed, and the "
                           "first condensation frame",

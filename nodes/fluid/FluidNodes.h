@@ -6,9 +6,9 @@ namespace cg {
 
 class Registry;
 
-void registerPrimitiveSimNode(Registry& registry);   // PrimitiveSim
-void registerPrimitiveLoadNode(Registry& registry);  // PrimitiveLoad
-void registerWritePrimitiveNodes(Registry& registry); // WritePrimitive, WritePrimitivePly
-void registerPrimitiveFrameNode(Registry& registry);  // PrimitiveFrame
+void registerPrimitiveSimNode(Registry& registry);     // PrimitiveSim
+void registerPrimitiveLoadNode(Registry& registry);    // PrimitiveLoad
+void registerWritePrimitiveNodes(Registry& registry);  // WritePrimitive, WritePrimitivePly
+void registerPrimitiveFrameNode(Registry& registry);   // PrimitiveFrame
 
 }  // namespace cg

@@ -30,7 +30,8 @@ public:
         const float* frame = n > 0 ? prim->frame(s) : nullptr;
         for (std::size_t q = 0; q < n; ++q)
             for (int a = 0; a < 3; ++a)
-                positions[3 * q + a] = static_cast<float>(offset[static_cast<std::size_t>(a)]) + scale * frame[3 * q + a];
+                positions[3 * q + a] = static_cast<float>(offset[static_cast<std::size_t>(a)]) +
+                                       scale * frame[3 * q + a];
         // Level 1, source 0: the primitive is one unmapped copy.
         ctx.setOutput("particles", std::make_shared<CloudParticlesData>(
                                        positions, std::vector<std::uint8_t>(n, 1),
@@ -54,8 +55,8 @@ void registerPrimitiveFrameNode(Registry& registry)
     d.inputs = {port("primitive", "PrimitiveSet", "the 3D cloud primitive set")};
     d.outputs = {port("particles", "CloudParticles", "the primitive's particles at frame s")};
     d.params = {floatParam("scale", 1.0, "", "metres per primitive metre", 1e-6, 1e6),
-                vec3Param("offset", Vec3{0.0, 0.0, 0.0}, "m", "where the cloud origin goes (x, y, z)",
-                          -1e7, 1e7)};
+                vec3Param("offset", Vec3{0.0, 0.0, 0.0}, "m",
+                          "where the cloud origin goes (x, y, z)", -1e7, 1e7)};
     d.create = [] { return std::make_unique<PrimitiveFrameNode>(); };
     registry.addNode(std::move(d));
 }

@@ -46,8 +46,8 @@ void registerPrimitiveLoadNode(Registry& registry)
         "refused with the file name and byte offset. The key holds the file's content hash "
         "(XXH3-64 of its bytes), not its path or time stamp.";
     d.outputs = {port("primitive", "PrimitiveSet", "the stored primitive set")};
-    d.params = {
-        inputFileParam("file", "", "path of the .cgp file (a relative path is found beside the graph file)")};
+    d.params = {inputFileParam(
+        "file", "", "path of the .cgp file (a relative path is found beside the graph file)")};
     d.hashExtra = [](const ParamSet& p, Hasher& h) {
         // The key holds the file's content, not its path (the engine leaves input-file
         // parameters out), so a copied or moved file is still a cache hit. An unreadable file

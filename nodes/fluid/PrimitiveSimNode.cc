@@ -70,8 +70,10 @@ void registerPrimitiveSimNode(Registry& registry)
         "and condensed water per particle, saturation by Tetens' formula. Scene: still, "
         "stably stratified air in a closed box, a warm moist source near the floor feeding "
         "a rising thermal. Output: the condensed particles, ids in order of appearance, "
-        "positions relative to the cloud origin (the first cloud particles' mean x, y at their lowest "
-        "z), so a mapped copy grows upwards from its source particle. Frame-independent: it cooks once, cached by "
+        "positions relative to the cloud origin (the first cloud particles' mean x, y at their "
+        "lowest "
+        "z), so a mapped copy grows upwards from its source particle. Frame-independent: it cooks "
+        "once, cached by "
         "its key. See docs/primitive.md.";
     d.outputs = {
         port("primitive", "PrimitiveSet", "the condensed fluid particles at every frame s")};

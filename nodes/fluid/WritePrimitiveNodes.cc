@@ -44,7 +44,7 @@ public:
             const auto path = formats::primitiveFramePath(pattern, s);
             util::AtomicOutput out(path);
             formats::writePrimitiveFramePly(out.tempPath(), prim->frame(s), prim->count(s), s,
-                                         [&ctx] { ctx.checkCancelled(); });
+                                            [&ctx] { ctx.checkCancelled(); });
             out.commit();
             written += (written.empty() ? "" : "\n") + path.string();
         }

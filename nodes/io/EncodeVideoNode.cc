@@ -55,8 +55,8 @@ public:
             throw InputError(ctx.nodeId() + "/params/images",
                              "'" + images + "' needs #### (the frame number) in its file name");
         // Resolved under --out as WriteImage resolves its 'file'; #### stays a pattern.
-        s.images = ctx.outputPath("images").parent_path() /
-                   std::filesystem::path(images).filename();
+        s.images =
+            ctx.outputPath("images").parent_path() / std::filesystem::path(images).filename();
 
         const std::filesystem::path path = ctx.outputPath("file");
         util::AtomicOutput out(path);
@@ -104,8 +104,7 @@ void registerEncodeVideoNode(Registry& registry)
         outputPathParam("images", "image.####.png",
                         "the frames to read: the WriteImage node's 'file' value (relative to "
                         "--out, #### in the file name)"),
-        intParam("firstFrame", -1, "frame", "first frame of the video; -1 = the graph's start",
-                 -1),
+        intParam("firstFrame", -1, "frame", "first frame of the video; -1 = the graph's start", -1),
         intParam("lastFrame", 0, "frame",
                  "last frame of the video: the encoder runs when this frame cooks (set it to "
                  "the run's last frame)"),

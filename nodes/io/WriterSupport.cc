@@ -9,12 +9,11 @@ void addSequenceParams(NodeDecl& d)
     for (auto& p : d.params)
         if (p.name == "every")
             p.doc = "write frames firstFrame, firstFrame + every, ...; skip the rest";
-    d.params.push_back(intParam(
-        "firstFrame", -1, "frame",
-        "first frame to write, from which 'every' counts; -1 = the graph's start", -1));
-    d.params.push_back(boolParam(
-        "skipEmpty", true,
-        "write no file for an empty frame (e.g. before the cloud forms)"));
+    d.params.push_back(
+        intParam("firstFrame", -1, "frame",
+                 "first frame to write, from which 'every' counts; -1 = the graph's start", -1));
+    d.params.push_back(boolParam("skipEmpty", true,
+                                 "write no file for an empty frame (e.g. before the cloud forms)"));
 }
 
 bool writesSequenceFrame(CookContext& ctx, bool empty)

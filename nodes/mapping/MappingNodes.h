@@ -5,9 +5,9 @@ namespace cg {
 
 class Registry;
 
-void registerPrimitiveMapperNode(Registry& registry);  // PrimitiveMapper
-void registerGenerateCloudNode(Registry& registry);    // GenerateCloud
+void registerPrimitiveMapperNode(Registry& registry);      // PrimitiveMapper
+void registerGenerateCloudNode(Registry& registry);        // GenerateCloud
 void registerWriteCloudParticlesNode(Registry& registry);  // WriteCloudParticles
-void registerPrimitiveSubsetNode(Registry& registry);   // PrimitiveSubset
+void registerPrimitiveSubsetNode(Registry& registry);      // PrimitiveSubset
 
 }  // namespace cg

@@ -73,8 +73,8 @@ void registerSyntheticCumulusNode(Registry& registry)
                    "fraction of a blob's radius over which it fades out", 0.01, 1),
         floatParam("noiseAmplitude", def.noiseAmplitude, "",
                    "edge erosion by billow noise, 0 = smooth spheres", 0, 0.95),
-        floatParam("noiseScale", def.noiseScale, "m", "wavelength of the largest noise octave",
-                   1, 1e5),
+        floatParam("noiseScale", def.noiseScale, "m", "wavelength of the largest noise octave", 1,
+                   1e5),
         floatParam("density", def.density, "", "interior density", 0.01, 1),
     };
     d.validate = [](const ParamSet& p, const ParamChecker& check) {

@@ -63,17 +63,19 @@ void registerWriteImageNode(Registry& registry)
         port("image", "Image", "linear radiance RGBA, with a background where it has one"),
         "image.####.png");
     d.params.push_back(floatParam("exposure", 0.0, "stops",
-                                  "radiance is multiplied by 2^exposure before the tone map",
-                                  -20, 20));
+                                  "radiance is multiplied by 2^exposure before the tone map", -20,
+                                  20));
     d.params.push_back(stringParam("toneMap", "aces",
                                    "filmic curve: aces (Narkowicz fit), hable (Uncharted 2, "
                                    "white 11.2) or clamp (none)",
                                    {"aces", "hable", "clamp"}));
-    d.params.push_back(boolParam("dither", true, "add +-1 code-value triangular dither (no banding)"));
+    d.params.push_back(
+        boolParam("dither", true, "add +-1 code-value triangular dither (no banding)"));
     d.validate = [](const ParamSet& p, const ParamChecker& check) {
         const std::string& file = p.getString("file");
         if (!isImageFileName(file))
-            check.fail("file", "'" + file + "' must end in .png (8-bit sRGB) or .exr (linear float)");
+            check.fail("file",
+                       "'" + file + "' must end in .png (8-bit sRGB) or .exr (linear float)");
     };
     d.create = [] { return std::make_unique<WriteImageNode>(); };
     registry.addNode(std::move(d));

@@ -51,8 +51,9 @@ void registerArrayNodes(Registry& registry)
     NodeDecl scale;
     scale.type = "Scale";
     scale.category = "util";
-    scale.doc = "Multiplies every value by a factor: the 'factor' input when connected, "
-                "otherwise the 'factor' parameter.";
+    scale.doc =
+        "Multiplies every value by a factor: the 'factor' input when connected, "
+        "otherwise the 'factor' parameter.";
     scale.inputs = {port("values", "FloatArray", "values to scale"),
                     port("factor", "Float", "overrides the factor parameter", true)};
     scale.outputs = {port("values", "FloatArray", "the scaled values")};

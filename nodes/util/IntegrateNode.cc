@@ -43,9 +43,10 @@ void registerIntegrateNode(Registry& registry)
     NodeDecl d;
     d.type = "Integrate";
     d.category = "util";
-    d.doc = "Explicit Euler integration: state = initial on the start frame, then "
-            "state(n) = state(n-1) + timeStep * rate(n). A simulation: frame n is stepped "
-            "from the cached frame n-1.";
+    d.doc =
+        "Explicit Euler integration: state = initial on the start frame, then "
+        "state(n) = state(n-1) + timeStep * rate(n). A simulation: frame n is stepped "
+        "from the cached frame n-1.";
     d.simulation = true;
     d.readsTimeStep = true;
     d.inputs = {port("rate", "FloatArray", "rate of change per second")};

@@ -47,7 +47,8 @@ void registerLogTextNode(Registry& registry)
     d.writesFiles = true;
     d.frameDependent = true;
     d.inputs = {port("text", "Text", "the text to print")};
-    d.outputs = {port("logged", "Text", "the line printed at this frame (empty on skipped frames)")};
+    d.outputs = {
+        port("logged", "Text", "the line printed at this frame (empty on skipped frames)")};
     d.params = {intParam("every", 1, "frames", "print every this many frames from the start", 1)};
     d.create = [] { return std::make_unique<LogTextNode>(); };
     registry.addNode(std::move(d));

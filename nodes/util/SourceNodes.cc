@@ -68,8 +68,9 @@ void registerSourceNodes(Registry& registry)
     NodeDecl osc;
     osc.type = "Oscillator";
     osc.category = "util";
-    osc.doc = "offset + amplitude * sin(2 pi t / period), with t = frame * timeStep: a value "
-              "that changes every frame.";
+    osc.doc =
+        "offset + amplitude * sin(2 pi t / period), with t = frame * timeStep: a value "
+        "that changes every frame.";
     osc.frameDependent = true;
     osc.readsTimeStep = true;
     osc.outputs = {port("value", "Float", "the oscillator's value at this frame")};
@@ -82,8 +83,9 @@ void registerSourceNodes(Registry& registry)
     NodeDecl field;
     field.type = "RandomField";
     field.category = "util";
-    field.doc = "width x height uniform random values in [low, high), row-major. Value i is a "
-                "pure function of (seed, i), so the field is identical for any thread count.";
+    field.doc =
+        "width x height uniform random values in [low, high), row-major. Value i is a "
+        "pure function of (seed, i), so the field is identical for any thread count.";
     field.outputs = {port("values", "FloatArray", "the field, row-major")};
     field.params = {intParam("width", 64, "cells", "number of columns", 1, 1099511627776.0),
                     intParam("height", 64, "cells", "number of rows", 1, 1099511627776.0),

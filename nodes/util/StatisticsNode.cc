@@ -50,8 +50,9 @@ void registerStatisticsNode(Registry& registry)
     NodeDecl d;
     d.type = "Statistics";
     d.category = "util";
-    d.doc = "Mean, minimum, maximum and count of an array (NaN for an empty one), and a "
-            "one-line text summary that names the frame.";
+    d.doc =
+        "Mean, minimum, maximum and count of an array (NaN for an empty one), and a "
+        "one-line text summary that names the frame.";
     d.frameDependent = true;  // the summary names the frame
     d.inputs = {port("values", "FloatArray", "the values to summarise")};
     d.outputs = {port("mean", "Float", "arithmetic mean"), port("min", "Float", "smallest value"),

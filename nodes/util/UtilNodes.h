@@ -6,11 +6,11 @@ namespace cg {
 
 class Registry;
 
-void registerSourceNodes(Registry& registry);      // Constant, Oscillator, RandomField
-void registerArrayNodes(Registry& registry);       // Scale, Sum
-void registerIntegrateNode(Registry& registry);    // Integrate
-void registerStatisticsNode(Registry& registry);   // Statistics
-void registerWriterNodes(Registry& registry);      // WriteArray, WriteText
-void registerLogTextNode(Registry& registry);      // LogText
+void registerSourceNodes(Registry& registry);     // Constant, Oscillator, RandomField
+void registerArrayNodes(Registry& registry);      // Scale, Sum
+void registerIntegrateNode(Registry& registry);   // Integrate
+void registerStatisticsNode(Registry& registry);  // Statistics
+void registerWriterNodes(Registry& registry);     // WriteArray, WriteText
+void registerLogTextNode(Registry& registry);     // LogText
 
 }  // namespace cg

@@ -27,7 +27,8 @@ public:
         for (std::size_t i = 0; i < in->values.size(); ++i) {
             if ((i & 0xffff) == 0) ctx.checkCancelled();
             // %.9g round-trips every float exactly.
-            const int n = std::snprintf(buf, sizeof buf, "%.9g\n", static_cast<double>(in->values[i]));
+            const int n =
+                std::snprintf(buf, sizeof buf, "%.9g\n", static_cast<double>(in->values[i]));
             text.append(buf, static_cast<std::size_t>(n));
         }
         const auto path = ctx.outputPath("file");

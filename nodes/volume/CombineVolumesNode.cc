@@ -25,8 +25,8 @@ public:
         const auto b = ctx.input<FogVolumeData>("b");
         openvdb::FloatGrid::Ptr out;
         try {
-            out = algo::combineFogVolumes(*a->grid, *b->grid,
-                                          algo::combineModeFromName(ctx.params().getString("mode")));
+            out = algo::combineFogVolumes(
+                *a->grid, *b->grid, algo::combineModeFromName(ctx.params().getString("mode")));
         } catch (const std::invalid_argument& e) {
             throw InputError(ctx.nodeId(), std::string("inputs 'a' and 'b': ") + e.what());
         }
@@ -48,8 +48,10 @@ void registerCombineVolumesNode(Registry& registry)
         "'density' with a's metadata; the inputs are left untouched.";
     d.inputs = {port("a", "FogVolume", "the first volume (its metadata is kept)"),
                 port("b", "FogVolume", "the second volume")};
-    d.outputs = {port("volume", "FogVolume", "the combined density, values in [0, 1] for fog inputs")};
-    d.params = {stringParam("mode", "max", "max: larger density; sum: added, clamped to 1", {"max", "sum"})};
+    d.outputs = {
+        port("volume", "FogVolume", "the combined density, values in [0, 1] for fog inputs")};
+    d.params = {stringParam("mode", "max", "max: larger density; sum: added, clamped to 1",
+                            {"max", "sum"})};
     d.create = [] { return std::make_unique<CombineVolumesNode>(); };
     registry.addNode(std::move(d));
 }

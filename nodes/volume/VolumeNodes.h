@@ -9,10 +9,10 @@ namespace cg {
 class Registry;
 class ParamSet;
 
-void registerVoxelizerNode(Registry& registry);    // Voxelizer
-void registerWriteVdbNode(Registry& registry);     // WriteVDB
-void registerReadVdbNode(Registry& registry);      // ReadVDB
-void registerWritePointsNode(Registry& registry);  // WritePoints: VDB Points
+void registerVoxelizerNode(Registry& registry);       // Voxelizer
+void registerWriteVdbNode(Registry& registry);        // WriteVDB
+void registerReadVdbNode(Registry& registry);         // ReadVDB
+void registerWritePointsNode(Registry& registry);     // WritePoints: VDB Points
 void registerCombineVolumesNode(Registry& registry);  // CombineVolumes
 
 /// ReadVDB's checks that need the grid's voxels (every value finite; a domain the Renderer

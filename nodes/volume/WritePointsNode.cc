@@ -55,7 +55,8 @@ public:
         ctx.checkCancelled();
 
         const std::filesystem::path path = ctx.outputPath("file");
-        formats::writeVdbFile(path, grid, "CloudGraph WritePoints", std::nullopt, [&] { ctx.checkCancelled(); });
+        formats::writeVdbFile(path, grid, "CloudGraph WritePoints", std::nullopt,
+                              [&] { ctx.checkCancelled(); });
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));
     }
 };
@@ -75,7 +76,7 @@ void registerWritePointsNode(Registry& registry)
         "frames firstFrame, firstFrame + every, ... and, with skipEmpty, only those with a "
         "particle, as WriteVDB does.",
         port("particles", "CloudParticles", "the particles to write"), "points.####.vdb");
-    d.version = 2;  // each version's change: CHANGES.md, "Node versions"
+    d.version = 2;         // each version's change: CHANGES.md, "Node versions"
     addSequenceParams(d);  // empty: no particle
     d.params.push_back(floatParam(
         "voxelSize", 0.0, "m",

@@ -38,15 +38,16 @@ public:
     {
         const auto volume = ctx.input<FogVolumeData>("volume");
         if (!writesSequenceFrame(ctx, /*empty=*/!volume->grid->cbeginValueOn())) return;
-        const std::uint32_t flags = compressionFlags(ctx.params().getString("compression"),
-                                                     ctx.nodeId());
+        const std::uint32_t flags =
+            compressionFlags(ctx.params().getString("compression"), ctx.nodeId());
         // A shallow copy shares the (immutable) tree; only its save flag differs.
         openvdb::FloatGrid::Ptr grid =
             openvdb::ConstPtrCast<openvdb::FloatGrid>(volume->grid)->copy();
         grid->setSaveFloatAsHalf(ctx.params().getBool("halfFloat"));
 
         const std::filesystem::path path = ctx.outputPath("file");
-        formats::writeVdbFile(path, grid, "CloudGraph WriteVDB", flags, [&] { ctx.checkCancelled(); });
+        formats::writeVdbFile(path, grid, "CloudGraph WriteVDB", flags,
+                              [&] { ctx.checkCancelled(); });
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));
     }
 };
@@ -66,10 +67,10 @@ void registerWriteVdbNode(Registry& registry)
         "as one (it needs consecutive numbers: every = 1, and skipEmpty off if the cloud can "
         "vanish mid-run).",
         port("volume", "FogVolume", "the volume to write"), "density.####.vdb");
-    d.version = 2;  // each version's change: CHANGES.md, "Node versions"
+    d.version = 2;         // each version's change: CHANGES.md, "Node versions"
     addSequenceParams(d);  // empty: a grid without active voxels
-    d.params.push_back(boolParam(
-        "halfFloat", false, "store values as 16-bit half floats (half the size, ~3 digits)"));
+    d.params.push_back(boolParam("halfFloat", false,
+                                 "store values as 16-bit half floats (half the size, ~3 digits)"));
     d.params.push_back(stringParam(
         "compression", "auto",
         "auto = blosc when this OpenVDB has it (Debian's does), else zip; none = uncompressed",

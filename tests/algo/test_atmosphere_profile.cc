@@ -60,28 +60,27 @@ TEST(Profile, StandardAtmosphereMatchesTheIcaoClosedForm)
         const double t0 = 288.15;
         if (z <= 11000.0) return 1013.25 * std::pow((t0 - 6.5e-3 * z) / t0, exponent);
         const double p11 = 1013.25 * std::pow((t0 - 6.5e-3 * 11000.0) / t0, exponent);
-        return p11 * std::exp(-thermo::kGravity * (z - 11000.0) / (thermo::kDryGasConstant * 216.65));
+        return p11 *
+               std::exp(-thermo::kGravity * (z - 11000.0) / (thermo::kDryGasConstant * 216.65));
     };
     for (double z : {1000.0, 5000.0, 11000.0, 16000.0, 20000.0})
         EXPECT_NEAR(p.pressure(z) / icao(z), 1.0, 1e-5) << z;
-    EXPECT_NEAR(icao(11000.0), 226.32, 0.05);  // the published value
+    EXPECT_NEAR(icao(11000.0), 226.32, 0.05);                             // the published value
     EXPECT_NEAR(p.temperature(3000.0) - p.dewpoint(3000.0), 10.0, 1e-9);  // depression kept
 }
 
 TEST(Profile, InterpolatesInHeightAndFillsWhatTheSoundingLacks)
 {
-    const EnvironmentProfile p({level(100.0, 20.0, 10.0, 1000.0, 0.0, 0.0),
-                                level(1100.0, 14.0, kNaN, kNaN, kNaN, kNaN),
-                                level(2100.0, 8.0, 2.0, 800.0, 10.0, -4.0),
-                                level(3100.0, 2.0, kNaN, kNaN, kNaN, kNaN)});
+    const EnvironmentProfile p(
+        {level(100.0, 20.0, 10.0, 1000.0, 0.0, 0.0), level(1100.0, 14.0, kNaN, kNaN, kNaN, kNaN),
+         level(2100.0, 8.0, 2.0, 800.0, 10.0, -4.0), level(3100.0, 2.0, kNaN, kNaN, kNaN, kNaN)});
     EXPECT_DOUBLE_EQ(p.temperature(600.0), 17.0);
-    EXPECT_DOUBLE_EQ(p.temperature(0.0), 20.0);     // held below the ground level
-    EXPECT_DOUBLE_EQ(p.temperature(9000.0), 2.0);   // and above the top
-    EXPECT_DOUBLE_EQ(p.dewpoint(1100.0), 6.0);      // interpolated between 10 and 2
-    EXPECT_DOUBLE_EQ(p.dewpoint(3100.0), -4.0);     // the last depression (6 C) kept
+    EXPECT_DOUBLE_EQ(p.temperature(0.0), 20.0);    // held below the ground level
+    EXPECT_DOUBLE_EQ(p.temperature(9000.0), 2.0);  // and above the top
+    EXPECT_DOUBLE_EQ(p.dewpoint(1100.0), 6.0);     // interpolated between 10 and 2
+    EXPECT_DOUBLE_EQ(p.dewpoint(3100.0), -4.0);    // the last depression (6 C) kept
     // A missing pressure is hydrostatic from the level below.
-    EXPECT_NEAR(p.pressure(1100.0),
-                thermo::hydrostaticPressure(1000.0, 20.0, 14.0, 1000.0), 1e-9);
+    EXPECT_NEAR(p.pressure(1100.0), thermo::hydrostaticPressure(1000.0, 20.0, 14.0, 1000.0), 1e-9);
     EXPECT_NEAR(p.pressure(1600.0), std::sqrt(p.pressure(1100.0) * 800.0), 1e-9);  // log-linear
     const Wind w = p.wind(1100.0);  // halfway between calm and (10, -4)
     EXPECT_DOUBLE_EQ(w.east, 5.0);

@@ -22,7 +22,8 @@ TEST(CloudColumn, BaseTopAndFractionOfAKnownBlock)
                 z.push_back(h);
                 frame.push_back(7);
             }
-    const CloudColumn c = cloudColumn(x.data(), y.data(), z.data(), frame.data(), x.size(), 250.0, 100.0);
+    const CloudColumn c =
+        cloudColumn(x.data(), y.data(), z.data(), frame.data(), x.size(), 250.0, 100.0);
     EXPECT_EQ(c.condensed, 50u * 100u * 4u);
     EXPECT_EQ(c.baseM, 1000.0);
     EXPECT_EQ(c.topM, 1999.0);

@@ -17,13 +17,15 @@ TEST(Condensation, ParticlesBelowTheDewPointCondenseAndNeverTurnBack)
     const std::vector<float> warm = {10.0f, 6.0f, 20.0f};
     const std::vector<float> z0 = {100.0f, 110.0f, 120.0f}, z1 = {200.0f, 210.0f, 220.0f},
                              z2 = {300.0f, 310.0f, 320.0f};
-    const algo::CondensationState f0 = algo::condenseStep(nullptr, warm.data(), z0.data(), 3, dewPoint, 0);
+    const algo::CondensationState f0 =
+        algo::condenseStep(nullptr, warm.data(), z0.data(), 3, dewPoint, 0);
     EXPECT_EQ(f0.count, 0u);
     EXPECT_EQ(f0.firstFrame, -1);
     EXPECT_EQ(f0.condensedFrame, (std::vector<std::int32_t>{-1, -1, -1}));
 
     const std::vector<float> cooler = {4.9f, 5.0f, 20.0f};  // 5.0 is not below the dew point
-    const algo::CondensationState f1 = algo::condenseStep(&f0, cooler.data(), z1.data(), 3, dewPoint, 1);
+    const algo::CondensationState f1 =
+        algo::condenseStep(&f0, cooler.data(), z1.data(), 3, dewPoint, 1);
     EXPECT_EQ(f1.condensedFrame, (std::vector<std::int32_t>{1, -1, -1}));
     EXPECT_EQ(f1.firstFrame, 1);
     EXPECT_EQ(f1.count, 1u);
@@ -31,7 +33,8 @@ TEST(Condensation, ParticlesBelowTheDewPointCondenseAndNeverTurnBack)
     EXPECT_TRUE(std::isnan(f1.condensedHeight[1]));
 
     const std::vector<float> rewarmed = {30.0f, -1.0f, 20.0f};
-    const algo::CondensationState f2 = algo::condenseStep(&f1, rewarmed.data(), z2.data(), 3, dewPoint, 2);
+    const algo::CondensationState f2 =
+        algo::condenseStep(&f1, rewarmed.data(), z2.data(), 3, dewPoint, 2);
     EXPECT_EQ(f2.condensedFrame, (std::vector<std::int32_t>{1, 2, -1}));
     EXPECT_EQ(f2.firstFrame, 1);
     EXPECT_EQ(f2.count, 2u);
@@ -40,7 +43,8 @@ TEST(Condensation, ParticlesBelowTheDewPointCondenseAndNeverTurnBack)
     EXPECT_EQ(f2.condensedHeight[1], 310.0f);
     EXPECT_TRUE(std::isnan(f2.condensedHeight[2]));
 
-    EXPECT_THROW(algo::condenseStep(&f2, rewarmed.data(), z2.data(), 2, dewPoint, 3), std::invalid_argument);
+    EXPECT_THROW(algo::condenseStep(&f2, rewarmed.data(), z2.data(), 2, dewPoint, 3),
+                 std::invalid_argument);
 }
 
 }  // namespace cg

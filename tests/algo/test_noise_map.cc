@@ -197,7 +197,8 @@ double powerShareBelow(const std::vector<float>& map, int nx, int ny, double fCu
         for (std::size_t i = 0; i < wc; ++i) {
             const double f = std::hypot(double(i) / double(w), fy);
             if (f == 0.0) continue;
-            const double p = spec[j * wc + i][0] * spec[j * wc + i][0] + spec[j * wc + i][1] * spec[j * wc + i][1];
+            const double p = spec[j * wc + i][0] * spec[j * wc + i][0] +
+                             spec[j * wc + i][1] * spec[j * wc + i][1];
             total += p;
             if (f < fCut) below += p;
         }

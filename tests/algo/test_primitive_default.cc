@@ -52,7 +52,8 @@ TEST(PrimitiveScene, DefaultPrimitiveGrowsRisesAndWidens)
     const PrimitiveSettings s = defaultPrimitiveSettings();
     const PrimitiveResult r = simulatePrimitive(s);
     ASSERT_EQ(r.counts.size(), 150u);
-    for (std::size_t f = 1; f < r.counts.size(); ++f) ASSERT_GE(r.counts[f], r.counts[f - 1]) << "frame " << f;
+    for (std::size_t f = 1; f < r.counts.size(); ++f)
+        ASSERT_GE(r.counts[f], r.counts[f - 1]) << "frame " << f;
     for (float v : r.positions) ASSERT_TRUE(std::isfinite(v));
     // The thermal condenses within the first third of the run and ends with over 10,000 cloud
     // particles (10,715 measured; the paper's primitive has 16,401 fluid particles).
@@ -72,11 +73,13 @@ TEST(PrimitiveScene, DefaultPrimitiveGrowsRisesAndWidens)
     }
     // The first cloud particles sit at the origin's height and around its axis.
     const std::size_t firstFrame = static_cast<std::size_t>(
-        std::find_if(r.counts.begin(), r.counts.end(), [](std::uint32_t n) { return n > 0; }) - r.counts.begin());
+        std::find_if(r.counts.begin(), r.counts.end(), [](std::uint32_t n) { return n > 0; }) -
+        r.counts.begin());
     std::size_t first = 0;
     for (std::size_t f = 0; f < firstFrame; ++f) first += r.counts[f];
     float lowest = 1e30f;
-    for (std::uint32_t q = 0; q < r.counts[firstFrame]; ++q) lowest = std::min(lowest, r.positions[3 * (first + q) + 2]);
+    for (std::uint32_t q = 0; q < r.counts[firstFrame]; ++q)
+        lowest = std::min(lowest, r.positions[3 * (first + q) + 2]);
     EXPECT_EQ(lowest, 0.0f);
     // The cloud rises and widens with s: its mean height, top and horizontal spread grow
     // from frame 50 to 100 to 149.

@@ -22,7 +22,7 @@ TEST(PrimitiveSubset, KeepsEveryKthIdOnItsTrajectory)
     std::vector<float> kept;
     algo::everyKthParticle(counts, positions, 3, keptCounts, kept);
     EXPECT_EQ(keptCounts, (std::vector<std::uint32_t>{1, 2, 3}));  // ceil(N_f / 3)
-    const std::vector<float> expected = {0, 0, 0,  0, 1, 0, 3, 1, 0,  0, 2, 0, 3, 2, 0, 6, 2, 0};
+    const std::vector<float> expected = {0, 0, 0, 0, 1, 0, 3, 1, 0, 0, 2, 0, 3, 2, 0, 6, 2, 0};
     EXPECT_EQ(kept, expected);
 
     EXPECT_EQ(algo::subsetStride(7, 3), 3u);

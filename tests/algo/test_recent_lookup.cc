@@ -23,7 +23,8 @@ TEST(RecentLookup, AnswersEveryKeyWithItsOwnValueAndFetchesOnlyOnAMiss)
     // 0 is a key like any other (the empty slot's key is 0 too).
     for (std::uint64_t key = 0; key < 64; ++key) *get(key) = static_cast<int>(key) + 1;
     EXPECT_EQ(fetches, 64);
-    for (std::uint64_t key = 0; key < 64; ++key) EXPECT_EQ(*get(key), static_cast<int>(key) + 1) << key;
+    for (std::uint64_t key = 0; key < 64; ++key)
+        EXPECT_EQ(*get(key), static_cast<int>(key) + 1) << key;
     for (const auto& [key, value] : map) EXPECT_EQ(value, static_cast<int>(key) + 1);
 
     // A key just asked for is answered from the cache; clear() forgets it.

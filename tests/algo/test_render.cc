@@ -5,7 +5,6 @@
 
 #include <cmath>
 
-
 #include "algo/render/Phase.h"
 #include "algo/render/RenderVolume.h"
 #include "algo/render/ToneMap.h"
@@ -47,7 +46,7 @@ TEST(RenderPhase, SampledCosinesFollowTheTwoLobeDensity)
     for (int i = 0; i < n; ++i) {
         const double u = (i + 0.5) / n;
         const double uLobe = std::fmod(u * 7919.0, 1.0);  // a second, decorrelated coordinate
-        int draw = 0;  // the lobe first, then the cosine
+        int draw = 0;                                     // the lobe first, then the cosine
         const double mu = phase.sample([&] { return draw++ ? u : uLobe; });
         count[std::min(bins - 1, static_cast<int>((mu + 1.0) / 2.0 * bins))] += 1.0;
     }
@@ -129,8 +128,7 @@ TEST(RenderImage, MissedRaysSeeTheSkyExactly)
     const algo::RenderedImage img = algo::renderFogVolume(*ball, s);
     ASSERT_EQ(img.rgba.size(), std::size_t(64 * 48 * 4));
     for (const auto& [x, y] : {std::pair{0, 0}, {63, 0}, {0, 47}, {63, 47}, {5, 24}}) {
-        const RenderVec3 sky =
-            algo::skyRadiance(s.sky, algo::CameraRays(s.camera).direction(x, y));
+        const RenderVec3 sky = algo::skyRadiance(s.sky, algo::CameraRays(s.camera).direction(x, y));
         const float* p = &img.rgba[(static_cast<std::size_t>(y) * 64 + x) * 4];
         EXPECT_EQ(p[0], static_cast<float>(sky.x()));
         EXPECT_EQ(p[1], static_cast<float>(sky.y()));
@@ -213,7 +211,8 @@ TEST(RenderImage, RefusesUnusableSettings)
 
 TEST(RenderToneMap, CurvesAreMonotoneAndBounded)
 {
-    for (const auto curve : {algo::ToneCurve::Aces, algo::ToneCurve::Hable, algo::ToneCurve::Clamp}) {
+    for (const auto curve :
+         {algo::ToneCurve::Aces, algo::ToneCurve::Hable, algo::ToneCurve::Clamp}) {
         double prev = 0.0;
         for (double x = 0.0; x < 50.0; x += 0.01) {
             const double y = algo::toneMap(x, curve);

@@ -30,7 +30,8 @@ bool colourAt(const SkewTImage& image, double x, double y, const std::uint8_t* c
         for (int dx = -1; dx <= 1; ++dx) {
             const long px = std::lround(x) + dx, py = std::lround(y) + dy;
             if (px < 0 || py < 0 || px >= image.width || py >= image.height) continue;
-            const std::uint8_t* p = &image.rgb[3u * (static_cast<std::size_t>(py) * image.width + px)];
+            const std::uint8_t* p =
+                &image.rgb[3u * (static_cast<std::size_t>(py) * image.width + px)];
             if (p[0] == c[0] && p[1] == c[1] && p[2] == c[2]) return true;
         }
     return false;
@@ -74,7 +75,8 @@ TEST(SkewT, CurvesTicksAndCloudAreWhereTheAxesPutThem)
     const SkewTImage warmer = drawSkewT(warm, parcel, o);
     const double pw = warm.pressure(5000.0);
     EXPECT_TRUE(colourAt(warmer, a.x(warm.temperature(5000.0), pw), a.y(pw), kSkewTEnvironment));
-    EXPECT_FALSE(colourAt(warmer, a.x(warm.temperature(5000.0) - 10.0, pw), a.y(pw), kSkewTEnvironment));
+    EXPECT_FALSE(
+        colourAt(warmer, a.x(warm.temperature(5000.0) - 10.0, pw), a.y(pw), kSkewTEnvironment));
 }
 
 }  // namespace cg::algo

@@ -86,11 +86,12 @@ TEST(PerlinWorley, FbmIsANormalisedSumOfOctaves)
     const double frequency = 1.0 / 100.0;
     // One octave: the texture at x frequency texels-per-cycle.
     const double t = kPerlinWorleyTexelsPerCycle * frequency;
-    EXPECT_NEAR(perlinWorleyFbm(x, frequency, 1),
-                perlinWorleyTexel(static_cast<float>(x[0] * t - kSize * std::floor(x[0] * t / kSize)),
-                                  static_cast<float>(x[1] * t - kSize * std::floor(x[1] * t / kSize)),
-                                  static_cast<float>(x[2] * t - kSize * std::floor(x[2] * t / kSize))),
-                1e-6);
+    EXPECT_NEAR(
+        perlinWorleyFbm(x, frequency, 1),
+        perlinWorleyTexel(static_cast<float>(x[0] * t - kSize * std::floor(x[0] * t / kSize)),
+                          static_cast<float>(x[1] * t - kSize * std::floor(x[1] * t / kSize)),
+                          static_cast<float>(x[2] * t - kSize * std::floor(x[2] * t / kSize))),
+        1e-6);
     for (int octaves = 1; octaves <= 6; ++octaves) {
         const float v = perlinWorleyFbm(x, frequency, octaves);
         EXPECT_GE(v, 0.0f);
@@ -174,7 +175,8 @@ TEST(CopyOriginField, WhereCopiesMeetTheOriginIsTheirParticleWeightedMean)
     std::vector<std::uint32_t> sources(3 * m, 0);
     std::fill(sources.begin() + static_cast<std::ptrdiff_t>(2 * m), sources.end(), 1u);
     const std::vector<float> origins{0.0f, 30.0f, 60.0f, 90.0f, -30.0f, 0.0f};
-    const CopyOriginField field(xyz.data(), sources.data(), sources.size(), origins.data(), 2, 60.0);
+    const CopyOriginField field(xyz.data(), sources.data(), sources.size(), origins.data(), 2,
+                                60.0);
     const double p[3] = {10.0, -20.0, 35.0};
     double o[3];
     ASSERT_TRUE(field.block(p, p).origin(p, o));
@@ -192,8 +194,10 @@ TEST(CopyOriginField, RefusesASourceWithoutOriginAndIsTheSameForAnyThreadCount)
     std::vector<std::uint32_t> sources(n);
     for (std::size_t i = 0; i < n; ++i) sources[i] = static_cast<std::uint32_t>(i % 5);
     std::vector<float> origins(15);
-    for (std::size_t k = 0; k < origins.size(); ++k) origins[k] = 0.1f * static_cast<float>(k * k) + 0.3f;
-    EXPECT_THROW(CopyOriginField(xyz.data(), sources.data(), n, origins.data(), 4, 50.0), std::invalid_argument);
+    for (std::size_t k = 0; k < origins.size(); ++k)
+        origins[k] = 0.1f * static_cast<float>(k * k) + 0.3f;
+    EXPECT_THROW(CopyOriginField(xyz.data(), sources.data(), n, origins.data(), 4, 50.0),
+                 std::invalid_argument);
 
     const double lo[3] = {-400, -400, -400}, hi[3] = {400, 400, 400};
     const auto sample = [&] {
@@ -232,7 +236,8 @@ struct MappedCopy {
     {
         const double c[3] = {0.0, 0.0, 150.0};
         puff = ball(c, 300.0, 30.0);
-        counts = {static_cast<std::uint32_t>(puff.size() / 3), static_cast<std::uint32_t>(puff.size() / 3)};
+        counts = {static_cast<std::uint32_t>(puff.size() / 3),
+                  static_cast<std::uint32_t>(puff.size() / 3)};
         frames = {puff.data(), puff.data()};
         Source s;
         s.level = 1;
@@ -260,7 +265,8 @@ struct MappedCopy {
     }
 };
 
-openvdb::FloatGrid::Ptr detailed(const CloudParticleArrays& cloud, bool copyCoordinates, double amplitude)
+openvdb::FloatGrid::Ptr detailed(const CloudParticleArrays& cloud, bool copyCoordinates,
+                                 double amplitude)
 {
     VoxelizeSettings v;
     v.voxelSize = 10.0;
@@ -280,7 +286,8 @@ openvdb::FloatGrid::Ptr detailed(const CloudParticleArrays& cloud, bool copyCoor
 }
 
 /// The largest |a(c) - b(c + shift)| over the active voxels of both.
-float largestDifference(const openvdb::FloatGrid& a, const openvdb::FloatGrid& b, const openvdb::Coord& shift)
+float largestDifference(const openvdb::FloatGrid& a, const openvdb::FloatGrid& b,
+                        const openvdb::Coord& shift)
 {
     float worst = 0.0f;
     auto ab = a.getConstAccessor();
@@ -360,7 +367,8 @@ TEST(SurfaceDetail, ErodesOnlyTheShellAndOnlyDownward)
     EXPECT_GT(changed, shell / 2);
     // Nothing new: every active voxel after erosion was active before.
     auto before = plain->getConstAccessor();
-    for (auto it = eroded->tree().cbeginValueOn(); it; ++it) ASSERT_TRUE(before.isValueOn(it.getCoord()));
+    for (auto it = eroded->tree().cbeginValueOn(); it; ++it)
+        ASSERT_TRUE(before.isValueOn(it.getCoord()));
 }
 
 // Every shell voxel is (v - e) / (1 - e) with e = amplitude (1 - n) from its own noise value,
@@ -403,12 +411,15 @@ TEST(SurfaceDetail, AmplitudeZeroLeavesTheGridBitForBitAndBadSettingsAreRefused)
     const auto off = detailed(cloud, true, 0.0);
     ASSERT_EQ(off->activeVoxelCount(), reference->activeVoxelCount());
     auto acc = off->getConstAccessor();
-    for (auto it = reference->tree().cbeginValueOn(); it; ++it) ASSERT_EQ(acc.getValue(it.getCoord()), *it);
+    for (auto it = reference->tree().cbeginValueOn(); it; ++it)
+        ASSERT_EQ(acc.getValue(it.getCoord()), *it);
 
-    const DetailParticles particles{cloud.positions.data(), cloud.sources.data(), cloud.levels.size(),
-                                    cloud.copyOrigins.data(), cloud.copyOrigins.size() / 3};
-    for (const auto& bad : {SurfaceDetailSettings{1.5, 0.01, 2}, SurfaceDetailSettings{0.5, 0.0, 2},
-                            SurfaceDetailSettings{0.5, 0.01, 0}, SurfaceDetailSettings{0.5, 0.01, 9}})
+    const DetailParticles particles{cloud.positions.data(), cloud.sources.data(),
+                                    cloud.levels.size(), cloud.copyOrigins.data(),
+                                    cloud.copyOrigins.size() / 3};
+    for (const auto& bad :
+         {SurfaceDetailSettings{1.5, 0.01, 2}, SurfaceDetailSettings{0.5, 0.0, 2},
+          SurfaceDetailSettings{0.5, 0.01, 0}, SurfaceDetailSettings{0.5, 0.01, 9}})
         EXPECT_THROW(erodeSurface(*off, particles, v.radius, bad), std::invalid_argument);
     const DetailParticles orphans{cloud.positions.data(), cloud.sources.data(), cloud.levels.size(),
                                   cloud.copyOrigins.data(), 0};

@@ -27,11 +27,11 @@ Particle step(const ThermalSettings& s, Particle p)
 /// Eq. 6-9 as the paper prints them, in double, rounded to the float state after each step.
 Particle referenceStep(const ThermalSettings& s, Particle p)
 {
-    const double te = s.groundTemperature - s.environmentLapse * p.z;               // Eq. 9
-    const double f = s.buoyancyCoefficient * (p.t - te) - s.mass * s.gravity;       // Eq. 6
-    const double u = p.vz + s.timeStep * f / s.mass;                                // Eq. 7
-    const double z = p.z + s.timeStep * p.vz;                                       // Eq. 7
-    const double c = p.t >= s.dewPoint ? 10.0e-3 : 6.0e-3;                          // Eq. 8
+    const double te = s.groundTemperature - s.environmentLapse * p.z;          // Eq. 9
+    const double f = s.buoyancyCoefficient * (p.t - te) - s.mass * s.gravity;  // Eq. 6
+    const double u = p.vz + s.timeStep * f / s.mass;                           // Eq. 7
+    const double z = p.z + s.timeStep * p.vz;                                  // Eq. 7
+    const double c = p.t >= s.dewPoint ? 10.0e-3 : 6.0e-3;                     // Eq. 8
     const double t = p.t - c * (z - p.z);
     return {static_cast<float>(z), static_cast<float>(u), static_cast<float>(t)};
 }
@@ -44,13 +44,15 @@ TEST(Thermal, TrajectoryFollowsTheRecurrenceStepByStep)
     Particle p{50.0f, 0.0f, 29.5f};
     Particle ref = p;
     auto near = [](float a, float b, double rel) {
-        return std::abs(static_cast<double>(a) - b) <= rel * std::max(1.0, std::abs(static_cast<double>(b)));
+        return std::abs(static_cast<double>(a) - b) <=
+               rel * std::max(1.0, std::abs(static_cast<double>(b)));
     };
     for (int n = 0; n < 400; ++n) {
         // Each step, from the same state, agrees with the paper's formulas to float precision.
         const Particle expected = referenceStep(s, p);
         const Particle next = step(s, p);
-        ASSERT_TRUE(near(next.z, expected.z, 1e-6)) << "step " << n << ": " << next.z << " vs " << expected.z;
+        ASSERT_TRUE(near(next.z, expected.z, 1e-6))
+            << "step " << n << ": " << next.z << " vs " << expected.z;
         ASSERT_TRUE(near(next.vz, expected.vz, 1e-6)) << "step " << n;
         // T_v moves by C dz, and dz is a difference of float heights: allow their rounding.
         ASSERT_TRUE(near(next.t, expected.t, 1e-5)) << "step " << n;
@@ -154,7 +156,8 @@ TEST(Thermal, ParallelStepIsBitIdenticalForOneAndTwoThreads)
     for (int threads : {1, 2}) {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
         std::vector<float> z2(n), vz2(n), t2(n);
-        thermalStepParallel(s, {z.data(), vz.data(), t.data()}, {z2.data(), vz2.data(), t2.data()}, n);
+        thermalStepParallel(s, {z.data(), vz.data(), t.data()}, {z2.data(), vz2.data(), t2.data()},
+                            n);
         z2.insert(z2.end(), vz2.begin(), vz2.end());
         z2.insert(z2.end(), t2.begin(), t2.end());
         results.push_back(std::move(z2));

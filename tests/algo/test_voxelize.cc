@@ -210,8 +210,8 @@ TEST(Voxelize, MatchesABruteForceSumInParticleOrder)
         for (int x = int(std::floor(q[0] - rv)); x <= int(std::ceil(q[0] + rv)); ++x)
             for (int y = int(std::floor(q[1] - rv)); y <= int(std::ceil(q[1] + rv)); ++y)
                 for (int z = int(std::floor(q[2] - rv)); z <= int(std::ceil(q[2] + rv)); ++z) {
-                    const double r2 = (x - q[0]) * (x - q[0]) + (y - q[1]) * (y - q[1]) +
-                                      (z - q[2]) * (z - q[2]);
+                    const double r2 =
+                        (x - q[0]) * (x - q[0]) + (y - q[1]) * (y - q[1]) + (z - q[2]) * (z - q[2]);
                     if (r2 >= rv * rv) continue;
                     const double t = 1.0 - r2 / (rv * rv);
                     ref[{x, y, z}] += s.density * t * t * t;
@@ -266,8 +266,8 @@ TEST(Voxelize, MemoryFollowsOccupiedSpaceNotTheBoundingBox)
     const auto s = unclamped(1.0, 2.0, 0.1);
     const auto a = ball(20000, {0.0, 0.0, 0.0}, 15.0, 7);
     const auto gridA = algo::voxelizeParticles(a.data(), 20000, s);
-    for (const openvdb::Vec3d offset : {openvdb::Vec3d(10000.0, 0.0, 0.0),
-                                        openvdb::Vec3d(10000.0, -9000.0, 8000.0)}) {
+    for (const openvdb::Vec3d offset :
+         {openvdb::Vec3d(10000.0, 0.0, 0.0), openvdb::Vec3d(10000.0, -9000.0, 8000.0)}) {
         const auto b = ball(20000, offset, 15.0, 8);
         const auto gridB = algo::voxelizeParticles(b.data(), 20000, s);
         std::vector<float> both(a);

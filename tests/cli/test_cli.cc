@@ -27,7 +27,8 @@ std::map<std::string, std::string> statuses(const nlohmann::json& report)
 {
     std::map<std::string, std::string> out;
     for (const auto& r : report["records"])
-        out[r["node"].get<std::string>() + "@" + std::to_string(r["frame"].get<int>())] = r["status"];
+        out[r["node"].get<std::string>() + "@" + std::to_string(r["frame"].get<int>())] =
+            r["status"];
     return out;
 }
 
@@ -74,7 +75,8 @@ TEST(Cli, BadGraphCorpusIsRefusedWithExitCode2AndALocation)
 
 TEST(Cli, ValidateAcceptsTheShippedGraphs)
 {
-    for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(CLOUDGRAPH_SOURCE_DIR) / "graphs")) {
+    for (const auto& entry : std::filesystem::directory_iterator(
+             std::filesystem::path(CLOUDGRAPH_SOURCE_DIR) / "graphs")) {
         if (entry.path().extension() != ".json") continue;  // soundings/ holds their data
         const auto r = runCli({"validate", entry.path().string()});
         EXPECT_EQ(r.exitCode, 0) << entry.path() << ": " << r.errors;
@@ -107,8 +109,9 @@ TEST(Cli, EditingNode3CooksExactly3To5AcrossRunsSharingACache)
 {
     TempDir dir;
     const std::string graph = dataPath("good/chain5.json").string();
-    const auto common = std::vector<std::string>{"run", graph, "--cache", (dir / "cache").string(),
-                                                 "--out", (dir / "out").string(), "--frames", "0:0"};
+    const auto common = std::vector<std::string>{
+        "run",      graph, "--cache", (dir / "cache").string(), "--out", (dir / "out").string(),
+        "--frames", "0:0"};
     auto first = common;
     first.insert(first.end(), {"--report", (dir / "r1.json").string()});
     ASSERT_EQ(runCli(first).exitCode, 0);
@@ -167,13 +170,15 @@ TEST(Cli, RunKilledWhileWritingLeavesNothingThatReadsAsValid)
     const std::string cache = (dir / "cache").string();
     ASSERT_EQ(runCli({"run", graph, "--out", (dir / "clean").string(), "-q"}).exitCode, 0);
     for (int delayMs : {30, 120, 250, 400}) {
-        test::CliProcess p({"run", graph, "--cache", cache, "--out", (dir / "killed").string(), "-q"});
+        test::CliProcess p(
+            {"run", graph, "--cache", cache, "--out", (dir / "killed").string(), "-q"});
         std::this_thread::sleep_for(std::chrono::milliseconds(delayMs));
         p.kill(SIGKILL);
         p.wait();
     }
     // Whatever the killed runs left, a new run either trusts complete entries or recooks.
-    const auto r = runCli({"run", graph, "--cache", cache, "--out", (dir / "after").string(), "-q"});
+    const auto r =
+        runCli({"run", graph, "--cache", cache, "--out", (dir / "after").string(), "-q"});
     ASSERT_EQ(r.exitCode, 0) << r.errors;
     for (int f = 0; f <= 3; ++f) {
         const std::string name = "stats.000" + std::to_string(f) + ".txt";
@@ -258,8 +263,10 @@ TEST(Cli, NodeReferenceIsGeneratedAndDocsAreCurrent)
     ASSERT_EQ(r.exitCode, 0);
     for (const char* type : {"Constant", "Integrate", "RandomField", "WriteText"})
         EXPECT_NE(r.output.find(std::string("## ") + type + "\n"), std::string::npos) << type;
-    EXPECT_EQ(readFile(std::filesystem::path(CLOUDGRAPH_SOURCE_DIR) / "docs" / "nodes.md"), r.output)
-        << "docs/nodes.md is stale: regenerate it with `cloudgraph nodes --markdown > docs/nodes.md`";
+    EXPECT_EQ(readFile(std::filesystem::path(CLOUDGRAPH_SOURCE_DIR) / "docs" / "nodes.md"),
+              r.output)
+        << "docs/nodes.md is stale: regenerate it with `cloudgraph nodes --markdown > "
+           "docs/nodes.md`";
     EXPECT_EQ(runCli({"nodes", "Integrate"}).exitCode, 0);
     EXPECT_EQ(runCli({"nodes", "NoSuchNode"}).exitCode, 2);
 }

@@ -57,8 +57,8 @@ TEST(CliHardening, AGraphThatNamesAProgramIsRefusedAndTheProgramNeverRuns)
     EXPECT_FALSE(fs::exists(marker)) << "the graph's program ran";
 
     // The user may opt in; then the program the graph names is the one that runs.
-    const auto trusted = runCli({"run", graph, "--out", (dir / "out").string(), "-q",
-                                 "--allow-graph-programs"});
+    const auto trusted =
+        runCli({"run", graph, "--out", (dir / "out").string(), "-q", "--allow-graph-programs"});
     EXPECT_TRUE(fs::exists(marker)) << trusted.errors;
 }
 
@@ -66,11 +66,16 @@ TEST(CliHardening, NumericOptionsAreWholeNumbersInRange)
 {
     TempDir dir;
     const std::string graph = test::dataPath("good/chain.json").string();
-    const std::vector<std::vector<std::string>> bad = {
-        {"--cache-memory-mb", "-1"}, {"--cache-memory-mb", "5abc"},
-        {"--cache-memory-mb", "99999999999999"}, {"--cache-memory-mb", ""},
-        {"--threads", "0"}, {"--threads", "2x"}, {"--threads", " 2"},
-        {"--frames", "0:x"}, {"--frames", "+0"}, {"--frames", "0:99999999999999999999"}};
+    const std::vector<std::vector<std::string>> bad = {{"--cache-memory-mb", "-1"},
+                                                       {"--cache-memory-mb", "5abc"},
+                                                       {"--cache-memory-mb", "99999999999999"},
+                                                       {"--cache-memory-mb", ""},
+                                                       {"--threads", "0"},
+                                                       {"--threads", "2x"},
+                                                       {"--threads", " 2"},
+                                                       {"--frames", "0:x"},
+                                                       {"--frames", "+0"},
+                                                       {"--frames", "0:99999999999999999999"}};
     for (const auto& option : bad) {
         std::vector<std::string> args = {"run", graph, "--out", (dir / "out").string()};
         args.insert(args.end(), option.begin(), option.end());
@@ -95,8 +100,8 @@ TEST(CliHardening, OutAndReportLocationsAreCheckedBeforeCooking)
     EXPECT_NE(outIsFile.errors.find("--out"), std::string::npos) << outIsFile.errors;
 
     fs::create_directories(dir / "reports");
-    const auto reportIsDir = runCli({"run", graph, "--out", (dir / "out").string(), "--report",
-                                     (dir / "reports").string()});
+    const auto reportIsDir = runCli(
+        {"run", graph, "--out", (dir / "out").string(), "--report", (dir / "reports").string()});
     EXPECT_EQ(reportIsDir.exitCode, 2) << reportIsDir.errors;
     EXPECT_NE(reportIsDir.errors.find("--report"), std::string::npos) << reportIsDir.errors;
     EXPECT_FALSE(fs::exists(dir / "out")) << "cooked before refusing the report path";
@@ -111,8 +116,8 @@ TEST(CliHardening, AReportThatCannotBeWrittenDoesNotHideTheCookError)
         "sum": {"type": "Sum", "inputs": {"a": "a.values", "b": "b.values"}}}})");
     // /proc exists and is a directory, but nothing can be created in it, even by root.
     const std::string report = "/proc/cloudgraph-test/report.json";
-    const auto failed = runCli({"run", (dir / "g.json").string(), "--out",
-                                (dir / "out").string(), "--report", report});
+    const auto failed = runCli(
+        {"run", (dir / "g.json").string(), "--out", (dir / "out").string(), "--report", report});
     EXPECT_EQ(failed.exitCode, 2) << failed.errors;
     EXPECT_NE(failed.errors.find("'sum'"), std::string::npos) << failed.errors;
     EXPECT_NE(failed.errors.find("g.json:/nodes/sum"), std::string::npos) << failed.errors;
@@ -135,8 +140,10 @@ TEST(CliHardening, ABadLibraryOnThePluginPathIsSkippedWithAWarning)
     const std::string savedValue = saved ? saved : "";
     ::setenv("CLOUDGRAPH_PLUGIN_PATH", (dir / "plugins").c_str(), 1);
     const auto r = runCli({"nodes", "SampleGain"});
-    if (saved) ::setenv("CLOUDGRAPH_PLUGIN_PATH", savedValue.c_str(), 1);
-    else ::unsetenv("CLOUDGRAPH_PLUGIN_PATH");
+    if (saved)
+        ::setenv("CLOUDGRAPH_PLUGIN_PATH", savedValue.c_str(), 1);
+    else
+        ::unsetenv("CLOUDGRAPH_PLUGIN_PATH");
 
     EXPECT_EQ(r.exitCode, 0) << r.errors;
     EXPECT_NE(r.output.find("SampleGain"), std::string::npos);
@@ -152,13 +159,15 @@ TEST(CliHardening, InputFilesThatCannotBeReadAreRefusedByValidateAndRun)
     TempDir dir;
     ASSERT_EQ(::mkfifo((dir / "fifo").c_str(), 0644), 0);
     fs::create_directories(dir / "a-directory");
-    test::writeFile(dir / "corrupt.cgp", "CGPRIM\r\n but not really a primitive file at all......"
-                                         "................................................");
-    for (const std::string& file : std::vector<std::string>{"/dev/zero", (dir / "fifo").string(),
-                                   (dir / "a-directory").string(), (dir / "missing.cgp").string(),
-                                   (dir / "corrupt.cgp").string()}) {
+    test::writeFile(dir / "corrupt.cgp",
+                    "CGPRIM\r\n but not really a primitive file at all......"
+                    "................................................");
+    for (const std::string& file : std::vector<std::string>{
+             "/dev/zero", (dir / "fifo").string(), (dir / "a-directory").string(),
+             (dir / "missing.cgp").string(), (dir / "corrupt.cgp").string()}) {
         test::writeFile(dir / "g.json", R"({"cloudgraph": 1, "nodes": {
-            "load": {"type": "PrimitiveLoad", "params": {"file": ")" + file + R"("}}}})");
+            "load": {"type": "PrimitiveLoad", "params": {"file": ")" +
+                                            file + R"("}}}})");
         for (const std::string command : {"validate", "run"}) {
             std::vector<std::string> args = {command, (dir / "g.json").string()};
             if (command == "run") args.insert(args.end(), {"--out", (dir / "out").string()});
@@ -203,7 +212,8 @@ TEST(CliHardening, ReadVdbRefusesFilesThatAreNotFogVolumesWithExitCode2)
     for (const std::string name : {"truncated", "level_set", "other_grid", "nan", "background"}) {
         const std::string file = (dir / (name + ".vdb")).string();
         test::writeFile(dir / "g.json", R"({"cloudgraph": 1, "nodes": {
-            "read": {"type": "ReadVDB", "params": {"file": ")" + file + R"("}}}})");
+            "read": {"type": "ReadVDB", "params": {"file": ")" +
+                                            file + R"("}}}})");
         for (const std::string command : {"validate", "run"}) {
             std::vector<std::string> args = {command, (dir / "g.json").string()};
             if (command == "run") args.insert(args.end(), {"--out", (dir / "out").string()});

@@ -13,7 +13,10 @@ namespace {
 
 TEST(ErrorMessages, ControlCharactersAreEscapedAndTheRestKept)
 {
-    EXPECT_EQ(printableText(std::string("a\0b\x01" "c\nd", 7)), "a\\x00b\\x01c\nd");
+    EXPECT_EQ(printableText(std::string("a\0b\x01"
+                                        "c\nd",
+                                        7)),
+              "a\\x00b\\x01c\nd");
     EXPECT_EQ(printableText("caf\xc3\xa9\t\x7f"), "caf\xc3\xa9\t\\x7f");  // UTF-8 kept
 }
 

@@ -191,8 +191,8 @@ TEST_F(ServeTest, RefusesRequestsFromOtherSites)
     const auto rebound =
         client().Get("/api/graph", {{"Host", "evil.example:" + std::to_string(port)}});
     EXPECT_EQ(rebound->status, 403);
-    const auto save = postText("/api/save", "{}", "application/json",
-                               {{"Origin", "http://evil.example"}});
+    const auto save =
+        postText("/api/save", "{}", "application/json", {{"Origin", "http://evil.example"}});
     EXPECT_EQ(save->status, 403);
     EXPECT_EQ(test::readFile(graphFile()), kServeGraph);  // not saved
     const json graph = json::parse(client().Get("/api/graph")->body)["graph"];

@@ -63,32 +63,39 @@ nlohmann::json otherValue(const ParamDecl& p)
         return v < *p.max ? (v + *p.max) / 2 : (v + *p.min) / 2;
     };
     switch (p.type) {
-    case ParamType::Float: return nudge(std::get<double>(p.defaultValue), 0.25);
-    case ParamType::Int:
-        return static_cast<std::int64_t>(nudge(static_cast<double>(std::get<std::int64_t>(p.defaultValue)), 1));
-    case ParamType::Bool: return !std::get<bool>(p.defaultValue);
-    case ParamType::String: {
-        const std::string& d = std::get<std::string>(p.defaultValue);
-        if (!p.choices.empty()) return p.choices[0] == d ? p.choices.at(1) : p.choices[0];
-        return "other_" + d;
-    }
-    case ParamType::Vector3: {
-        Vec3 v = std::get<Vec3>(p.defaultValue);
-        v[0] = nudge(v[0], 0.25);
-        return v;
-    }
-    case ParamType::FloatList: {
-        auto v = std::get<std::vector<double>>(p.defaultValue);
-        if (v.empty()) v.push_back(p.min.value_or(0.0));
-        else v[0] = nudge(v[0], 0.25);
-        return v;
-    }
-    case ParamType::IntList: {
-        auto v = std::get<std::vector<std::int64_t>>(p.defaultValue);
-        if (v.empty()) v.push_back(static_cast<std::int64_t>(p.min.value_or(0.0)));
-        else v[0] = static_cast<std::int64_t>(nudge(static_cast<double>(v[0]), 1));
-        return v;
-    }
+        case ParamType::Float:
+            return nudge(std::get<double>(p.defaultValue), 0.25);
+        case ParamType::Int:
+            return static_cast<std::int64_t>(
+                nudge(static_cast<double>(std::get<std::int64_t>(p.defaultValue)), 1));
+        case ParamType::Bool:
+            return !std::get<bool>(p.defaultValue);
+        case ParamType::String: {
+            const std::string& d = std::get<std::string>(p.defaultValue);
+            if (!p.choices.empty()) return p.choices[0] == d ? p.choices.at(1) : p.choices[0];
+            return "other_" + d;
+        }
+        case ParamType::Vector3: {
+            Vec3 v = std::get<Vec3>(p.defaultValue);
+            v[0] = nudge(v[0], 0.25);
+            return v;
+        }
+        case ParamType::FloatList: {
+            auto v = std::get<std::vector<double>>(p.defaultValue);
+            if (v.empty())
+                v.push_back(p.min.value_or(0.0));
+            else
+                v[0] = nudge(v[0], 0.25);
+            return v;
+        }
+        case ParamType::IntList: {
+            auto v = std::get<std::vector<std::int64_t>>(p.defaultValue);
+            if (v.empty())
+                v.push_back(static_cast<std::int64_t>(p.min.value_or(0.0)));
+            else
+                v[0] = static_cast<std::int64_t>(nudge(static_cast<double>(v[0]), 1));
+            return v;
+        }
     }
     return nullptr;
 }
@@ -154,7 +161,8 @@ TEST_P(NodeContract, SecondPullIsACacheHit)
     const NodeDecl* decl = builtinRegistry().findNode(GetParam());
     if (decl->quickParams.count("__skipCook")) GTEST_SKIP() << "needs input the test cannot make";
     Graph g = parseGraph(graphFor(*decl), "contract.json", builtinRegistry());
-    for (const auto& [name, value] : decl->quickParams) g.setParam("node", name, nlohmann::json::parse(value));
+    for (const auto& [name, value] : decl->quickParams)
+        g.setParam("node", name, nlohmann::json::parse(value));
     test::TempDir out;
     EvaluatorOptions options;
     options.outDir = out.path();

@@ -259,8 +259,8 @@ TEST(DiskCache, TruncatedEntryIsAMissAndRemoved)
     for (std::size_t size : {good.size() - 1, good.size() / 2, std::size_t(57), std::size_t(55),
                              std::size_t(10), std::size_t(0)}) {
         SCOPED_TRACE("truncated to " + std::to_string(size));
-        writeFile(cache.entryPath(k), std::vector<unsigned char>(good.begin(),
-                                                                 good.begin() + size));
+        writeFile(cache.entryPath(k),
+                  std::vector<unsigned char>(good.begin(), good.begin() + size));
         EXPECT_FALSE(cache.load(k, registry).has_value());
         EXPECT_FALSE(fs::exists(cache.entryPath(k)));
     }
@@ -279,8 +279,23 @@ TEST(DiskCache, FlippedByteIsAMissAndRemoved)
     const auto good = readFile(cache.entryPath(k));
     // Header: magic, version, reserved, key hi/lo, payload length, both checksums.
     // Payload: port count, a name, a type name, a data length, the data, the last byte.
-    const std::vector<std::size_t> positions = {0, 7, 8, 13, 16, 31, 32, 39, 40, 47, 48, 55,
-                                                56, 64, 72, 80, good.size() / 2,
+    const std::vector<std::size_t> positions = {0,
+                                                7,
+                                                8,
+                                                13,
+                                                16,
+                                                31,
+                                                32,
+                                                39,
+                                                40,
+                                                47,
+                                                48,
+                                                55,
+                                                56,
+                                                64,
+                                                72,
+                                                80,
+                                                good.size() / 2,
                                                 good.size() - 1};
     for (std::size_t at : positions) {
         for (unsigned char mask : {0x01, 0x80}) {
@@ -512,8 +527,8 @@ TEST(DiskCache, KilledWriterNeverLeavesABadEntry)
             // (load() would hide a torn one as a miss, so look at the bytes directly).
             if (fs::exists(cache.entryPath(keyOf(key)))) {
                 const auto bytes = readFile(cache.entryPath(keyOf(key)));
-                EXPECT_NO_THROW(DiskCache::decodeEntry(keyOf(key), bytes.data(), bytes.size(),
-                                                       registry))
+                EXPECT_NO_THROW(
+                    DiskCache::decodeEntry(keyOf(key), bytes.data(), bytes.size(), registry))
                     << "torn entry for key " << key << " (" << bytes.size() << " bytes)";
             }
             const auto loaded = cache.load(keyOf(key), registry);
@@ -690,7 +705,9 @@ TEST(DiskCache, AHugeDamagedEntryIsRefusedByItsHeaderWithoutReadingIt)
     // A sparse 12 GiB file: reading it would take minutes and all the memory.
     const fs::path path = cache.entryPath(k);
     fs::create_directories(path.parent_path());
-    { std::ofstream(path, std::ios::binary) << "not an entry"; }
+    {
+        std::ofstream(path, std::ios::binary) << "not an entry";
+    }
     fs::resize_file(path, 12ull << 30);
     EXPECT_FALSE(cache.load(k, registry).has_value());
     EXPECT_FALSE(fs::exists(path));

@@ -339,7 +339,7 @@ TEST_F(EvaluatorTest, ReportExplainsWhyEachNodeCooked)
     EXPECT_EQ(simReasons(), (std::vector<std::string>{"first cook", "first cook"}));
     ev.cookFrames(g, 0, 3);
     EXPECT_EQ(simReasons(), (std::vector<std::string>{"simulation step to frame 2",
-                                                       "simulation step to frame 3"}));
+                                                      "simulation step to frame 3"}));
     g.setParam("src", "value", 2.0);
     ev.cookFrames(g, 0, 0);
     EXPECT_EQ(simReasons(), (std::vector<std::string>{"input 'values' changed"}));

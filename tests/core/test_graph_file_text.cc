@@ -70,11 +70,11 @@ TEST_F(GraphFileTextTest, InputFilesStayRelativeToTheGraph)
     EXPECT_EQ(saved["nodes"]["atmosphere"]["params"]["soundingFile"],
               "soundings/deep_convection.txt");
     // A command line's --set is relative to the working directory.
-    applySetOverride(graph, "atmosphere.soundingFile=" +
-                                fs::relative(file.parent_path() / "soundings" / "fair_weather.txt")
-                                    .string());
-    EXPECT_EQ(OrderedJson::parse(graphFileText(graph, text))["nodes"]["atmosphere"]["params"]
-                                                              ["soundingFile"],
+    applySetOverride(
+        graph, "atmosphere.soundingFile=" +
+                   fs::relative(file.parent_path() / "soundings" / "fair_weather.txt").string());
+    EXPECT_EQ(OrderedJson::parse(
+                  graphFileText(graph, text))["nodes"]["atmosphere"]["params"]["soundingFile"],
               "soundings/fair_weather.txt");
 }
 

@@ -95,10 +95,11 @@ TEST(Sounding, WyomingRowsWithEveryFieldAreReadTokenByTokenWhateverTheSpacing)
 {
     const std::string header =
         "   PRES   HGHT   TEMP   DWPT   RELH   MIXR   DRCT   SKNT   THTA   THTE   THTV\n";
-    const Sounding s = parseSounding(
-        header + "990 180 24 16 61 11.6 200 6 297.9 331.8 300\n"
-                 "950\t530\t20.4\t14.8\t70\t11.16\t210\t8\t297.8\t330.4\t299.8\n",
-        "w.txt");
+    const Sounding s =
+        parseSounding(header +
+                          "990 180 24 16 61 11.6 200 6 297.9 331.8 300\n"
+                          "950\t530\t20.4\t14.8\t70\t11.16\t210\t8\t297.8\t330.4\t299.8\n",
+                      "w.txt");
     ASSERT_EQ(s.levels.size(), 2u);
     EXPECT_EQ(s.levels[1].heightM, 530.0);
     EXPECT_EQ(s.levels[1].dewpointC, 14.8);
@@ -142,8 +143,7 @@ TEST(Sounding, MalformedTextIsRefusedNamingTheLine)
 TEST(Sounding, TooManyLevelsAreRefusedAtTheFirstOneOver)
 {
     std::string text = kCsvHeader;
-    for (std::size_t i = 0; i <= kMaxSoundingLevels; ++i)
-        text += std::to_string(i) + ",10,5\n";
+    for (std::size_t i = 0; i <= kMaxSoundingLevels; ++i) text += std::to_string(i) + ",10,5\n";
     EXPECT_EQ(refusal(text), "line " + std::to_string(kMaxSoundingLevels + 2) + ": more than " +
                                  std::to_string(kMaxSoundingLevels) + " levels");
 }
@@ -164,8 +164,9 @@ TEST(Sounding, FilesAreCheckedBeforeTheyAreRead)
         }
         return std::string();
     };
-    EXPECT_EQ(message(huge), "cannot read the sounding: it is 1073741824 bytes, over the limit of " +
-                                 std::to_string(kMaxSoundingBytes) + " bytes");
+    EXPECT_EQ(message(huge),
+              "cannot read the sounding: it is 1073741824 bytes, over the limit of " +
+                  std::to_string(kMaxSoundingBytes) + " bytes");
     EXPECT_EQ(message(dir.path()), "cannot read the sounding: it is a directory, not a file");
     const fs::path fifo = dir / "fifo";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);

@@ -72,8 +72,7 @@ std::size_t differences(const openvdb::FloatGrid& a, const openvdb::FloatGrid& b
     for (auto it = a.cbeginValueOn(); it; ++it) {
         openvdb::CoordBBox box;
         it.getBoundingBox(box);
-        for (auto c = box.begin(); c; ++c)
-            n += !acc.isValueOn(*c) || acc.getValue(*c) != *it;
+        for (auto c = box.begin(); c; ++c) n += !acc.isValueOn(*c) || acc.getValue(*c) != *it;
     }
     return n + (a.activeVoxelCount() != b.activeVoxelCount());
 }
@@ -146,8 +145,8 @@ TEST(VdbFile, NegativeValuesBecomeZeroAndNonFiniteValuesAreRefusedWithTheirVoxel
     EXPECT_EQ(read->tree().getValue({1, 0, 3}), 0.0f);
     EXPECT_EQ(read->tree().getValue({2, 0, 3}), fog->tree().getValue({2, 0, 3}));
 
-    for (const float bad : {std::numeric_limits<float>::quiet_NaN(),
-                            std::numeric_limits<float>::infinity()}) {
+    for (const float bad :
+         {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
         auto broken = sampleFog();
         broken->tree().setValue({5, 6, 7}, bad);
         const std::string message = refusal(writeGrids(dir / "bad.vdb", {broken}));
@@ -186,8 +185,7 @@ TEST(VdbFile, LevelSetsAndFrustumsAreRefused)
     EXPECT_NE(message.find("level set"), std::string::npos) << message;
     // Saved without its class, its background (the narrow band's width) gives it away.
     sphere->setGridClass(openvdb::GRID_UNKNOWN);
-    EXPECT_NE(refusal(writeGrids(dir / "ls2.vdb", {sphere})).find("background"),
-              std::string::npos);
+    EXPECT_NE(refusal(writeGrids(dir / "ls2.vdb", {sphere})).find("background"), std::string::npos);
 
     auto frustum = sampleFog();
     frustum->setTransform(openvdb::math::Transform::createFrustumTransform(
@@ -208,7 +206,8 @@ TEST(VdbFile, AnAbsurdSizeIsRefusedFromTheRecordedCountsBeforeTheVoxelsAreRead)
     } catch (const FormatError& e) {
         EXPECT_NE(e.message().find("of memory, more than"), std::string::npos) << e.what();
     }
-    // A dense 4096^3 tile of fog: 256 GiB once its voxels are counted, from a file of a few hundred bytes.
+    // A dense 4096^3 tile of fog: 256 GiB once its voxels are counted, from a file of a few hundred
+    // bytes.
     auto tile = openvdb::FloatGrid::create(0.0f);
     tile->setName("density");
     tile->tree().addTile(3, openvdb::Coord(0), 0.5f, true);

@@ -47,8 +47,8 @@ void forgeChecksums(std::vector<unsigned char>& f)
 
     std::uint64_t at = indexEnd;
     for (std::uint64_t s = 0; s < frames; ++s) {
-        const std::uint64_t n = getU32(f.data() + kPrimitiveHeaderBytes +
-                                       kPrimitiveIndexEntryBytes * s + 8);
+        const std::uint64_t n =
+            getU32(f.data() + kPrimitiveHeaderBytes + kPrimitiveIndexEntryBytes * s + 8);
         const std::uint64_t body = 8 + 12 * n;
         if (body + 8 > f.size() - at) return;
         putU64(f.data() + at + body, cg::checksum64(f.data() + at, body));

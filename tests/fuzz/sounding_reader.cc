@@ -14,8 +14,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 {
     cg::formats::Sounding s;
     try {
-        s = cg::formats::parseSounding(
-            std::string_view(reinterpret_cast<const char*>(data), size), "fuzz");
+        s = cg::formats::parseSounding(std::string_view(reinterpret_cast<const char*>(data), size),
+                                       "fuzz");
     } catch (const cg::formats::FormatError&) {
         return 0;
     }

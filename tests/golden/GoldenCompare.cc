@@ -14,10 +14,14 @@ Tolerance toleranceOf(Kind kind)
     // Outputs are bit-identical for any thread count with one compiler; these allow for gcc
     // and clang rounding the last bits differently (docs/testing.md has the measurements).
     switch (kind) {
-    case Kind::Count: return {0.0, 0.0};
-    case Kind::Sum: return {1e-6, 1e-9};
-    case Kind::Mean: return {1e-6, 1e-9};
-    case Kind::Bound: return {1e-6, 1e-3};  // a millimetre on top: coordinates near 0
+        case Kind::Count:
+            return {0.0, 0.0};
+        case Kind::Sum:
+            return {1e-6, 1e-9};
+        case Kind::Mean:
+            return {1e-6, 1e-9};
+        case Kind::Bound:
+            return {1e-6, 1e-3};  // a millimetre on top: coordinates near 0
     }
     return {};
 }
@@ -27,10 +31,14 @@ namespace {
 std::string kindName(Kind kind)
 {
     switch (kind) {
-    case Kind::Count: return "exact";
-    case Kind::Sum: return "sum";
-    case Kind::Mean: return "mean";
-    case Kind::Bound: return "bound";
+        case Kind::Count:
+            return "exact";
+        case Kind::Sum:
+            return "sum";
+        case Kind::Mean:
+            return "mean";
+        case Kind::Bound:
+            return "bound";
     }
     return "?";
 }
@@ -70,7 +78,8 @@ std::string describe(const std::string& name)
 
 }  // namespace
 
-nlohmann::json toJson(const std::string& graphFile, const std::vector<int>& frames, const Stats& stats)
+nlohmann::json toJson(const std::string& graphFile, const std::vector<int>& frames,
+                      const Stats& stats)
 {
     nlohmann::json values = nlohmann::json::object();
     for (const auto& [name, stat] : stats) {
@@ -96,7 +105,8 @@ std::vector<std::string> compare(const Stats& actual, const nlohmann::json& expe
     for (const auto& [name, stat] : actual) {
         const auto it = expectedStats.find(name);
         if (it == expectedStats.end()) {
-            problems.push_back(describe(name) + " is new (" + format(stat.value) + "), not in the expected file");
+            problems.push_back(describe(name) + " is new (" + format(stat.value) +
+                               "), not in the expected file");
             continue;
         }
         if (!it->is_number()) {
@@ -106,12 +116,14 @@ std::vector<std::string> compare(const Stats& actual, const nlohmann::json& expe
         const double want = it->get<double>();
         const Tolerance tol = toleranceOf(stat.kind);
         const double allowed = std::max(tol.relative * std::abs(want), tol.absolute);
-        if (stat.kind == Kind::Count ? stat.value != want : !(std::abs(stat.value - want) <= allowed)) {
+        if (stat.kind == Kind::Count ? stat.value != want
+                                     : !(std::abs(stat.value - want) <= allowed)) {
             std::ostringstream m;
-            m << describe(name) << " is " << format(stat.value) << ", expected " << format(want) << " ("
-              << kindName(stat.kind);
+            m << describe(name) << " is " << format(stat.value) << ", expected " << format(want)
+              << " (" << kindName(stat.kind);
             if (stat.kind != Kind::Count)
-                m << ": relative " << (want != 0.0 ? (stat.value - want) / std::abs(want) : stat.value)
+                m << ": relative "
+                  << (want != 0.0 ? (stat.value - want) / std::abs(want) : stat.value)
                   << ", allowed " << tol.relative << " or " << tol.absolute << " absolute";
             m << ")";
             problems.push_back(m.str());
@@ -119,7 +131,8 @@ std::vector<std::string> compare(const Stats& actual, const nlohmann::json& expe
     }
     for (auto it = expectedStats.begin(); it != expectedStats.end(); ++it)
         if (actual.count(it.key()) == 0)
-            problems.push_back(describe(it.key()) + " is expected (" + it.value().dump() + ") but was not produced");
+            problems.push_back(describe(it.key()) + " is expected (" + it.value().dump() +
+                               ") but was not produced");
     return problems;
 }
 

@@ -22,14 +22,15 @@ Tolerance toleranceOf(Kind kind);
 /// The expected file's content: {"frames": [...], "graph": "graphs/x.json", "stats": {...}},
 /// counts as JSON integers, other values rounded to 9 significant digits (a float's digits
 /// and then some: the tolerances are far wider).
-nlohmann::json toJson(const std::string& graphFile, const std::vector<int>& frames, const Stats& stats);
+nlohmann::json toJson(const std::string& graphFile, const std::vector<int>& frames,
+                      const Stats& stats);
 /// Writes it with one statistic per line.
 void writeExpected(const std::filesystem::path& file, const nlohmann::json& expected);
 
 /// One message per statistic that differs, is missing or is new; empty when all match.
 /// Statistic names are "<frame>/<node>.<port>/<statistic>", "files/<dir>/*.<ext>" or
-/// "files/<dir>/<file>/<statistic>"; messages spell them out, e.g. "frame 80, node 'voxelize' output 'volume': active_voxels is 1240,
-/// expected 1234 (exact)".
+/// "files/<dir>/<file>/<statistic>"; messages spell them out, e.g. "frame 80, node 'voxelize'
+/// output 'volume': active_voxels is 1240, expected 1234 (exact)".
 std::vector<std::string> compare(const Stats& actual, const nlohmann::json& expectedStats);
 
 }  // namespace cg::golden

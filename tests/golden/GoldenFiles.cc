@@ -25,7 +25,8 @@ void png(Stats& s, const std::string& path)
         for (float v : grey.values) sum += v;
         s["width"] = {Kind::Count, static_cast<double>(grey.nx)};
         s["height"] = {Kind::Count, static_cast<double>(grey.ny)};
-        s["mean"] = {Kind::Mean, grey.values.empty() ? 0.0 : sum / static_cast<double>(grey.values.size())};
+        s["mean"] = {Kind::Mean,
+                     grey.values.empty() ? 0.0 : sum / static_cast<double>(grey.values.size())};
         return;
     }
     s["width"] = {Kind::Count, static_cast<double>(px.width)};
@@ -96,7 +97,8 @@ void pfm(Stats& s, const std::string& path)
     for (float v : map.values) sum += v;
     s["nx"] = {Kind::Count, static_cast<double>(map.nx)};
     s["ny"] = {Kind::Count, static_cast<double>(map.ny)};
-    s["mean"] = {Kind::Mean, map.values.empty() ? 0.0 : sum / static_cast<double>(map.values.size())};
+    s["mean"] = {Kind::Mean,
+                 map.values.empty() ? 0.0 : sum / static_cast<double>(map.values.size())};
 }
 
 }  // namespace
@@ -117,7 +119,8 @@ Stats fileStats(const std::filesystem::path& outDir)
         if (ext == ".vdb") vdb(s, path);
         if (ext == ".ply") ply(s, path);
         if (ext == ".pfm") pfm(s, path);
-        for (const auto& [name, stat] : s) all[where + e.path().filename().string() + "/" + name] = stat;
+        for (const auto& [name, stat] : s)
+            all[where + e.path().filename().string() + "/" + name] = stat;
     }
     for (const auto& [name, n] : counts) all[name] = {Kind::Count, static_cast<double>(n)};
     return all;

@@ -14,8 +14,14 @@
 
 namespace cg::golden {
 
-std::filesystem::path graphsDir() { return std::filesystem::path(CLOUDGRAPH_SOURCE_DIR) / "graphs"; }
-std::filesystem::path expectedDir() { return std::filesystem::path(CLOUDGRAPH_SOURCE_DIR) / "tests/golden/expected"; }
+std::filesystem::path graphsDir()
+{
+    return std::filesystem::path(CLOUDGRAPH_SOURCE_DIR) / "graphs";
+}
+std::filesystem::path expectedDir()
+{
+    return std::filesystem::path(CLOUDGRAPH_SOURCE_DIR) / "tests/golden/expected";
+}
 
 namespace {
 
@@ -38,7 +44,8 @@ std::vector<std::string> targetsOf(const Graph& g, const GoldenSpec& spec)
     }
     for (const std::string& id : spec.notCooked)
         if (std::find(sinks.begin(), sinks.end(), g.indexOf(id)) == sinks.end())
-            throw std::invalid_argument(spec.name + ": '" + id + "' is not a sink; leave out sinks only");
+            throw std::invalid_argument(spec.name + ": '" + id +
+                                        "' is not a sink; leave out sinks only");
     return targets;
 }
 
@@ -59,7 +66,8 @@ Stats runGolden(const GoldenSpec& spec, const std::vector<std::string>& override
     Graph g = loadGraph(graphsDir() / (spec.name + ".json"), registry);
     if (spec.frames.empty() || !std::is_sorted(spec.frames.begin(), spec.frames.end()) ||
         spec.frames.front() < g.frames.start || spec.frames.back() > g.frames.end)
-        throw std::invalid_argument(spec.name + ": the recorded frames must be ascending, inside the graph's range");
+        throw std::invalid_argument(
+            spec.name + ": the recorded frames must be ascending, inside the graph's range");
     spec.shrink(g);
     for (const std::string& o : overrides) applySetOverride(g, o);
     g.frames.end = spec.frames.back();  // the small version's range: nothing after it cooks
@@ -73,7 +81,8 @@ Stats runGolden(const GoldenSpec& spec, const std::vector<std::string>& override
     std::map<std::string, OutputsPtr> recorded;  // what each node gave at the last recorded frame
     for (int frame : spec.frames) {
         Evaluator::FrameOutputs results;
-        ev.cookFrames(g, frame, frame, targets, [&](int, const Evaluator::FrameOutputs& r) { results = r; });
+        ev.cookFrames(g, frame, frame, targets,
+                      [&](int, const Evaluator::FrameOutputs& r) { results = r; });
         char prefix[32];
         std::snprintf(prefix, sizeof prefix, "%04d/", frame);
         for (std::size_t i = 0; i < results.size(); ++i) {

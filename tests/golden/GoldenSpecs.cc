@@ -26,7 +26,10 @@ void smallPrimitive(Graph& g, const std::string& node)
     set(g, node, "sourceHumidity", 1.0);
 }
 
-const ParamSet& paramsOf(const Graph& g, const std::string& node) { return g.nodes()[g.indexOf(node)].params; }
+const ParamSet& paramsOf(const Graph& g, const std::string& node)
+{
+    return g.nodes()[g.indexOf(node)].params;
+}
 
 /// Halves the map's resolution on cells twice as large: the same ground (its largest
 /// wavelength too), a quarter of the vapour.
@@ -67,31 +70,42 @@ std::vector<GoldenSpec> makeSpecs()
         // 0 writes the map; 91 is the last frame before condensation (92); the particles are
         // written every 10 frames, so 150 and 290 but not 91.
         {"atmosphere", {0, 91, 150, 290}, coarserMap, {}},
-        {"cumulus_still", {0}, [](Graph& g) {
+        {"cumulus_still",
+         {0},
+         [](Graph& g) {
              set(g, "cloud", "voxelSize", 30.0);
              set(g, "render", "width", 80);
              set(g, "render", "height", 60);
-         }, {}},
-        {"default", {0, 10, 23}, [](Graph& g) {
+         },
+         {}},
+        {"default",
+         {0, 10, 23},
+         [](Graph& g) {
              set(g, "field", "width", 64);
              set(g, "field", "height", 64);
-         }, {}},
+         },
+         {}},
         {"figure1_cloudscape", figureFrames, smallFigure, video},
         // Issue 17's 20 km field: the same small wiring (its copies are the small primitive's).
         {"cloudscape_20km", figureFrames, smallFigure, video},
-        {"figure5_progress", figureFrames, [](Graph& g) {
+        {"figure5_progress", figureFrames,
+         [](Graph& g) {
              smallFigure(g);
              coarserVoxels(g, "vapourVolume");  // CombineVolumes needs the same grid
-         }, video},
+         },
+         video},
         {"figure6_towering_cumulus", figureFrames, smallFigure, video},
         {"figure7a_beta33", figureFrames, smallFigure, video},
         {"figure7b_beta27", figureFrames, smallFigure, video},
         {"figure8_cumulonimbus", figureFrames, smallFigure, video},
         // Its sounding variant feeds its towers for the whole run: fewer of them here.
-        {"figure8_cumulonimbus_sounding", {150, 300}, [](Graph& g) {
+        {"figure8_cumulonimbus_sounding",
+         {150, 300},
+         [](Graph& g) {
              smallFigure(g);
              set(g, "emit", "maxParticlesPerCell", 0.6);
-         }, video},
+         },
+         video},
         {"figure9_sparse", figureFrames, smallFigure, video},
         {"primitive", {0}, [](Graph& g) { smallPrimitive(g, "sim"); }, {}},
         // Issue 14's sounding graphs: the tower half-way and at the top, the field rising and
@@ -99,12 +113,15 @@ std::vector<GoldenSpec> makeSpecs()
         {"sounding_cumulonimbus", {150, 300}, smallFigure, video},
         {"sounding_cumulus", {120, 240}, smallFigure, video},
         // The primitive's middle and last frames (PrimitiveFrame plays frame s at frame s).
-        {"primitive_render", {20, 39}, [](Graph& g) {
+        {"primitive_render",
+         {20, 39},
+         [](Graph& g) {
              smallPrimitive(g, "sim");
              coarserVoxels(g, "voxelize");
              set(g, "render", "width", 40);
              set(g, "render", "height", 50);
-         }, {}},
+         },
+         {}},
     };
 }
 

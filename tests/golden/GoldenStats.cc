@@ -21,7 +21,10 @@ namespace cg::golden {
 
 namespace {
 
-void count(Stats& s, const std::string& name, std::int64_t v) { s[name] = {Kind::Count, static_cast<double>(v)}; }
+void count(Stats& s, const std::string& name, std::int64_t v)
+{
+    s[name] = {Kind::Count, static_cast<double>(v)};
+}
 void mean(Stats& s, const std::string& name, double v) { s[name] = {Kind::Mean, v}; }
 
 /// Min, max and mean of n values read by `at`, as <name>_min/_max (of `extremes`' kind:
@@ -47,7 +50,9 @@ void pointStats(Stats& s, const float* xyz, std::size_t n)
 {
     const char* axes[] = {"x", "y", "z"};
     for (int a = 0; a < 3; ++a)
-        spread(s, axes[a], n, [&](std::size_t i) { return static_cast<double>(xyz[3 * i + static_cast<std::size_t>(a)]); });
+        spread(s, axes[a], n, [&](std::size_t i) {
+            return static_cast<double>(xyz[3 * i + static_cast<std::size_t>(a)]);
+        });
 }
 
 void cloudParticles(Stats& s, const CloudParticlesData& d)
@@ -67,7 +72,8 @@ void image(Stats& s, const ImageData& d)
 {
     count(s, "width", d.width);
     count(s, "height", d.height);
-    const std::size_t pixels = static_cast<std::size_t>(d.width) * static_cast<std::size_t>(d.height);
+    const std::size_t pixels =
+        static_cast<std::size_t>(d.width) * static_cast<std::size_t>(d.height);
     if (pixels == 0) return;
     // Eight bins of Y / (1 + Y) (Y the linear luminance): a coarse exposure-free histogram
     // that shows sky, shadowed and sunlit cloud separately.
@@ -80,7 +86,8 @@ void image(Stats& s, const ImageData& d)
         histogram[std::clamp(static_cast<int>(y / (1.0 + y) * 8.0), 0, 7)] += 1;
     }
     const char* channels[] = {"r", "g", "b", "a"};
-    for (int c = 0; c < 4; ++c) mean(s, std::string("mean_") + channels[c], sums[c] / static_cast<double>(pixels));
+    for (int c = 0; c < 4; ++c)
+        mean(s, std::string("mean_") + channels[c], sums[c] / static_cast<double>(pixels));
     for (int b = 0; b < 8; ++b) count(s, "luma_hist_" + std::to_string(b), histogram[b]);
 }
 
@@ -89,7 +96,9 @@ void map2D(Stats& s, const Map2DData& d)
     count(s, "nx", d.nx);
     count(s, "ny", d.ny);
     mean(s, "cell_size", d.cellSize);
-    spread(s, "value", d.values.size(), [&](std::size_t i) { return static_cast<double>(d.values[i]); }, Kind::Mean);
+    spread(
+        s, "value", d.values.size(),
+        [&](std::size_t i) { return static_cast<double>(d.values[i]); }, Kind::Mean);
 }
 
 void vapour(Stats& s, const VapourParticlesData& d)
@@ -99,9 +108,11 @@ void vapour(Stats& s, const VapourParticlesData& d)
     spread(s, "x", d.size(), [&](std::size_t i) { return static_cast<double>(st.x[i]); });
     spread(s, "y", d.size(), [&](std::size_t i) { return static_cast<double>(st.y[i]); });
     spread(s, "z", d.size(), [&](std::size_t i) { return static_cast<double>(d.z[i]); });
-    spread(s, "vz", d.size(), [&](std::size_t i) { return static_cast<double>(d.vz[i]); }, Kind::Mean);
-    spread(s, "temperature", d.size(), [&](std::size_t i) { return static_cast<double>(d.temperature[i]); },
-           Kind::Mean);
+    spread(
+        s, "vz", d.size(), [&](std::size_t i) { return static_cast<double>(d.vz[i]); }, Kind::Mean);
+    spread(
+        s, "temperature", d.size(),
+        [&](std::size_t i) { return static_cast<double>(d.temperature[i]); }, Kind::Mean);
 }
 
 void condensation(Stats& s, const CondensationData& d)
@@ -172,7 +183,9 @@ void floatArray(Stats& s, const FloatArrayData& d)
     double sum = 0.0;
     for (float v : d.values) sum += v;
     s["sum"] = {Kind::Sum, sum};
-    spread(s, "value", d.values.size(), [&](std::size_t i) { return static_cast<double>(d.values[i]); }, Kind::Mean);
+    spread(
+        s, "value", d.values.size(),
+        [&](std::size_t i) { return static_cast<double>(d.values[i]); }, Kind::Mean);
 }
 
 /// Text is file paths (under a temporary directory) or log lines: only its line count is
@@ -227,14 +240,15 @@ Stats gridStats(const openvdb::FloatGrid& grid)
 Stats statsOf(const Data& v)
 {
     Stats s;
-    const bool known = as<CloudParticlesData>(v, s, cloudParticles) || as<FogVolumeData>(v, s, fogVolume) ||
-                       as<ImageData>(v, s, image) || as<Map2DData>(v, s, map2D) ||
-                       as<VapourParticlesData>(v, s, vapour) || as<CondensationData>(v, s, condensation) ||
-                       as<PrimitiveSetData>(v, s, primitive) || as<CloudSourcesData>(v, s, sources) ||
-                       as<AtmosphereData>(v, s, atmosphere) || as<FloatArrayData>(v, s, floatArray) ||
-                       as<TextData>(v, s, text) ||
-                       as<IntData>(v, s, [](Stats& o, const IntData& d) { count(o, "value", d.value); }) ||
-                       as<FloatData>(v, s, [](Stats& o, const FloatData& d) { mean(o, "value", d.value); });
+    const bool known =
+        as<CloudParticlesData>(v, s, cloudParticles) || as<FogVolumeData>(v, s, fogVolume) ||
+        as<ImageData>(v, s, image) || as<Map2DData>(v, s, map2D) ||
+        as<VapourParticlesData>(v, s, vapour) || as<CondensationData>(v, s, condensation) ||
+        as<PrimitiveSetData>(v, s, primitive) || as<CloudSourcesData>(v, s, sources) ||
+        as<AtmosphereData>(v, s, atmosphere) || as<FloatArrayData>(v, s, floatArray) ||
+        as<TextData>(v, s, text) ||
+        as<IntData>(v, s, [](Stats& o, const IntData& d) { count(o, "value", d.value); }) ||
+        as<FloatData>(v, s, [](Stats& o, const FloatData& d) { mean(o, "value", d.value); });
     if (!known)
         throw std::runtime_error("no golden statistics for port type '" + v.typeName() +
                                  "': add them in tests/golden/GoldenStats.cc");

@@ -38,7 +38,8 @@ std::vector<CloudSize> cloudByTenth(const std::string& name)
     Evaluator ev(registry, {});
     ev.cookFrames(g, first, last, {"cloud"}, [&](int frame, const Evaluator::FrameOutputs& r) {
         if (std::find(marks.begin(), marks.end(), frame) == marks.end()) return;
-        const auto cloud = std::dynamic_pointer_cast<const CloudParticlesData>(r[g.indexOf("cloud")]->at("particles"));
+        const auto cloud = std::dynamic_pointer_cast<const CloudParticlesData>(
+            r[g.indexOf("cloud")]->at("particles"));
         CloudSize s;
         s.count = cloud->size();
         for (std::size_t i = 0; i < s.count; ++i)
@@ -61,8 +62,8 @@ TEST_P(FigureGrowth, CountAndTopIncreaseInEveryTenthUpTo90Percent)
     ASSERT_LT(k, 9u) << "the cloud appears in the last tenth";
     for (; k < 9; ++k) {
         char text[160];
-        std::snprintf(text, sizeof text, "tenth %zu: %zu -> %zu particles, top %.0f -> %.0f m", k + 1,
-                      at[k].count, at[k + 1].count, at[k].top, at[k + 1].top);
+        std::snprintf(text, sizeof text, "tenth %zu: %zu -> %zu particles, top %.0f -> %.0f m",
+                      k + 1, at[k].count, at[k + 1].count, at[k].top, at[k + 1].top);
         EXPECT_GT(at[k + 1].count, at[k].count) << text;
         EXPECT_GT(at[k + 1].top, at[k].top) << text;
         std::printf("%s %s\n", GetParam().c_str(), text);
@@ -70,8 +71,9 @@ TEST_P(FigureGrowth, CountAndTopIncreaseInEveryTenthUpTo90Percent)
 }
 
 INSTANTIATE_TEST_SUITE_P(Figures, FigureGrowth,
-                         ::testing::Values("figure1_cloudscape", "figure5_progress", "figure6_towering_cumulus",
-                                           "figure7a_beta33", "figure7b_beta27", "figure8_cumulonimbus",
+                         ::testing::Values("figure1_cloudscape", "figure5_progress",
+                                           "figure6_towering_cumulus", "figure7a_beta33",
+                                           "figure7b_beta27", "figure8_cumulonimbus",
                                            "figure8_cumulonimbus_sounding", "figure9_sparse"),
                          [](const ::testing::TestParamInfo<std::string>& p) { return p.param; });
 

@@ -77,7 +77,8 @@ TEST_F(AtmospherePipeline, CondensationRecordsTheFirstFrameBelowTheDewPointAndAF
                 if (firstFrame < 0) firstFrame = frame;
             }
         }
-        last = std::dynamic_pointer_cast<const CondensationData>(out[g.indexOf("condense")]->at("condensation"));
+        last = std::dynamic_pointer_cast<const CondensationData>(
+            out[g.indexOf("condense")]->at("condensation"));
     });
     ASSERT_TRUE(last);
     ASSERT_GT(last->particles->size(), 100u);
@@ -120,9 +121,11 @@ TEST_F(AtmospherePipeline, VapourPointsSplitTheParticlesIntoVapourAndCondensatio
     Evaluator ev(registry, {});
     ev.cookFrames(g, 0, 120, {"condense"});
     for (int frame : {60, 120}) {
-        const auto c = std::dynamic_pointer_cast<const CondensationData>(ev.pull(g, "condense", frame)->at("condensation"));
+        const auto c = std::dynamic_pointer_cast<const CondensationData>(
+            ev.pull(g, "condense", frame)->at("condensation"));
         auto points = [&](const char* node) {
-            return std::dynamic_pointer_cast<const CloudParticlesData>(ev.pull(g, node, frame)->at("particles"));
+            return std::dynamic_pointer_cast<const CloudParticlesData>(
+                ev.pull(g, node, frame)->at("particles"));
         };
         const auto vapour = points("vapour"), condensed = points("condensed"), all = points("all");
         const VapourParticlesData& v = *c->particles;

@@ -180,7 +180,8 @@ TEST(CachedValueDecoding, AtmosphereRoundTripsAndRefusesValuesTheNodeCannotMake)
 TEST(CachedValueDecoding, AtmosphereProfileAndWindRoundTripOrAreRefused)
 {
     Atmosphere a;
-    a.profile = std::make_shared<algo::EnvironmentProfile>(algo::standardAtmosphere(25.0, 17.0, 11000.0));
+    a.profile =
+        std::make_shared<algo::EnvironmentProfile>(algo::standardAtmosphere(25.0, 17.0, 11000.0));
     a.moistAdiabat = false;
     a.wind = algo::WindProfile({{0.0, 5.0, 0.0}, {10000.0, 20.0, -3.0}});
     const auto back = roundTrip(AtmosphereData(a))->atmosphere;
@@ -206,7 +207,8 @@ TEST(CachedValueDecoding, AtmosphereProfileAndWindRoundTripOrAreRefused)
     forgedLevels(10, 1e6, "profile wind");
     expectRefused("Atmosphere", atmosphereBytes(ok, {0, 25, 17, 1000, 0}), "a profile of 5 values");
     expectRefused("Atmosphere", atmosphereBytes(ok, {}, {0, 1}), "a wind profile of 2 values");
-    expectRefused("Atmosphere", atmosphereBytes(ok, {}, {0, 1, 2, 0, 1, 2}), "wind heights must increase");
+    expectRefused("Atmosphere", atmosphereBytes(ok, {}, {0, 1, 2, 0, 1, 2}),
+                  "wind heights must increase");
     expectRefused("Atmosphere", atmosphereBytes(ok, {}, {0, kInf, 2}), "wind");
 }
 
@@ -386,13 +388,16 @@ TEST(CachedValueDecoding, CloudParticlesRoundTripAndRefuseBadLevelsAndLengths)
     EXPECT_EQ(std::vector<std::uint32_t>(back->sources()), (std::vector<std::uint32_t>{7, 9}));
     EXPECT_EQ(std::vector<float>(back->copyOrigins()), origins);
 
-    const auto payload = [&](const std::vector<std::uint8_t>& levels, const std::vector<std::uint32_t>& sources,
+    const auto payload = [&](const std::vector<std::uint8_t>& levels,
+                             const std::vector<std::uint32_t>& sources,
                              const std::vector<float>& copyOrigins) {
-        return concat({podBytes(positions), podBytes(levels), podBytes(sources), podBytes(copyOrigins)});
+        return concat(
+            {podBytes(positions), podBytes(levels), podBytes(sources), podBytes(copyOrigins)});
     };
     ASSERT_NO_THROW(decode("CloudParticles", payload({1, 2}, {0, 1}, {})));
     ASSERT_NO_THROW(decode("CloudParticles", payload({1, 2}, {0, 1}, std::vector<float>(6, 1.0f))));
-    expectRefused("CloudParticles", payload({1, kMaxCloudLevel + 1}, {0, 1}, {}), "particle 1 has level 33");
+    expectRefused("CloudParticles", payload({1, kMaxCloudLevel + 1}, {0, 1}, {}),
+                  "particle 1 has level 33");
     expectRefused("CloudParticles", payload({1}, {0}, {}), "arrays differ in length");
     expectRefused("CloudParticles", payload({1, 2}, {0}, {}), "arrays differ in length");
     expectRefused("CloudParticles", payload({1, 2}, {0, 1}, std::vector<float>(4, 1.0f)),
@@ -503,10 +508,18 @@ TEST(CachedValueDecoding, VapourParticlesRoundTripAndRefuseBrokenStatics)
     forged([](VapourFields& g) { g.movedX = g.x; }, "particle arrays differ in length");
     forged([](VapourFields& g) { g.dewpointOffset = {1.0f}; }, "particle arrays differ in length");
     forged([](VapourFields& g) { g.startZ[6] = kNaN; }, "particle 6 has no finite start");
-    forged([](VapourFields& g) { g.dewpointOffset.assign(g.id.size(), 0.0f); g.dewpointOffset[2] = kInf; },
-           "particle 2 has no finite start");
-    forged([](VapourFields& g) { g.releaseTime.assign(g.id.size(), 1.0f); g.releaseTime[3] = -1.0f; },
-           "particle 3 has no finite start");
+    forged(
+        [](VapourFields& g) {
+            g.dewpointOffset.assign(g.id.size(), 0.0f);
+            g.dewpointOffset[2] = kInf;
+        },
+        "particle 2 has no finite start");
+    forged(
+        [](VapourFields& g) {
+            g.releaseTime.assign(g.id.size(), 1.0f);
+            g.releaseTime[3] = -1.0f;
+        },
+        "particle 3 has no finite start");
     forged([](VapourFields& g) { g.releaseTime = {1.0f}; }, "particle arrays differ in length");
 }
 
@@ -514,7 +527,8 @@ TEST(CachedValueDecoding, VapourParticlesRoundTripAndRefuseBrokenStatics)
 std::vector<float> heightsOf(const std::vector<std::int32_t>& frames)
 {
     std::vector<float> heights;
-    for (std::int32_t f : frames) heights.push_back(f >= 0 ? 1000.0f + 10.0f * static_cast<float>(f) : kNaN);
+    for (std::int32_t f : frames)
+        heights.push_back(f >= 0 ? 1000.0f + 10.0f * static_cast<float>(f) : kNaN);
     return heights;
 }
 
@@ -602,7 +616,8 @@ struct MapperScene {
         std::vector<std::int32_t> frames(f.id.size());
         for (std::size_t i = 0; i < frames.size(); ++i)
             frames[i] = i % 5 == 0 ? -1 : static_cast<std::int32_t>(i % 4);
-        condensation = std::make_shared<CondensationData>(particlesOf(f), frames, heightsOf(frames), 0);
+        condensation =
+            std::make_shared<CondensationData>(particlesOf(f), frames, heightsOf(frames), 0);
         settings.maxLevel = 3;
         settings.selectionRatio = {0.25, 0.05};
         settings.levelDelay = 4;
@@ -689,7 +704,8 @@ TEST(CachedValueDecoding, CloudSourcesRoundTripTrailAnchors)
     ASSERT_GT(riding, 0u);
     const auto back = roundTrip(CloudSourcesData(scene.table, scene.settings));
     ASSERT_EQ(back->table.anchors.size(), a.size());
-    EXPECT_EQ(std::memcmp(back->table.anchors.data(), a.data(), a.size() * sizeof(float)), 0);  // NaNs too
+    EXPECT_EQ(std::memcmp(back->table.anchors.data(), a.data(), a.size() * sizeof(float)),
+              0);  // NaNs too
     EXPECT_EQ(back->settings.level1Origin, algo::Level1Origin::Trail);
     EXPECT_EQ(back->settings.trailRiseSpeed, scene.settings.trailRiseSpeed);
 }
@@ -737,8 +753,9 @@ TEST(CachedValueDecoding, CloudSourcesRefuseSettingsTheMapperCannotHave)
                          "particlesPerCopy");
     expectSourcesRefused([](S& s) { s.settings.parentRule = static_cast<algo::ParentRule>(2); },
                          "parentRule 2 is above 1");
-    expectSourcesRefused([](S& s) { s.settings.pastLastFrame = static_cast<algo::PastLastFrame>(7); },
-                         "pastLastFrame 7 is above 1");
+    expectSourcesRefused(
+        [](S& s) { s.settings.pastLastFrame = static_cast<algo::PastLastFrame>(7); },
+        "pastLastFrame 7 is above 1");
     expectSourcesRefused([](S& s) { s.settings.level1Origin = static_cast<algo::Level1Origin>(3); },
                          "level1Origin 3 is above 2");
     expectSourcesRefused([](S& s) { s.settings.trailRiseSpeed = -1.0; }, "trailRiseSpeed");
@@ -746,7 +763,8 @@ TEST(CachedValueDecoding, CloudSourcesRefuseSettingsTheMapperCannotHave)
     // Trail anchors: one triple per record, whole (all finite or all NaN) on level 1, zero deeper.
     expectSourcesRefused([](S& s) { s.settings.level1Origin = algo::Level1Origin::Trail; },
                          "0 anchor values for");
-    expectSourcesRefused([](S& s) { s.table.anchors.assign(3, 1.0f); }, "3 anchor values for 0 trail");
+    expectSourcesRefused([](S& s) { s.table.anchors.assign(3, 1.0f); },
+                         "3 anchor values for 0 trail");
     const auto trail = [](const TableChange& change) {
         return [change](S& s) {
             s.settings.level1Origin = algo::Level1Origin::Trail;
@@ -754,9 +772,12 @@ TEST(CachedValueDecoding, CloudSourcesRefuseSettingsTheMapperCannotHave)
             change(s);
         };
     };
-    expectSourcesRefused(trail([](S& s) { s.table.anchors[3 * s.first(1) + 1] = NAN; }), "does not fit a level 1");
-    expectSourcesRefused(trail([](S& s) { s.table.anchors[3 * s.first(1)] = kInf; }), "does not fit a level 1");
-    expectSourcesRefused(trail([](S& s) { s.table.anchors[3 * s.first(2) + 2] = 5.0f; }), "does not fit a level 2");
+    expectSourcesRefused(trail([](S& s) { s.table.anchors[3 * s.first(1) + 1] = NAN; }),
+                         "does not fit a level 1");
+    expectSourcesRefused(trail([](S& s) { s.table.anchors[3 * s.first(1)] = kInf; }),
+                         "does not fit a level 1");
+    expectSourcesRefused(trail([](S& s) { s.table.anchors[3 * s.first(2) + 2] = 5.0f; }),
+                         "does not fit a level 2");
 }
 
 TEST(CachedValueDecoding, CloudSourcesRefuseFieldsThatDoNotFit)
@@ -890,8 +911,8 @@ TEST(CachedValueDecoding, CloudSourcesFitTheirInputsOrAreRefused)
             auto frames = s.condensation->condensedFrame;
             const algo::Source& src = s.table.sources[s.first(1)];
             frames[src.parent] = src.startFrame + 1;
-            s.condensation =
-                std::make_shared<CondensationData>(s.condensation->particles, frames, heightsOf(frames), 0);
+            s.condensation = std::make_shared<CondensationData>(s.condensation->particles, frames,
+                                                                heightsOf(frames), 0);
         },
         "had not condensed when it started");
     expectMisfit([](MapperScene& s) { s.table.sources[s.first(3)].parentFluid = 1000; },

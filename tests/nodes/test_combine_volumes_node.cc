@@ -27,9 +27,11 @@ std::string graph(const std::string& mode, double voxelB)
         "va": {"type": "Voxelizer", "inputs": {"particles": "a.particles"},
                "params": {"voxelSize": 1.5, "radius": 4.0, "density": 0.3}},
         "vb": {"type": "Voxelizer", "inputs": {"particles": "b.particles"},
-               "params": {"voxelSize": )" + std::to_string(voxelB) + R"(, "radius": 3.0, "density": 0.2}},
+               "params": {"voxelSize": )" +
+           std::to_string(voxelB) + R"(, "radius": 3.0, "density": 0.2}},
         "mix": {"type": "CombineVolumes", "inputs": {"a": "va.volume", "b": "vb.volume"},
-                "params": {"mode": ")" + mode + R"("}}}})";
+                "params": {"mode": ")" +
+           mode + R"("}}}})";
 }
 
 std::shared_ptr<const FogVolumeData> volume(Evaluator& ev, const Graph& g, const std::string& node)
@@ -69,7 +71,8 @@ TEST(CombineVolumes, MaxAndClampedSumVoxelByVoxel)
             EXPECT_GT(summedOverOne, 0u);  // the clamp was exercised
         }
         // No voxel beyond the union.
-        EXPECT_LE(mix->grid->activeVoxelCount(), a->grid->activeVoxelCount() + b->grid->activeVoxelCount());
+        EXPECT_LE(mix->grid->activeVoxelCount(),
+                  a->grid->activeVoxelCount() + b->grid->activeVoxelCount());
         // The cached inputs are untouched.
         EXPECT_EQ(volume(ev, g, "va")->grid->activeVoxelCount(), a->grid->activeVoxelCount());
     }

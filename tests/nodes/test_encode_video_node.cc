@@ -88,7 +88,8 @@ protected:
             "write": {"type": "WriteImage", "inputs": {"image": "ramp.image"},
                       "params": {"file": "frames/f.####.png"}},
             "video": {"type": "EncodeVideo", "inputs": {"frames": "write.files"},
-                      "params": )" + videoParams + "}}}",
+                      "params": )" +
+                              videoParams + "}}}",
                           "test.json", registry, options);
     }
 
@@ -162,7 +163,7 @@ TEST_F(EncodeVideoTest, EncodesTheWrittenFramesIntoAnMp4)
         << probe;
     EXPECT_NE(probe.find("codec_name=h264"), std::string::npos) << probe;
     EXPECT_NE(probe.find("pix_fmt=yuv420p"), std::string::npos) << probe;
-    EXPECT_NE(probe.find("width=34"), std::string::npos) << probe;   // padded to even
+    EXPECT_NE(probe.find("width=34"), std::string::npos) << probe;  // padded to even
     EXPECT_NE(probe.find("height=18"), std::string::npos) << probe;
     EXPECT_NE(probe.find("nb_read_frames=4"), std::string::npos) << probe;
 }
@@ -188,8 +189,10 @@ public:
     }
     ~ScopedEnvironment()
     {
-        if (mOld) ::setenv(mName, mOld->c_str(), 1);
-        else ::unsetenv(mName);
+        if (mOld)
+            ::setenv(mName, mOld->c_str(), 1);
+        else
+            ::unsetenv(mName);
     }
 
 private:

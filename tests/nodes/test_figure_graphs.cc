@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
+#include <nlohmann/json.hpp>
 
 #include "core/Evaluator.h"
 #include "core/Graph.h"
@@ -21,14 +21,15 @@ namespace {
 /// mapper settings stay as shipped.
 std::string reducedFigure6()
 {
-    auto g = nlohmann::json::parse(
-        test::readFile(std::filesystem::path(CLOUDGRAPH_SOURCE_DIR) / "graphs/figure6_towering_cumulus.json"));
+    auto g = nlohmann::json::parse(test::readFile(std::filesystem::path(CLOUDGRAPH_SOURCE_DIR) /
+                                                  "graphs/figure6_towering_cumulus.json"));
     auto& nodes = g["nodes"];
     nodes["noise"]["params"]["width"] = 16;
     nodes["noise"]["params"]["height"] = 16;
     nodes["noise"]["params"]["cellSize"] = 100.0;
     // PrimitiveSim is minutes of work; a synthetic primitive keeps the test in seconds.
-    nodes["primitive"] = {{"type", "TestPrimitiveSource"}, {"params", {{"frames", 40}, {"radius", 150.0}}}};
+    nodes["primitive"] = {{"type", "TestPrimitiveSource"},
+                          {"params", {{"frames", 40}, {"radius", 150.0}}}};
     nodes["render"]["params"]["width"] = 48;
     nodes["render"]["params"]["height"] = 36;
     nodes["render"]["params"]["cameraPosition"] = {800, -6000, 2500};
@@ -46,7 +47,8 @@ ReducedRun runReduced(int threads, int first, int last)
     Registry registry;
     registerBuiltinNodes(registry);
     registerFixtureNodes(registry);
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                              static_cast<std::size_t>(threads));
     const Graph g = parseGraph(reducedFigure6(), "figure6_reduced.json", registry);
     test::TempDir out;
     EvaluatorOptions options;
@@ -61,7 +63,8 @@ ReducedRun runReduced(int threads, int first, int last)
     }
     const auto report = ev.report().toJson();
     for (const auto& r : report["records"])
-        if (r["node"] == "mapper" && r["frame"] == last) run.lastCloudCount = r["values"]["cloudCount"];
+        if (r["node"] == "mapper" && r["frame"] == last)
+            run.lastCloudCount = r["values"]["cloudCount"];
     return run;
 }
 
@@ -79,7 +82,8 @@ TEST(FigureGraphs, ReducedFigure6WritesIdenticalFramesForOneAndTwoThreads)
     for (std::size_t i = 0; i < one.pngs.size(); ++i) {
         EXPECT_GT(one.pngs[i].size(), 100u);
         EXPECT_EQ(one.pngs[i].rfind("\x89PNG", 0), 0u);
-        EXPECT_TRUE(one.pngs[i] == two.pngs[i]) << "frame " << 246 + i << " differs between 1 and 2 threads";
+        EXPECT_TRUE(one.pngs[i] == two.pngs[i])
+            << "frame " << 246 + i << " differs between 1 and 2 threads";
     }
     EXPECT_NE(one.pngs.front(), one.pngs.back());  // the cloud grows between the frames
 }

@@ -65,8 +65,10 @@ TEST_F(MapperNodes, CloudGrowsLevelByLevelAndCountsAgree)
     std::int64_t lastCount = 0;
     int maxLevelSeen = 0;
     ev.cookFrames(g, 0, 130, {"write", "mapper"}, [&](int, const Evaluator::FrameOutputs& r) {
-        const auto count = std::dynamic_pointer_cast<const IntData>(r[g.indexOf("mapper")]->at("cloudCount"));
-        const auto cloud = std::dynamic_pointer_cast<const CloudParticlesData>(r[g.indexOf("cloud")]->at("particles"));
+        const auto count =
+            std::dynamic_pointer_cast<const IntData>(r[g.indexOf("mapper")]->at("cloudCount"));
+        const auto cloud = std::dynamic_pointer_cast<const CloudParticlesData>(
+            r[g.indexOf("cloud")]->at("particles"));
         ASSERT_EQ(static_cast<std::int64_t>(cloud->size()), count->value);
         EXPECT_GE(count->value, lastCount);  // sources only accumulate, N_f never decreases
         lastCount = count->value;
@@ -105,13 +107,15 @@ TEST_F(MapperNodes, CloudIsBitIdenticalForOneAndTwoThreads)
 TEST_F(MapperNodes, EvaporateBelowBaseDropsExactlyTheParticlesUnderTheLowestCondensationHeight)
 {
     Graph g = parseGraph(kGraph, "mapper.json", registry);
-    g.setParam("primitive", "sink", 1.0);  // the copies hang below their origins, as real puffs' wakes
+    g.setParam("primitive", "sink",
+               1.0);  // the copies hang below their origins, as real puffs' wakes
     g.setParam("mapper", "level1Origin", std::string("condensationLevel"));  // origins on the level
     Evaluator ev(registry, {});
     const int frame = 125;
-    const auto full = std::dynamic_pointer_cast<const CloudParticlesData>(ev.pull(g, "cloud", frame)->at("particles"));
-    const auto condensation =
-        std::dynamic_pointer_cast<const CondensationData>(ev.pull(g, "condense", frame)->at("condensation"));
+    const auto full = std::dynamic_pointer_cast<const CloudParticlesData>(
+        ev.pull(g, "cloud", frame)->at("particles"));
+    const auto condensation = std::dynamic_pointer_cast<const CondensationData>(
+        ev.pull(g, "condense", frame)->at("condensation"));
     float base = INFINITY;
     for (std::size_t i = 0; i < condensation->particles->size(); ++i)
         if (condensation->condensed(i)) base = std::min(base, condensation->condensedHeight[i]);
@@ -139,8 +143,10 @@ TEST_F(MapperNodes, PrimitiveSubsetKeepsEveryKthParticleOnItsTrajectory)
         "thin": {"type": "PrimitiveSubset", "inputs": {"primitive": "full.primitive"}, "params": {"particles": 7}}}})",
                                "subset.json", registry);
     Evaluator ev(registry, {});
-    const auto full = std::dynamic_pointer_cast<const PrimitiveSetData>(ev.pull(g, "full", 0)->at("primitive"));
-    const auto thin = std::dynamic_pointer_cast<const PrimitiveSetData>(ev.pull(g, "thin", 0)->at("primitive"));
+    const auto full =
+        std::dynamic_pointer_cast<const PrimitiveSetData>(ev.pull(g, "full", 0)->at("primitive"));
+    const auto thin =
+        std::dynamic_pointer_cast<const PrimitiveSetData>(ev.pull(g, "thin", 0)->at("primitive"));
     const std::uint32_t last = full->count(full->frames() - 1);
     ASSERT_GT(last, 7u);
     const std::uint32_t k = (last + 6) / 7;  // ceil(N_f(last) / K)
@@ -157,8 +163,10 @@ TEST_F(MapperNodes, PrimitiveSubsetKeepsEveryKthParticleOnItsTrajectory)
 
 TEST_F(MapperNodes, LogTextRecordsTheLinesItPrints)
 {
-    const Graph withLog = parseGraph(std::string(kGraph).insert(std::string(kGraph).rfind("}}"),
-        R"(, "log": {"type": "LogText", "inputs": {"text": "mapper.summary"}, "params": {"every": 40}})"),
+    const Graph withLog = parseGraph(
+        std::string(kGraph).insert(
+            std::string(kGraph).rfind("}}"),
+            R"(, "log": {"type": "LogText", "inputs": {"text": "mapper.summary"}, "params": {"every": 40}})"),
         "mapper.json", registry);
     Evaluator ev(registry, {});
     ev.cookFrames(withLog, 0, 130, {"log"});
@@ -220,7 +228,8 @@ TEST_F(MapperNodes, StreamedVoxelizationEqualsTheFrameArrayPathBitForBit)
         EXPECT_EQ(streamed->grid->metaValue<openvdb::Int64>("particle_count"),
                   static_cast<openvdb::Int64>(cloud->size()));
         EXPECT_EQ(streamed->grid->activeVoxelCount(), expected->activeVoxelCount());
-        EXPECT_EQ(test::gridChecksum(*streamed->grid), test::gridChecksum(*expected)) << "evaporate " << evaporate;
+        EXPECT_EQ(test::gridChecksum(*streamed->grid), test::gridChecksum(*expected))
+            << "evaporate " << evaporate;
     }
 }
 
@@ -253,7 +262,8 @@ TEST_F(MapperNodes, StreamedPlyEqualsThePlyOfTheFrameArraysByteForByte)
                                    a.levels.data(), a.sources.data(), "cloud particles, frame 125");
             const std::string expected = test::readFile(out / "arrays.ply");
             EXPECT_EQ(streamed.size(), expected.size()) << "evaporate " << evaporate;
-            EXPECT_TRUE(streamed == expected) << "evaporate " << evaporate << ", threads " << threads;
+            EXPECT_TRUE(streamed == expected)
+                << "evaporate " << evaporate << ", threads " << threads;
         }
 }
 

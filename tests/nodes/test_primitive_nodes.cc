@@ -100,21 +100,23 @@ TEST(PrimitiveNodes, PrimitiveFrameIsTheFrameScaledAndOffsetHeldAtTheEnds)
     registerBuiltinNodes(r);
     // Three frames of 0, 2 and 3 particles.
     const std::vector<std::uint32_t> counts{0, 2, 3};
-    const std::vector<float> positions{1, 2, 3, 4, 5, 6,  // frame 1
+    const std::vector<float> positions{1,    2, 3,    4, 5,    6,                 // frame 1
                                        1.5f, 2, 3.5f, 4, 5.5f, 6, -7, 8, 9.25f};  // frame 2
     test::TempDir dir;
     formats::writePrimitiveFile(dir / "p.cgp", 2.0, counts, positions);
     const Graph g = parseGraph(R"({"cloudgraph": 1, "frames": {"start": 0, "end": 40}, "nodes": {
-        "load": {"type": "PrimitiveLoad", "params": {"file": ")" + (dir / "p.cgp").string() + R"("}},
+        "load": {"type": "PrimitiveLoad", "params": {"file": ")" +
+                                   (dir / "p.cgp").string() + R"("}},
         "frame": {"type": "PrimitiveFrame", "inputs": {"primitive": "load.primitive"},
                   "params": {"scale": 2.5, "offset": [100, -50, 300]}}}})",
                                "frame.json", r);
     Evaluator ev(r, {});
     const double offset[3] = {100, -50, 300};
     // Evaluation frame 40 is past the primitive's last frame (2): the last frame holds.
-    for (const auto& [evalFrame, s, first] : {std::tuple{1, 1, 0}, std::tuple{2, 2, 6}, std::tuple{40, 2, 6}}) {
-        const auto cloud =
-            std::dynamic_pointer_cast<const CloudParticlesData>(ev.pull(g, "frame", evalFrame)->at("particles"));
+    for (const auto& [evalFrame, s, first] :
+         {std::tuple{1, 1, 0}, std::tuple{2, 2, 6}, std::tuple{40, 2, 6}}) {
+        const auto cloud = std::dynamic_pointer_cast<const CloudParticlesData>(
+            ev.pull(g, "frame", evalFrame)->at("particles"));
         ASSERT_TRUE(cloud);
         ASSERT_EQ(cloud->size(), counts[static_cast<std::size_t>(s)]);
         for (std::size_t q = 0; q < cloud->size(); ++q) {
@@ -126,7 +128,8 @@ TEST(PrimitiveNodes, PrimitiveFrameIsTheFrameScaledAndOffsetHeldAtTheEnds)
             EXPECT_EQ(cloud->sources()[q], 0u);
         }
     }
-    const auto empty = std::dynamic_pointer_cast<const CloudParticlesData>(ev.pull(g, "frame", 0)->at("particles"));
+    const auto empty = std::dynamic_pointer_cast<const CloudParticlesData>(
+        ev.pull(g, "frame", 0)->at("particles"));
     EXPECT_EQ(empty->size(), 0u);
 }
 

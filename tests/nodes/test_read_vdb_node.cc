@@ -40,14 +40,15 @@ protected:
     /// A voxelized ball written by WriteVDB to `file` under out/; the voxelizer's grid.
     openvdb::FloatGrid::ConstPtr writeCloud(const std::string& file, bool half)
     {
-        const Graph g = parseGraph(R"({"cloudgraph": 1, "nodes": {
+        const Graph g =
+            parseGraph(R"({"cloudgraph": 1, "nodes": {
             "cloud": {"type": "TestCloudSource", "params": {"radius": 25, "spacing": 2}},
             "vox": {"type": "Voxelizer", "inputs": {"particles": "cloud.particles"},
                     "params": {"voxelSize": 1.5, "radius": 3.0, "density": 0.3}},
             "write": {"type": "WriteVDB", "inputs": {"volume": "vox.volume"},
-                      "params": {"file": ")" + file + R"(", "halfFloat": )" +
-                                       (half ? "true" : "false") + "}}}}",
-                                   "write.json", registry);
+                      "params": {"file": ")" +
+                           file + R"(", "halfFloat": )" + (half ? "true" : "false") + "}}}}",
+                       "write.json", registry);
         EvaluatorOptions options;
         options.outDir = out.path();
         Evaluator ev(registry, options);
@@ -60,8 +61,8 @@ protected:
                     const LoadOptions& options = {})
     {
         return parseGraph(R"({"cloudgraph": 1, "nodes": {
-            "read": {"type": "ReadVDB", "params": {"file": ")" + file.string() +
-                              R"(", "grid": ")" + grid + R"("}}}})",
+            "read": {"type": "ReadVDB", "params": {"file": ")" +
+                              file.string() + R"(", "grid": ")" + grid + R"("}}}})",
                           "read.json", registry, options);
     }
 
@@ -96,8 +97,7 @@ protected:
 };
 
 /// Voxels of `a` that `b` lacks or holds another value or state at (tiles expanded).
-std::size_t differences(const openvdb::FloatGrid& a, const openvdb::FloatGrid& b,
-                        bool half = false)
+std::size_t differences(const openvdb::FloatGrid& a, const openvdb::FloatGrid& b, bool half = false)
 {
     std::size_t n = 0;
     auto acc = b.getConstAccessor();
@@ -105,8 +105,7 @@ std::size_t differences(const openvdb::FloatGrid& a, const openvdb::FloatGrid& b
         const float expected = half ? float(openvdb::math::half(*it)) : *it;
         openvdb::CoordBBox box;
         it.getBoundingBox(box);
-        for (auto c = box.begin(); c; ++c)
-            n += !acc.isValueOn(*c) || acc.getValue(*c) != expected;
+        for (auto c = box.begin(); c; ++c) n += !acc.isValueOn(*c) || acc.getValue(*c) != expected;
     }
     return n;
 }
@@ -151,7 +150,8 @@ TEST_F(ReadVdbTest, TheKeyIsTheFilesContentNotItsPath)
     const Graph g = readGraph(out / "a.vdb");
     Evaluator fresh(registry, {});
     EXPECT_NE(fresh.key(g, "read", 0), a);
-    const auto grid = std::dynamic_pointer_cast<const FogVolumeData>(fresh.pull(g, "read", 0)->at("volume"));
+    const auto grid =
+        std::dynamic_pointer_cast<const FogVolumeData>(fresh.pull(g, "read", 0)->at("volume"));
     const auto full = read(out / "b.vdb");
     EXPECT_GT(differences(*full, *grid->grid), 0u);  // the half-float values
 }
@@ -176,8 +176,7 @@ TEST_F(ReadVdbTest, BadFilesAreRefusedAtLoadNamingTheFileAndGrid)
 
     LoadOptions small;  // room for the file, not for the grid it records
     small.allocationLimitBytes = bytes.size() + 64;
-    EXPECT_NE(loadRefusal(out / "good.vdb", "density", small).find("more than"),
-              std::string::npos);
+    EXPECT_NE(loadRefusal(out / "good.vdb", "density", small).find("more than"), std::string::npos);
 }
 
 namespace {
@@ -186,7 +185,8 @@ namespace {
 std::vector<float> renderOf(Registry& registry, const fs::path& file, const std::string& params)
 {
     const Graph g = parseGraph(R"({"cloudgraph": 1, "nodes": {
-        "read": {"type": "ReadVDB", "params": {"file": ")" + file.string() + R"("}},
+        "read": {"type": "ReadVDB", "params": {"file": ")" +
+                                   file.string() + R"("}},
         "render": {"type": "Renderer", "inputs": {"volume": "read.volume"},
                    "params": {"width": 48, "height": 32, "cameraPosition": [0, -400, 30],
                               "cameraLookAt": [0, 0, 30], )" +

@@ -40,25 +40,37 @@ json pipeline(int frames, double timeStep, const json& atmosphere, const json& e
 {
     json n = {{"width", 8}, {"height", 8}, {"seed", 3}};
     n.update(noise);
-    return {{"cloudgraph", 1},
-            {"frames", {{"start", 0}, {"end", frames}}},
-            {"timeStep", timeStep},
-            {"nodes",
-             {{"noise", {{"type", "NoiseMap"}, {"params", n}}},
-              {"moisture", {{"type", "NoiseMap"}, {"params", {{"width", 8}, {"height", 8}, {"seed", 11}}}}},
-              {"atmosphere", {{"type", "Atmosphere"}, {"params", atmosphere}}},
-              {"emit", {{"type", "VapourEmitter"}, {"inputs", {{"map", "noise.map"}, {"moisture", "moisture.map"}}}, {"params", emit}}},
-              {"rise", {{"type", "ThermalIntegrator"},
-                        {"inputs", {{"particles", "emit.particles"}, {"atmosphere", "atmosphere.atmosphere"}}},
-                        {"params", rise}}},
-              {"condense", {{"type", "Condensation"},
-                            {"inputs", {{"particles", "rise.particles"}, {"atmosphere", "atmosphere.atmosphere"}}}}}}}};
+    return {
+        {"cloudgraph", 1},
+        {"frames", {{"start", 0}, {"end", frames}}},
+        {"timeStep", timeStep},
+        {"nodes",
+         {{"noise", {{"type", "NoiseMap"}, {"params", n}}},
+          {"moisture",
+           {{"type", "NoiseMap"}, {"params", {{"width", 8}, {"height", 8}, {"seed", 11}}}}},
+          {"atmosphere", {{"type", "Atmosphere"}, {"params", atmosphere}}},
+          {"emit",
+           {{"type", "VapourEmitter"},
+            {"inputs", {{"map", "noise.map"}, {"moisture", "moisture.map"}}},
+            {"params", emit}}},
+          {"rise",
+           {{"type", "ThermalIntegrator"},
+            {"inputs", {{"particles", "emit.particles"}, {"atmosphere", "atmosphere.atmosphere"}}},
+            {"params", rise}}},
+          {"condense",
+           {{"type", "Condensation"},
+            {"inputs",
+             {{"particles", "rise.particles"}, {"atmosphere", "atmosphere.atmosphere"}}}}}}}};
 }
 
 json uniformEmission(double temperature)
 {
-    return {{"minParticlesPerCell", 1}, {"maxParticlesPerCell", 1}, {"minHeight", 0}, {"maxHeight", 0},
-            {"minTemperature", temperature}, {"maxTemperature", temperature}};
+    return {{"minParticlesPerCell", 1},
+            {"maxParticlesPerCell", 1},
+            {"minHeight", 0},
+            {"maxHeight", 0},
+            {"minTemperature", temperature},
+            {"maxTemperature", temperature}};
 }
 
 json soundingAtmosphere()
@@ -121,7 +133,8 @@ TEST_F(RealAtmosphere, UniformEmissionCondensesAtTheSoundingsLiftingCondensation
     const double timeStep = 2.0;
     float fastest = 0.0f;
     std::vector<float> base;
-    run(pipeline(300, timeStep, soundingAtmosphere(), uniformEmission(t0), {{"buoyancy", "parcel"}}),
+    run(pipeline(300, timeStep, soundingAtmosphere(), uniformEmission(t0),
+                 {{"buoyancy", "parcel"}}),
         [&](int frame, const CondensationData& c) {
             base.resize(c.particles->size(), std::nanf(""));
             for (std::size_t i = 0; i < base.size(); ++i) {
@@ -140,18 +153,21 @@ TEST_F(RealAtmosphere, UniformEmissionCondensesAtTheSoundingsLiftingCondensation
 TEST_F(RealAtmosphere, TowersStopAtTheEquilibriumLevel)
 {
     const algo::EnvironmentProfile profile = deepConvection();
-    const double el = algo::liftParcel(profile, profile.groundHeight()).elM - profile.groundHeight();
+    const double el =
+        algo::liftParcel(profile, profile.groundHeight()).elM - profile.groundHeight();
     ASSERT_NEAR(el, 11800.0, 300.0);  // the shipped sounding's, as docs/atmosphere.md says
     float highest = 0.0f;
     std::vector<float> last;
     run(pipeline(500, 5.0, soundingAtmosphere(), uniformEmission(31.0),
                  {{"buoyancy", "parcel"}, {"drag", 1e-3}}),
         [&](int, const CondensationData& c) {
-            highest = std::max(highest, *std::max_element(c.particles->z.begin(), c.particles->z.end()));
+            highest =
+                std::max(highest, *std::max_element(c.particles->z.begin(), c.particles->z.end()));
             last = c.particles->z;
         });
     EXPECT_LE(highest, 1.10 * el) << "the overshoot goes too far";
-    const double mean = std::accumulate(last.begin(), last.end(), 0.0) / static_cast<double>(last.size());
+    const double mean =
+        std::accumulate(last.begin(), last.end(), 0.0) / static_cast<double>(last.size());
     EXPECT_NEAR(mean, el, 0.10 * el) << "the tops did not settle at the equilibrium level";
 }
 
@@ -171,12 +187,16 @@ double width(const VapourParticlesData& p, const std::vector<std::size_t>& which
 TEST_F(RealAtmosphere, OutflowSpreadsTheTopIntoAnAnvil)
 {
     const algo::EnvironmentProfile profile = deepConvection();
-    const double el = algo::liftParcel(profile, profile.groundHeight()).elM - profile.groundHeight();
+    const double el =
+        algo::liftParcel(profile, profile.groundHeight()).elM - profile.groundHeight();
     // One tower: a centre-weighted 2 km map emits only near its middle.
     json emit = uniformEmission(31.0);
     emit["minParticlesPerCell"] = 0;
     emit["maxParticlesPerCell"] = 4;
-    const json noise = {{"width", 20}, {"height", 20}, {"cellSize", 100.0}, {"centreBias", 1.0},
+    const json noise = {{"width", 20},
+                        {"height", 20},
+                        {"cellSize", 100.0},
+                        {"centreBias", 1.0},
                         {"centreRadius", 0.3}};
     double midWidth = 0.0, topWidth = 0.0;
     std::size_t atTop = 0, total = 0;
@@ -187,8 +207,10 @@ TEST_F(RealAtmosphere, OutflowSpreadsTheTopIntoAnAnvil)
             total = p.size();
             std::vector<std::size_t> all(p.size());
             std::iota(all.begin(), all.end(), 0);
-            const double mean = std::accumulate(p.z.begin(), p.z.end(), 0.0) / static_cast<double>(p.size());
-            if (midWidth == 0.0 && mean >= 0.5 * el) midWidth = width(p, all);  // the tower passing mid-height
+            const double mean =
+                std::accumulate(p.z.begin(), p.z.end(), 0.0) / static_cast<double>(p.size());
+            if (midWidth == 0.0 && mean >= 0.5 * el)
+                midWidth = width(p, all);  // the tower passing mid-height
             if (frame == 600) {
                 std::vector<std::size_t> top;
                 for (std::size_t i = 0; i < p.size(); ++i)
@@ -207,7 +229,10 @@ TEST_F(RealAtmosphere, ConstantWindMovesEveryParticleByUTAndNothingElse)
 {
     const int frames = 100;
     const double timeStep = 0.5, speed = 12.0;
-    json windy = {{"wind", "layers"}, {"windHeights", {0.0}}, {"windSpeeds", {speed}}, {"windDirections", {270.0}}};
+    json windy = {{"wind", "layers"},
+                  {"windHeights", {0.0}},
+                  {"windSpeeds", {speed}},
+                  {"windDirections", {270.0}}};
     std::shared_ptr<const VapourParticlesData> calm, blown;
     run(pipeline(frames, timeStep, json::object(), json::object(), json::object()),
         [&](int, const CondensationData& c) { calm = c.particles; });
@@ -236,9 +261,13 @@ TEST_F(RealAtmosphere, LinearShearTiltsTheTowerByTheExpectedAngle)
     // at x - x0 = s a t^3 / 6 = (s t / 3) z: the tower leans by atan(s t / 3) at time t.
     const int frames = 400;
     const double timeStep = 0.5, shear = 4e-3;  // 1/s: 40 m/s over 10 km
-    const json atmosphere = {{"environmentLapseRate", 10.0}, {"dewPoint", -60.0}, {"gravity", 0.0},
-                             {"wind", "layers"}, {"windHeights", {0.0, 20000.0}},
-                             {"windSpeeds", {0.0, shear * 20000.0}}, {"windDirections", {270.0, 270.0}}};
+    const json atmosphere = {{"environmentLapseRate", 10.0},
+                             {"dewPoint", -60.0},
+                             {"gravity", 0.0},
+                             {"wind", "layers"},
+                             {"windHeights", {0.0, 20000.0}},
+                             {"windSpeeds", {0.0, shear * 20000.0}},
+                             {"windDirections", {270.0, 270.0}}};
     std::shared_ptr<const VapourParticlesData> p;
     run(pipeline(frames, timeStep, atmosphere, {{"minTemperature", 25.0}, {"maxTemperature", 30.0}},
                  {{"buoyancyCoefficient", 0.05}}),  // a = 0.25 .. 0.5 m/s^2: 5 to 10 km
@@ -263,9 +292,13 @@ TEST_F(RealAtmosphere, StormFrameSubtractsTheMeanWindOfTheLowestSixKilometres)
     // s 3000 t further west than in the ground's, at the same height, whatever its path.
     const int frames = 200;
     const double timeStep = 0.5, shear = 4e-3;
-    json atmosphere = {{"environmentLapseRate", 10.0}, {"dewPoint", -60.0}, {"gravity", 0.0},
-                       {"wind", "layers"}, {"windHeights", {0.0, 20000.0}},
-                       {"windSpeeds", {0.0, shear * 20000.0}}, {"windDirections", {270.0, 270.0}}};
+    json atmosphere = {{"environmentLapseRate", 10.0},
+                       {"dewPoint", -60.0},
+                       {"gravity", 0.0},
+                       {"wind", "layers"},
+                       {"windHeights", {0.0, 20000.0}},
+                       {"windSpeeds", {0.0, shear * 20000.0}},
+                       {"windDirections", {270.0, 270.0}}};
     const json emitter = {{"minTemperature", 25.0}, {"maxTemperature", 30.0}};
     const json thermal = {{"buoyancyCoefficient", 0.05}};
     std::shared_ptr<const VapourParticlesData> ground, storm;
@@ -321,7 +354,11 @@ TEST_F(RealAtmosphere, IrregularBasesSpreadWithTheMoistureAmplitude)
     for (double amplitude : {0.0, 1.0, 2.0}) {
         const std::vector<float> base = baseHeights(pipeline(
             120, 0.2, json::object(),
-            [&] { json e = uniformEmission(30.0); e["moistureAmplitude"] = amplitude; return e; }(),
+            [&] {
+                json e = uniformEmission(30.0);
+                e["moistureAmplitude"] = amplitude;
+                return e;
+            }(),
             json::object()));
         ASSERT_TRUE(std::none_of(base.begin(), base.end(), [](float z) { return std::isnan(z); }));
         spread.push_back(standardDeviation(base));
@@ -339,15 +376,19 @@ TEST_F(RealAtmosphere, ASoundingIsFoundBesideItsGraphAndKeyedByItsContent)
     fs::copy_file(kDeepConvection, dir / "soundings" / "day.csv");
     fs::copy_file(kDeepConvection, dir / "soundings" / "copy.csv");
     auto graphWith = [&](const std::string& file) {
-        const json g = {{"cloudgraph", 1}, {"frames", {{"start", 0}, {"end", 0}}},
-                        {"nodes", {{"atmosphere", {{"type", "Atmosphere"},
-                                                   {"params", {{"profile", "sounding"}, {"soundingFile", file}}}}}}}};
+        const json g = {{"cloudgraph", 1},
+                        {"frames", {{"start", 0}, {"end", 0}}},
+                        {"nodes",
+                         {{"atmosphere",
+                           {{"type", "Atmosphere"},
+                            {"params", {{"profile", "sounding"}, {"soundingFile", file}}}}}}}};
         std::ofstream(dir / "g.json") << g.dump();
         return loadGraph(dir / "g.json", registry);  // the working directory is elsewhere
     };
     const Graph g = graphWith("soundings/day.csv");
     Evaluator ev(registry, {});
-    const auto a = std::dynamic_pointer_cast<const AtmosphereData>(ev.pull(g, "atmosphere", 0)->at("atmosphere"));
+    const auto a = std::dynamic_pointer_cast<const AtmosphereData>(
+        ev.pull(g, "atmosphere", 0)->at("atmosphere"));
     ASSERT_TRUE(a && a->atmosphere.profile);
     EXPECT_EQ(a->atmosphere.profile->groundHeight(), 200.0);
 
@@ -365,9 +406,11 @@ TEST_F(RealAtmosphere, WeatherReportWritesTheCloudAndTheParcel)
     json emit = uniformEmission(31.0);
     emit["emissionDuration"] = 400.0;  // air keeps arriving, so the base is where it condenses
     json graph = pipeline(300, 2.0, soundingAtmosphere(), emit, {{"buoyancy", "parcel"}});
-    graph["nodes"]["report"] = {{"type", "WriteWeatherReport"},
-                                {"inputs", {{"condensation", "condense.condensation"}, {"atmosphere", "atmosphere.atmosphere"}}},
-                                {"params", {{"file", "weather.####"}, {"every", 300}}}};
+    graph["nodes"]["report"] = {
+        {"type", "WriteWeatherReport"},
+        {"inputs",
+         {{"condensation", "condense.condensation"}, {"atmosphere", "atmosphere.atmosphere"}}},
+        {"params", {{"file", "weather.####"}, {"every", 300}}}};
     const Graph g = parseGraph(graph.dump(), "report.json", registry);
     EvaluatorOptions options;
     options.outDir = out.path();
@@ -389,7 +432,8 @@ TEST_F(RealAtmosphere, WeatherReportWritesTheCloudAndTheParcel)
     EXPECT_GT(report["cloud_top_m"].get<double>(), report["cloud_base_m"].get<double>());
     EXPECT_GT(report["parcel"].size(), 100u);
     double cloudy = 0.0;
-    for (const auto& f : report["cloud_fraction"]["from_ground"]) cloudy = std::max(cloudy, f.get<double>());
+    for (const auto& f : report["cloud_fraction"]["from_ground"])
+        cloudy = std::max(cloudy, f.get<double>());
     EXPECT_GT(cloudy, 0.0);
     EXPECT_LE(cloudy, 1.0);
 

@@ -56,7 +56,8 @@ protected:
         const Graph g = parseGraph(R"({"cloudgraph": 1, "frames": {"start": 42, "end": 42},
             "nodes": {"src": {"type": "TestImageSource"},
                       "write": {"type": "WriteImage", "inputs": {"image": "src.image"},
-                                "params": )" + params + "}}}",
+                                "params": )" +
+                                       params + "}}}",
                                    "test.json", registry);
         EvaluatorOptions options;
         options.outDir = out.path();
@@ -76,8 +77,8 @@ protected:
 
 TEST_F(WriteImageTest, WritesAnSrgbPngThatReadsBack)
 {
-    const formats::Rgb8Image img = write(
-        R"({"file": "frames/cloud.####.png", "toneMap": "clamp", "dither": false})");
+    const formats::Rgb8Image img =
+        write(R"({"file": "frames/cloud.####.png", "toneMap": "clamp", "dither": false})");
     ASSERT_EQ(img.width, 16);
     ASSERT_EQ(img.height, 8);
     for (int y = 0; y < 8; ++y)
@@ -106,8 +107,7 @@ TEST_F(WriteImageTest, ExposureToneMapAndDitherStayClose)
     ASSERT_EQ(img.width, 16);
     for (int x = 0; x < 16; ++x) {
         const double v = 2.0 * (static_cast<float>(x) / 16.0f);
-        const double expected =
-            255.0 * algo::srgbEncode(algo::toneMap(v, algo::ToneCurve::Aces));
+        const double expected = 255.0 * algo::srgbEncode(algo::toneMap(v, algo::ToneCurve::Aces));
         for (int c = 0; c < 3; ++c)
             EXPECT_LE(std::abs(img.rgb[static_cast<std::size_t>(x) * 3 + c] - expected), 1.5) << x;
     }
@@ -116,14 +116,16 @@ TEST_F(WriteImageTest, ExposureToneMapAndDitherStayClose)
 TEST_F(WriteImageTest, ExrKeepsTheLinearValuesExactly)
 {
     // Exposure and tone map are for display: the EXR holds the radiance unchanged.
-    cook(R"({"file": "frames/cloud.####.exr", "exposure": 3.0, "toneMap": "aces"})", "frames/cloud.0042.exr");
+    cook(R"({"file": "frames/cloud.####.exr", "exposure": 3.0, "toneMap": "aces"})",
+         "frames/cloud.0042.exr");
     const formats::ExrRgbaImage img =
         formats::readExrRgba((out / "frames/cloud.0042.exr").string());
     ASSERT_EQ(img.width, 16);
     ASSERT_EQ(img.height, 8);
     for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 16; ++x) {
-            const float* px = &img.rgba[4 * (static_cast<std::size_t>(y) * 16 + static_cast<std::size_t>(x))];
+            const float* px =
+                &img.rgba[4 * (static_cast<std::size_t>(y) * 16 + static_cast<std::size_t>(x))];
             const float v = static_cast<float>(x) / 16.0f;
             ASSERT_EQ(px[0], v) << x << "," << y;
             ASSERT_EQ(px[1], v);
@@ -170,13 +172,13 @@ TEST_F(WriteImageTest, ExrOfARenderHoldsBeautyCloudAndBackgroundLayers)
 
     // OpenEXR's layer convention, layer.channel: Nuke and Blender show layers cloud and
     // background beside the default R, G, B, A.
-    EXPECT_EQ(formats::exrChannelNames(file),
-              (std::vector<std::string>{"A", "B", "G", "R", "background.B", "background.G",
-                                        "background.R", "cloud.A", "cloud.B", "cloud.G",
-                                        "cloud.R"}));
-    const formats::ExrChannelImage exr = formats::readExrChannels(
-        file, {"R", "G", "B", "A", "cloud.R", "cloud.G", "cloud.B", "cloud.A", "background.R",
-               "background.G", "background.B"});
+    EXPECT_EQ(
+        formats::exrChannelNames(file),
+        (std::vector<std::string>{"A", "B", "G", "R", "background.B", "background.G",
+                                  "background.R", "cloud.A", "cloud.B", "cloud.G", "cloud.R"}));
+    const formats::ExrChannelImage exr =
+        formats::readExrChannels(file, {"R", "G", "B", "A", "cloud.R", "cloud.G", "cloud.B",
+                                        "cloud.A", "background.R", "background.G", "background.B"});
     ASSERT_EQ(exr.width, w);
     ASSERT_EQ(exr.height, h);
 
@@ -281,8 +283,8 @@ TEST(ExrFile, NamedChannelsRoundTripAndAMissingOneIsNamed)
         EXPECT_NE(what.find("layers.exr"), std::string::npos) << what;
         EXPECT_NE(what.find("cloud.R"), std::string::npos) << what;
     }
-    EXPECT_THROW(formats::writeExrFloat32(file, 2, 1, {{{"R", "G", "B", "A"}, rgba},
-                                                       {{"R", "spare.Y"}, extra}}),
+    EXPECT_THROW(formats::writeExrFloat32(
+                     file, 2, 1, {{{"R", "G", "B", "A"}, rgba}, {{"R", "spare.Y"}, extra}}),
                  std::invalid_argument);
     EXPECT_THROW(formats::writeExrFloat32(file, 2, 1, {{{"spare.X"}, extra}}),
                  std::invalid_argument);

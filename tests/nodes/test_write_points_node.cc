@@ -114,7 +114,7 @@ TEST(PointsGrid, KeepsEveryParticleAndItsAttributes)
     formats::PointsGridSettings s;
     s.voxelSize = 2.0;
     const auto fixed = formats::makeParticlePointsGrid(c.xyz.data(), c.levels.data(),
-                                                    c.sources.data(), c.levels.size(), s);
+                                                       c.sources.data(), c.levels.size(), s);
     EXPECT_EQ(fixed->getName(), "points");
     EXPECT_EQ(fixed->voxelSize(), openvdb::Vec3d(2.0));
     // 16-bit offsets in a 2 m voxel: 2 m / 2^16 = 3e-5 m, plus float rounding at ~1.5 km.
@@ -123,7 +123,7 @@ TEST(PointsGrid, KeepsEveryParticleAndItsAttributes)
     s.precision = formats::PointPrecision::Float;
     s.voxelSize = 0.0;  // automatic
     const auto exact = formats::makeParticlePointsGrid(c.xyz.data(), c.levels.data(),
-                                                    c.sources.data(), c.levels.size(), s);
+                                                       c.sources.data(), c.levels.size(), s);
     EXPECT_GT(exact->voxelSize()[0], 0.0);
     expectRoundTrip(c, *exact, 2e-4);
 }
@@ -253,9 +253,11 @@ protected:
                 const std::string& cloudParams = R"({"radius": 12, "spacing": 2})")
     {
         return parseGraph(R"({"cloudgraph": 1, "nodes": {
-            "cloud": {"type": "TestCloudSource", "params": )" + cloudParams + R"(},
+            "cloud": {"type": "TestCloudSource", "params": )" +
+                              cloudParams + R"(},
             "write": {"type": "WritePoints", "inputs": {"particles": "cloud.particles"},
-                      "params": )" + writeParams + "}}}",
+                      "params": )" +
+                              writeParams + "}}}",
                           "test.json", registry);
     }
 
@@ -342,7 +344,7 @@ TEST_F(WritePointsTest, WritesAFilePerFrameThatReadsBack)
             EXPECT_EQ(level.get(*idx), 1);
             EXPECT_EQ(source.get(*idx), 0);
             const auto w = grid->transform().indexToWorld(idx.getCoord().asVec3d() +
-                                                         openvdb::Vec3d(p.get(*idx)));
+                                                          openvdb::Vec3d(p.get(*idx)));
             for (int a = 0; a < 3; ++a)
                 offLattice += std::fabs(w[a] / 2.0 - std::round(w[a] / 2.0)) > 1e-4;
         }
@@ -362,7 +364,7 @@ TEST_F(WritePointsTest, VdbPrintReadsTheWrittenFile)
     ASSERT_EQ(spawn({vdbPrint, path.string(), "-l", "-m"}, out / "vdb_print.log", output), 0)
         << output;
     EXPECT_NE(output.find("points"), std::string::npos) << output;
-    EXPECT_NE(output.find("ptdataidx"), std::string::npos) << output;  // the point grid type
+    EXPECT_NE(output.find("ptdataidx"), std::string::npos) << output;    // the point grid type
     EXPECT_NE(output.find("WritePoints"), std::string::npos) << output;  // our creator
 }
 

@@ -86,7 +86,8 @@ protected:
         return parseGraph(R"({"cloudgraph": 1, "frames": {"start": 0, "end": 20}, "nodes": {
             "fog": {"type": "TestGrowingFog", "params": {"appears": 3}},
             "write": {"type": "WriteVDB", "inputs": {"volume": "fog.volume"},
-                      "params": )" + writeParams + "}}}",
+                      "params": )" +
+                              writeParams + "}}}",
                           "growing.json", registry);
     }
 
@@ -106,7 +107,8 @@ protected:
             "vox": {"type": "Voxelizer", "inputs": {"particles": "cloud.particles"},
                     "params": {"voxelSize": 1.0, "radius": 3.0, "density": 0.3}},
             "write": {"type": "WriteVDB", "inputs": {"volume": "vox.volume"},
-                      "params": )" + writeParams + "}}}",
+                      "params": )" +
+                              writeParams + "}}}",
                           "test.json", registry);
     }
 
@@ -228,9 +230,8 @@ TEST_F(WriteVdbTest, HalfFloatIsSmallerAndClose)
 {
     const fs::path full = write(parse(R"({"file": "full.####.vdb", "compression": "none"})"), 1);
     openvdb::FloatGrid::ConstPtr grid;
-    const fs::path half =
-        write(parse(R"({"file": "half.####.vdb", "compression": "none", "halfFloat": true})"), 1,
-              &grid);
+    const fs::path half = write(
+        parse(R"({"file": "half.####.vdb", "compression": "none", "halfFloat": true})"), 1, &grid);
     EXPECT_LT(fs::file_size(half), fs::file_size(full) * 3 / 4);
     const auto read = readBack(half);
     ASSERT_EQ(read->activeVoxelCount(), grid->activeVoxelCount());
@@ -247,9 +248,8 @@ TEST_F(WriteVdbTest, CompressionShrinksTheFileAndReadsBack)
         << "Debian's OpenVDB 10 is built with Blosc; 'auto' falls back to zip without it";
     const fs::path none = write(parse(R"({"file": "none.####.vdb", "compression": "none"})"), 3);
     for (const std::string c : {"auto", "blosc", "zip"}) {
-        const fs::path p = write(parse(R"({"file": ")" + c + R"(.####.vdb", "compression": ")" +
-                                       c + R"("})"),
-                                 3);
+        const fs::path p =
+            write(parse(R"({"file": ")" + c + R"(.####.vdb", "compression": ")" + c + R"("})"), 3);
         EXPECT_LT(fs::file_size(p), fs::file_size(none)) << c;
         EXPECT_EQ(readBack(p)->activeVoxelCount(), readBack(none)->activeVoxelCount()) << c;
     }

@@ -89,7 +89,8 @@ void registerFixtureNodes(Registry& registry)
         auto in = ctx.input<FloatArrayData>("values");
         auto prev = ctx.previous<FloatArrayData>("state");
         std::vector<float> v = prev ? prev->values : std::vector<float>(in->values.size(), 0.0f);
-        for (std::size_t i = 0; i < v.size(); ++i) v[i] += in->values[i] + static_cast<float>(ctx.frame());
+        for (std::size_t i = 0; i < v.size(); ++i)
+            v[i] += in->values[i] + static_cast<float>(ctx.frame());
         ctx.setOutput("state", std::make_shared<FloatArrayData>(std::move(v)));
     });
     registry.addNode(sim);
@@ -102,7 +103,8 @@ void registerFixtureNodes(Registry& registry)
                    boolParam("badInput", false, "throw an InputError instead of a runtime_error")};
     fail.create = counted([](CookContext& ctx) {
         if (ctx.frame() == ctx.params().getInt("failAtFrame")) {
-            if (ctx.params().getBool("badInput")) throw InputError(ctx.nodeId(), "bad input on purpose");
+            if (ctx.params().getBool("badInput"))
+                throw InputError(ctx.nodeId(), "bad input on purpose");
             throw std::runtime_error("failure on purpose");
         }
         ctx.setOutput("values", ctx.input<FloatArrayData>("values"));
@@ -139,12 +141,15 @@ void registerFixtureNodes(Registry& registry)
     registry.addNode(textSource);
 
     // Cheap sources of the domain types, so the contract test never cooks a heavy simulation.
-    NodeDecl primitive = decl("TestPrimitiveSource", "a small synthetic primitive set: a growing ball");
+    NodeDecl primitive =
+        decl("TestPrimitiveSource", "a small synthetic primitive set: a growing ball");
     primitive.outputs = {port("primitive", "PrimitiveSet", "the primitive set")};
     primitive.params = {intParam("frames", 8, "", "frames", 1, 1000),
                         floatParam("radius", 10.0, "m", "final radius", 0),
-                        floatParam("sink", 0.0, "radii", "how far the ball hangs below its origin "
-                                   "(0: it sits on it; 1: centred on it)", 0, 2)};
+                        floatParam("sink", 0.0, "radii",
+                                   "how far the ball hangs below its origin "
+                                   "(0: it sits on it; 1: centred on it)",
+                                   0, 2)};
     primitive.create = counted([](CookContext& ctx) {
         const auto frames = static_cast<int>(ctx.params().getInt("frames"));
         const double radius = ctx.params().getFloat("radius");
@@ -164,7 +169,8 @@ void registerFixtureNodes(Registry& registry)
                                                    static_cast<float>(r * z + lift * r)});
             }
         }
-        ctx.setOutput("primitive", std::make_shared<PrimitiveSetData>(1.0, std::move(counts), std::move(positions)));
+        ctx.setOutput("primitive", std::make_shared<PrimitiveSetData>(1.0, std::move(counts),
+                                                                      std::move(positions)));
     });
     registry.addNode(primitive);
 
@@ -180,8 +186,9 @@ void registerFixtureNodes(Registry& registry)
             for (double y = -r; y <= r; y += h)
                 for (double z = -r; z <= r; z += h)
                     if (x * x + y * y + z * z <= r * r)
-                        positions.insert(positions.end(), {static_cast<float>(x), static_cast<float>(y),
-                                                           static_cast<float>(z + r)});
+                        positions.insert(positions.end(),
+                                         {static_cast<float>(x), static_cast<float>(y),
+                                          static_cast<float>(z + r)});
         const std::size_t n = positions.size() / 3;
         ctx.setOutput("particles", std::make_shared<CloudParticlesData>(
                                        std::move(positions), std::vector<std::uint8_t>(n, 1),
@@ -204,14 +211,16 @@ void registerFixtureNodes(Registry& registry)
             for (int j = -n; j <= n; ++j)
                 for (int k = -n; k <= n; ++k)
                     if (i * i + j * j + k * k <= r * r)
-                        acc.setValue({i, j, k}, static_cast<float>(ctx.params().getFloat("density")));
+                        acc.setValue({i, j, k},
+                                     static_cast<float>(ctx.params().getFloat("density")));
         ctx.setOutput("volume", std::make_shared<FogVolumeData>(grid));
     });
     registry.addNode(fog);
 
     NodeDecl image = decl("TestImageSource", "a horizontal grey ramp");
     image.outputs = {port("image", "Image", "the image")};
-    image.params = {intParam("width", 16, "px", "width", 1, 4096), intParam("height", 8, "px", "height", 1, 4096)};
+    image.params = {intParam("width", 16, "px", "width", 1, 4096),
+                    intParam("height", 8, "px", "height", 1, 4096)};
     image.create = counted([](CookContext& ctx) {
         const auto w = static_cast<int>(ctx.params().getInt("width"));
         const auto h = static_cast<int>(ctx.params().getInt("height"));

@@ -79,7 +79,8 @@ inline algo::RenderedImage expectSameImageForAnyThreadCount(
     EXPECT_EQ(one.rgba.size(), two.rgba.size());
     EXPECT_EQ(one.background.size(), two.background.size());
     if (one.rgba.size() == two.rgba.size()) {
-        EXPECT_EQ(std::memcmp(one.rgba.data(), two.rgba.data(), one.rgba.size() * sizeof(float)), 0);
+        EXPECT_EQ(std::memcmp(one.rgba.data(), two.rgba.data(), one.rgba.size() * sizeof(float)),
+                  0);
     }
     if (one.background.size() == two.background.size()) {
         EXPECT_EQ(std::memcmp(one.background.data(), two.background.data(),

@@ -5,8 +5,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <csignal>
 #include <atomic>
+#include <csignal>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -41,7 +41,10 @@ std::string readFile(const std::filesystem::path& p)
     return s.str();
 }
 
-nlohmann::json readJson(const std::filesystem::path& p) { return nlohmann::json::parse(readFile(p)); }
+nlohmann::json readJson(const std::filesystem::path& p)
+{
+    return nlohmann::json::parse(readFile(p));
+}
 
 void writeFile(const std::filesystem::path& p, const std::string& text)
 {

@@ -28,9 +28,9 @@ nlohmann::json readJson(const std::filesystem::path& p);
 void writeFile(const std::filesystem::path& p, const std::string& text);
 
 struct CliResult {
-    int exitCode = -1;     ///< the exit status; -1 - signal number when killed by a signal
-    std::string output;    ///< stdout
-    std::string errors;    ///< stderr
+    int exitCode = -1;   ///< the exit status; -1 - signal number when killed by a signal
+    std::string output;  ///< stdout
+    std::string errors;  ///< stderr
 };
 
 /// The cloudgraph binary running in the background (no shell), output captured to files.
