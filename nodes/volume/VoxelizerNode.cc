@@ -83,6 +83,23 @@ algo::DropletPopulation dropletsFrom(const ParamSet& p)
     return d;
 }
 
+/// What a renderer needs to read a water grid: one number turns its values into extinction
+/// (1/m); the rest describes the droplets.
+void writeWaterMetadata(openvdb::FloatGrid& grid, const algo::DropletPopulation& droplets)
+{
+    const double extinction = algo::extinctionPerUnitValue(droplets);
+    const double radius = algo::effectiveRadius(1.0, droplets);
+    grid.insertMeta("extinction", openvdb::FloatMetadata(static_cast<float>(extinction)));
+    grid.insertMeta("albedo", openvdb::FloatMetadata(1.0f));
+    grid.insertMeta("phase_asymmetry",
+                    openvdb::FloatMetadata(static_cast<float>(algo::dropletAsymmetry(radius))));
+    grid.insertMeta("droplet_concentration_cm3",
+                    openvdb::DoubleMetadata(droplets.concentrationPerCm3));
+    grid.insertMeta("value_meaning",
+                    openvdb::StringMetadata("extinction / 'extinction'; liquid water content "
+                                            "= value^1.5 g/m^3"));
+}
+
 /// Flat bases and, with optics 'water', the cloud's water (algo/volume/CloudBase.h); writes
 /// what a renderer needs into the grid's metadata.
 void shapeBaseAndWater(openvdb::FloatGrid& grid, CookContext& ctx)
@@ -103,12 +120,19 @@ void shapeBaseAndWater(openvdb::FloatGrid& grid, CookContext& ctx)
                              "optics 'water' needs the atmosphere input (the temperature and "
                              "pressure at the cloud base)");
     }
-    const auto base = cloudBaseOf(*condensation, p.getFloat("baseCellSize"));
-    if (!base) return;  // nothing has condensed: no cloud base yet
     algo::CloudWaterSettings s;
     s.transition = p.getFloat("baseTransition");
     s.adiabaticFraction = p.getFloat("adiabaticFraction");
     s.droplets = dropletsFrom(p);
+    const auto base = cloudBaseOf(*condensation, p.getFloat("baseCellSize"));
+    if (!base) {
+        // Nothing has condensed yet: no cloud base, and no liquid water anywhere.
+        if (water) {
+            grid.clear();
+            writeWaterMetadata(grid, s.droplets);
+        }
+        return;
+    }
     std::optional<algo::AdiabaticWater> adiabatic;
     if (water) {
         adiabatic.emplace(adiabaticWaterAt(atmosphere->atmosphere, base->overall()));
@@ -116,19 +140,7 @@ void shapeBaseAndWater(openvdb::FloatGrid& grid, CookContext& ctx)
     }
     algo::shapeCloudWater(grid, *base, s, [&] { ctx.checkCancelled(); });
     grid.insertMeta("cloud_base_m", openvdb::DoubleMetadata(base->overall()));
-    if (!water) return;
-    // One number turns the grid into extinction (1/m); the rest describes the droplets.
-    const double extinction = algo::extinctionPerUnitValue(s.droplets);
-    const double radius = algo::effectiveRadius(1.0, s.droplets);
-    grid.insertMeta("extinction", openvdb::FloatMetadata(static_cast<float>(extinction)));
-    grid.insertMeta("albedo", openvdb::FloatMetadata(1.0f));
-    grid.insertMeta("phase_asymmetry",
-                    openvdb::FloatMetadata(static_cast<float>(algo::dropletAsymmetry(radius))));
-    grid.insertMeta("droplet_concentration_cm3",
-                    openvdb::DoubleMetadata(s.droplets.concentrationPerCm3));
-    grid.insertMeta("value_meaning",
-                    openvdb::StringMetadata("extinction / 'extinction'; liquid water content "
-                                            "= value^1.5 g/m^3"));
+    if (water) writeWaterMetadata(grid, s.droplets);
 }
 
 class VoxelizerNode final : public Node {

@@ -37,15 +37,21 @@ TEST(CloudLook, SmallFigure6WithWaterHasCrispTopsAndItsBaseAtTheCondensationLeve
     findSpec("figure6_towering_cumulus")->shrink(g);
     // 80% of the range, as the issue measures.
     const int frame = g.frames.start + (g.frames.end - g.frames.start) * 8 / 10;
-    std::shared_ptr<const FogVolumeData> volume;
+    // Frame 61 is the last before anything condenses (GoldenSpecs.cc): no water yet, but the
+    // optics that every frame of the sequence shares.
+    constexpr int kBeforeCondensation = 61;
+    std::shared_ptr<const FogVolumeData> volume, dry;
     Evaluator ev(registry, {});
     ev.cookFrames(g, g.frames.start, frame, {"voxelize"},
                   [&](int f, const Evaluator::FrameOutputs& r) {
-                      if (f == frame)
-                          volume = std::dynamic_pointer_cast<const FogVolumeData>(
-                              r[g.indexOf("voxelize")]->at("volume"));
+                      const auto v = std::dynamic_pointer_cast<const FogVolumeData>(
+                          r[g.indexOf("voxelize")]->at("volume"));
+                      if (f == frame) volume = v;
+                      if (f == kBeforeCondensation) dry = v;
                   });
-    ASSERT_TRUE(volume);
+    ASSERT_TRUE(volume && dry);
+    EXPECT_EQ(dry->grid->activeVoxelCount(), 0u);
+    EXPECT_TRUE(dry->grid->getMetadata<openvdb::FloatMetadata>("extinction"));
     const openvdb::FloatGrid& grid = *volume->grid;
     const auto extinction = grid.getMetadata<openvdb::FloatMetadata>("extinction");
     const auto base = grid.getMetadata<openvdb::DoubleMetadata>("cloud_base_m");
