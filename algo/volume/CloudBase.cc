@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 
 #include <openvdb/tools/Prune.h>
@@ -36,30 +35,35 @@ CloudBaseField::CloudBaseField(const float* x, const float* y, const float* heig
     : mCell(cellSize)
 {
     if (!(cellSize > 0.0)) throw std::invalid_argument("cloud base: cell size must be > 0");
+    // Each finite point's cell, found once; cells beyond 2^30 of the origin are refused
+    // before they are converted to integers.
+    struct Point {
+        long cx, cy;
+        double height;
+    };
+    std::vector<Point> points;
     std::vector<double> all;
-    long minX = std::numeric_limits<long>::max(), minY = minX,
-         maxX = std::numeric_limits<long>::min(), maxY = maxX;
-    std::vector<std::size_t> used;
+    constexpr double kMaxCell = 1 << 30;
     for (std::size_t i = 0; i < n; ++i) {
-        if (!std::isfinite(height[i]) || !std::isfinite(x[i]) || !std::isfinite(y[i])) continue;
-        const long cx = std::lround(std::floor(x[i] / cellSize));
-        const long cy = std::lround(std::floor(y[i] / cellSize));
-        minX = std::min(minX, cx), maxX = std::max(maxX, cx);
-        minY = std::min(minY, cy), maxY = std::max(maxY, cy);
+        if (!std::isfinite(height[i])) continue;
+        const double fx = std::floor(x[i] / cellSize), fy = std::floor(y[i] / cellSize);
+        if (!(std::abs(fx) < kMaxCell && std::abs(fy) < kMaxCell))
+            throw std::invalid_argument("cloud base: a condensed particle lies too far out");
+        points.push_back({static_cast<long>(fx), static_cast<long>(fy), height[i]});
         all.push_back(height[i]);
-        used.push_back(i);
     }
-    if (all.empty()) throw std::invalid_argument("cloud base: no particle has condensed");
+    if (points.empty()) throw std::invalid_argument("cloud base: no particle has condensed");
     mOverall = tenthPercentile(all);
-    mX0 = minX, mY0 = minY, mNx = maxX - minX + 1, mNy = maxY - minY + 1;
-    if (mNx * mNy > (1L << 24))
+    const auto [minX, maxX] = std::minmax_element(
+        points.begin(), points.end(), [](const Point& a, const Point& b) { return a.cx < b.cx; });
+    const auto [minY, maxY] = std::minmax_element(
+        points.begin(), points.end(), [](const Point& a, const Point& b) { return a.cy < b.cy; });
+    mX0 = minX->cx, mY0 = minY->cy, mNx = maxX->cx - mX0 + 1, mNy = maxY->cy - mY0 + 1;
+    if (mNx * mNy > (1L << 24))  // each below 2^31: the product fits
         throw std::invalid_argument("cloud base: the condensed particles span too many cells");
     std::vector<std::vector<double>> heights(static_cast<std::size_t>(mNx * mNy));
-    for (const std::size_t i : used) {
-        const long cx = std::lround(std::floor(x[i] / cellSize)) - mX0;
-        const long cy = std::lround(std::floor(y[i] / cellSize)) - mY0;
-        heights[static_cast<std::size_t>(cy * mNx + cx)].push_back(height[i]);
-    }
+    for (const Point& p : points)
+        heights[static_cast<std::size_t>((p.cy - mY0) * mNx + (p.cx - mX0))].push_back(p.height);
     mCells.resize(heights.size());
     for (std::size_t c = 0; c < heights.size(); ++c)
         mCells[c] = heights[c].empty() ? mOverall : tenthPercentile(heights[c]);

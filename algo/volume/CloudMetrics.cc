@@ -137,6 +137,29 @@ double reach(const std::vector<double>& tau, double target)
     return kNaN;
 }
 
+/// The optical depth through the grid's active box along y (side: x by z) and along z (top:
+/// x by y), tau = value x perVoxel summed.
+struct Projections {
+    Plane side, top;
+};
+Projections project(const openvdb::FloatGrid& grid, const openvdb::CoordBBox& box, double perVoxel)
+{
+    const openvdb::Coord lo = box.min(), dim = box.dim();
+    Projections p{Plane(lo.x(), lo.z(), dim.x(), dim.z()), Plane(lo.x(), lo.y(), dim.x(), dim.y())};
+    for (auto it = grid.cbeginValueOn(); it; ++it) {
+        openvdb::CoordBBox b;
+        it.getBoundingBox(b);
+        const double tau = static_cast<double>(*it) * perVoxel;
+        for (int x = b.min().x(); x <= b.max().x(); ++x)
+            for (int y = b.min().y(); y <= b.max().y(); ++y)
+                for (int z = b.min().z(); z <= b.max().z(); ++z) {
+                    p.side.at(x, z) += tau;
+                    p.top.at(x, y) += tau;
+                }
+    }
+    return p;
+}
+
 }  // namespace
 
 CloudMetrics measureCloud(const openvdb::FloatGrid& grid, const CloudMetricsOptions& options)
@@ -152,19 +175,7 @@ CloudMetrics measureCloud(const openvdb::FloatGrid& grid, const CloudMetricsOpti
         return out;
     }
     const openvdb::Coord lo = box.min(), dim = box.dim();
-    Plane side(lo.x(), lo.z(), dim.x(), dim.z());
-    Plane top(lo.x(), lo.y(), dim.x(), dim.y());
-    for (auto it = grid.cbeginValueOn(); it; ++it) {
-        openvdb::CoordBBox b;
-        it.getBoundingBox(b);
-        const double tau = static_cast<double>(*it) * perVoxel;
-        for (int x = b.min().x(); x <= b.max().x(); ++x)
-            for (int y = b.min().y(); y <= b.max().y(); ++y)
-                for (int z = b.min().z(); z <= b.max().z(); ++z) {
-                    side.at(x, z) += tau;
-                    top.at(x, y) += tau;
-                }
-    }
+    auto [side, top] = project(grid, box, perVoxel);
     out.sideOutlineDimension = sideDimension(side);
     out.areaPerimeterDimension = areaPerimeter(top, out.clouds);
 
@@ -204,16 +215,7 @@ SideView sideOpticalDepth(const openvdb::FloatGrid& grid, double extinction)
 {
     const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
     if (box.empty()) return {};
-    const double perVoxel = extinction * grid.voxelSize()[0];
-    const openvdb::Coord lo = box.min(), dim = box.dim();
-    Plane side(lo.x(), lo.z(), dim.x(), dim.z());
-    for (auto it = grid.cbeginValueOn(); it; ++it) {
-        openvdb::CoordBBox b;
-        it.getBoundingBox(b);
-        const double tau = static_cast<double>(*it) * perVoxel * b.dim().y();
-        for (int x = b.min().x(); x <= b.max().x(); ++x)
-            for (int z = b.min().z(); z <= b.max().z(); ++z) side.at(x, z) += tau;
-    }
+    Plane side = project(grid, box, extinction * grid.voxelSize()[0]).side;
     return {side.width, side.height, std::move(side.v)};
 }
 

@@ -27,17 +27,6 @@ namespace cg {
 
 namespace {
 
-/// The paper's Eq. 9 line as a profile, so a paper graph gets a report too: T_e falling C_e
-/// per metre to 20 km, the dew point T_dp everywhere, pressure hydrostatic from sea level.
-algo::EnvironmentProfile profileOf(const Atmosphere& a)
-{
-    if (a.profile) return *a.profile;
-    const double nan = std::nan("");
-    return algo::EnvironmentProfile(
-        {{0.0, a.groundTemperature, a.dewPoint, nan, 0.0, 0.0},
-         {20000.0, a.environmentTemperature(20000.0), a.dewPoint, nan, 0.0, 0.0}});
-}
-
 /// A number for JSON: null when not finite.
 std::string number(double v)
 {
@@ -115,7 +104,7 @@ public:
         if (!writesThisFrame(ctx)) return;
         const auto c = ctx.input<CondensationData>("condensation");
         const Atmosphere& atmosphere = ctx.input<AtmosphereData>("atmosphere")->atmosphere;
-        const algo::EnvironmentProfile profile = profileOf(atmosphere);
+        const algo::EnvironmentProfile profile = environmentProfileOf(atmosphere);
         const algo::ParcelAscent parcel = algo::liftParcel(profile, profile.groundHeight());
         const VapourParticlesData& p = *c->particles;
         const algo::CloudColumn cloud = algo::cloudColumn(

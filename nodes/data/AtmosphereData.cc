@@ -1,5 +1,6 @@
 #include "nodes/data/AtmosphereData.h"
 
+#include <cmath>
 #include <stdexcept>
 #include <vector>
 
@@ -118,6 +119,15 @@ std::size_t AtmosphereData::byteSize() const
                                 column.windNorth.size();
     return sizeof(*this) + levels * sizeof(algo::ProfileLevel) +
            atmosphere.wind.levels().size() * sizeof(algo::WindLevel) + samples * sizeof(float);
+}
+
+algo::EnvironmentProfile environmentProfileOf(const Atmosphere& a)
+{
+    if (a.profile) return *a.profile;
+    const double nan = std::nan("");
+    return algo::EnvironmentProfile(
+        {{0.0, a.groundTemperature, a.dewPoint, nan, 0.0, 0.0},
+         {20000.0, a.environmentTemperature(20000.0), a.dewPoint, nan, 0.0, 0.0}});
 }
 
 void registerAtmosphereType(Registry& registry)

@@ -67,6 +67,11 @@ public:
     bool serialize(ByteWriter& out) const override;
 };
 
+/// The atmosphere as a profile: its own, or the paper's Eq. 9 line (T_e falling C_e per metre
+/// to 20 km, the dew point T_dp everywhere, pressure hydrostatic from 1013.25 hPa at sea
+/// level), so what reads temperatures and pressures by height works for both.
+algo::EnvironmentProfile environmentProfileOf(const Atmosphere& a);
+
 void registerAtmosphereType(Registry& registry);
 
 }  // namespace cg

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <vector>
 
-#include "algo/atmosphere/Thermodynamics.h"
 #include "nodes/data/AtmosphereData.h"
 #include "nodes/data/VapourParticles.h"
 
@@ -21,19 +20,10 @@ std::unique_ptr<algo::CloudBaseField> cloudBaseOf(const CondensationData& conden
 
 algo::AdiabaticWater adiabaticWaterAt(const Atmosphere& a, double baseZ)
 {
-    if (a.profile) {
-        const double z = a.profile->groundHeight() + baseZ;
-        return algo::AdiabaticWater(a.environmentTemperature(baseZ), a.profile->pressure(z));
-    }
-    // Eq. 9's column, hydrostatic in 10 m layers from the standard sea-level pressure.
-    constexpr double kLayer = 10.0;
-    double p = 1013.25;
-    for (double z = 0.0; z < baseZ; z += kLayer) {
-        const double dz = std::min(kLayer, baseZ - z);
-        p = algo::thermo::hydrostaticPressure(p, a.environmentTemperature(z),
-                                              a.environmentTemperature(z + dz), dz);
-    }
-    return algo::AdiabaticWater(a.dewPoint, p);
+    const algo::EnvironmentProfile profile = environmentProfileOf(a);
+    const double pressure = profile.pressure(profile.groundHeight() + baseZ);
+    // The paper's parcels condense at T_dp; a sounding's at the air's temperature there.
+    return algo::AdiabaticWater(a.profile ? a.environmentTemperature(baseZ) : a.dewPoint, pressure);
 }
 
 }  // namespace cg

@@ -19,9 +19,8 @@ std::unique_ptr<algo::CloudBaseField> cloudBaseOf(const CondensationData& conden
                                                   double cellSize);
 
 /// The adiabatic water of a parcel saturated at height baseZ (m above the ground): at the
-/// dew point T_dp (the paper's Eq. 8 condenses a parcel there) and the pressure of a
-/// hydrostatic column whose temperature is Eq. 9's line from 1013.25 hPa at the ground; with
-/// a profile, at the profile's temperature and pressure at that height.
+/// dew point T_dp (the paper's Eq. 8 condenses a parcel there), or with a sounding the air's
+/// temperature there, and the pressure of environmentProfileOf(atmosphere) at that height.
 algo::AdiabaticWater adiabaticWaterAt(const Atmosphere& atmosphere, double baseZ);
 
 }  // namespace cg

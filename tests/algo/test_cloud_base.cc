@@ -113,6 +113,8 @@ TEST(CloudBase, RefusesAFieldWithoutCondensation)
     EXPECT_THROW(CloudBaseField(&x, &y, &nan, 1, 100.0), std::invalid_argument);
     const float z = 1000.0f;
     EXPECT_THROW(CloudBaseField(&x, &y, &z, 1, 0.0), std::invalid_argument);
+    const float far = 1e30f;  // beyond any cell index: refused, not converted
+    EXPECT_THROW(CloudBaseField(&far, &y, &z, 1, 100.0), std::invalid_argument);
 }
 
 }  // namespace cg::algo
