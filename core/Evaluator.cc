@@ -188,14 +188,16 @@ private:
             ++resolvedCount;
         }
         if (resolvedCount == 0) return closure;
-        // Downstream first: a node is needed when nothing in the closure reads it (a target)
-        // or a needed node reads it.
+        // Downstream first: a node is needed when nothing in the closure reads it (a target),
+        // a needed node reads it, or it writes files that did not verify: a reader's record
+        // (a video verified before its last frame, with no files) says nothing of them.
         std::vector<bool> readInClosure(n, false), readByNeeded(n, false), needed(n, false);
         for (std::size_t idx : closure)
             for (std::size_t up : mGraph.upstream()[idx]) readInClosure[up] = true;
         for (auto it = closure.rbegin(); it != closure.rend(); ++it) {
             const std::size_t idx = *it;
-            if (resolved[idx] || (readInClosure[idx] && !readByNeeded[idx])) continue;
+            const bool writer = WrittenFiles::keepsRecords(*mGraph.nodes()[idx].decl);
+            if (resolved[idx] || (readInClosure[idx] && !readByNeeded[idx] && !writer)) continue;
             needed[idx] = true;
             for (std::size_t up : mGraph.upstream()[idx]) readByNeeded[up] = true;
         }

@@ -145,6 +145,32 @@ TEST(Farm, ARerunSkipsTheFramesWhoseFilesVerifyAndRedoesTheRest)
     EXPECT_EQ(report["totals"]["verified"], 8);
 }
 
+TEST(Farm, ARerunIntoAnEmptiedOutputWritesTheFramesAVideoReadsAgain)
+{
+    // Before the video's last frame EncodeVideo writes nothing, so its record verifies with
+    // no files; that must not spare the frame writer it reads, whose files are gone.
+    TempDir dir;
+    test::writeFile(dir / "g.json",
+                    R"({"cloudgraph": 1, "frames": {"start": 0, "end": 3}, "nodes": {
+        "a": {"type": "RandomField", "params": {"width": 3, "height": 1}},
+        "w": {"type": "WriteArray", "params": {"file": "a.####.txt"}, "inputs": {"values": "a.values"}},
+        "video": {"type": "EncodeVideo", "inputs": {"frames": "w.files"},
+                  "params": {"images": "a.####.txt", "lastFrame": 3}}}})");
+    const fs::path out = dir / "out";
+    auto run = [&] {
+        return runCli({"run", (dir / "g.json").string(), "--frames", "0:1", "--cache",
+                       (dir / "cache").string(), "--out", out.string(), "-q"});
+    };
+    ASSERT_EQ(run().exitCode, 0);
+    const std::string frame1 = readFile(out / "a.0001.txt");
+    fs::remove_all(out);
+    const auto again = run();
+    ASSERT_EQ(again.exitCode, 0) << again.errors;
+    EXPECT_TRUE(fs::exists(out / "a.0000.txt"));
+    ASSERT_TRUE(fs::exists(out / "a.0001.txt"));
+    EXPECT_EQ(readFile(out / "a.0001.txt"), frame1);
+}
+
 TEST(Farm, BadChunkValuesAreRefusedBeforeAnythingCooks)
 {
     TempDir dir;
