@@ -10,6 +10,7 @@
 
 #include "algo/noise/PerlinWorley.h"
 #include "algo/volume/CopyOriginField.h"
+#include "algo/volume/LeafCopyCoordinates.h"
 
 namespace cg::algo {
 
@@ -72,27 +73,7 @@ void erodeSurface(openvdb::FloatGrid& grid, const CopyOriginField* field,
     const float leastErosion = amplitude * (1.0f - perlinWorleyUpperBound());
     openvdb::tree::LeafManager<openvdb::FloatTree> leaves(grid.tree());
     leaves.foreach ([&](LeafT& leaf, std::size_t) {
-        constexpr int kDim = static_cast<int>(LeafT::DIM);
-        const openvdb::Coord corner = leaf.origin();
-        std::optional<CopyOriginField::Block> block;
-        if (field) {
-            const openvdb::CoordBBox box = leaf.getNodeBoundingBox();
-            double lo[3], hi[3];
-            for (int a = 0; a < 3; ++a) {
-                lo[a] = box.min()[a] * voxel;
-                hi[a] = box.max()[a] * voxel;
-            }
-            block = field->block(lo, hi);
-        }
-        // Per axis, the leaf's voxel coordinates in metres and their places among the copy
-        // origin cells: found once per coordinate, not once per voxel.
-        double metres[3][kDim];
-        CopyOriginField::Block::AxisPlace places[3][kDim];
-        for (int a = 0; a < 3; ++a)
-            for (int l = 0; l < kDim; ++l) {
-                metres[a][l] = (corner[a] + l) * voxel;
-                if (block) places[a][l] = block->place(a, metres[a][l]);
-            }
+        const LeafCopyCoordinates<LeafT> coordinates(leaf, voxel, field);
         float* values = leaf.buffer().data();
         // Switching the current voxel off does not disturb the iteration, which moves on
         // from the next bit.
@@ -105,19 +86,8 @@ void erodeSurface(openvdb::FloatGrid& grid, const CopyOriginField* field,
                 leaf.setValueOff(n);
                 continue;
             }
-            const int i = static_cast<int>(n >> (2 * LeafT::LOG2DIM));
-            const int j = static_cast<int>((n >> LeafT::LOG2DIM) & (kDim - 1));
-            const int k = static_cast<int>(n & (kDim - 1));
-            double x[3] = {metres[0][i], metres[1][j], metres[2][k]};
-            double origin[3] = {0.0, 0.0, 0.0};
-            // Every voxel a splat reached has an origin; a grid changed since (filtered,
-            // combined) may have others, which keep world coordinates.
-            if (block) {
-                const CopyOriginField::Block::AxisPlace at[3] = {places[0][i], places[1][j],
-                                                                 places[2][k]};
-                if (!block->origin(at, origin)) origin[0] = origin[1] = origin[2] = 0.0;
-            }
-            for (int a = 0; a < 3; ++a) x[a] -= origin[a];
+            double x[3];
+            coordinates.at(n, x);
             const float e = amplitude * (1.0f - perlinWorleyFbm(x, s.frequency, s.octaves));
             const float eroded = erode(v, e);
             if (eroded > 0.0f) {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "algo/volume/FloretDetail.h"
 #include "algo/volume/GaussianSplat.h"
 #include "algo/volume/SurfaceDetail.h"
 #include "algo/volume/Voxelize.h"
@@ -24,52 +25,68 @@ namespace cg {
 
 namespace {
 
-/// A voxelized frame and how many particles went into it.
+/// The detail carved and eroded into the splats, both evaluated in the copies' coordinates.
+struct DetailSettings {
+    algo::FloretSettings florets;
+    algo::SurfaceDetailSettings erosion;
+    bool eroding() const { return erosion.amplitude > 0.0; }
+};
+
+/// A voxelized frame, how many particles went into it, and where its copies' origins are
+/// (empty without detail, or for particles without copies: vapour, primitive frames).
 struct Voxelized {
     openvdb::FloatGrid::Ptr grid;
     std::uint64_t count = 0;
+    std::optional<algo::CopyOriginField> origins;
 };
 
 /// The gaussian splat and the copy origin field fed chunk by chunk as the particles stream
-/// (nothing frame-sized when they come from GenerateCloud), then the surface eroded.
+/// (nothing frame-sized when they come from GenerateCloud).
 Voxelized splatStreaming(const CloudParticlesData& particles, const algo::VoxelizeSettings& s,
-                         const algo::SurfaceDetailSettings& detail, CookContext& ctx)
+                         const DetailSettings& detail, CookContext& ctx)
 {
     algo::GaussianSplatter splatter(s);
-    const bool eroding = detail.amplitude > 0.0;
-    std::optional<algo::CopyOriginField> field;
-    if (eroding) field.emplace(algo::copyOriginCellSize(s.radius, s.voxelSize));
+    Voxelized out;
+    if (detail.eroding()) out.origins.emplace(algo::copyOriginCellSize(s.radius, s.voxelSize));
     particles.forEachChunk(
         [&](const algo::CloudChunk& chunk) {
             splatter.add(chunk.positions, chunk.count);
-            if (field && chunk.copyCount > 0)
-                field->add(chunk.positions, chunk.sources, chunk.count, chunk.copyOrigins,
-                           chunk.copyCount);
+            if (out.origins && chunk.copyCount > 0)
+                out.origins->add(chunk.positions, chunk.sources, chunk.count, chunk.copyOrigins,
+                                 chunk.copyCount);
         },
-        CloudChunkFields{false, eroding}, [&] { ctx.checkCancelled(); });
-    const std::uint64_t count = splatter.count();
-    auto grid = splatter.finish([&] { ctx.checkCancelled(); });
-    if (field) field->finish();
-    // Particles without copies (vapour, primitive frames) leave the field empty: detail in
-    // world coordinates.
-    const bool copies = field && field->cellCount() > 0;
-    algo::erodeSurface(*grid, copies ? &*field : nullptr, detail, [&] { ctx.checkCancelled(); });
-    return {grid, count};
+        CloudChunkFields{false, detail.eroding()}, [&] { ctx.checkCancelled(); });
+    out.count = splatter.count();
+    out.grid = splatter.finish([&] { ctx.checkCancelled(); });
+    if (out.origins) out.origins->finish();
+    return out;
 }
 
 /// The smooth and sphere kernels sum in a fixed order: they splat the frame's arrays.
 Voxelized splatArrays(const CloudParticlesData& particles, const algo::VoxelizeSettings& s,
-                      const algo::SurfaceDetailSettings& detail, CookContext& ctx)
+                      const DetailSettings& detail, CookContext& ctx)
 {
     const auto& a = particles.arrays([&] { ctx.checkCancelled(); });
-    const std::uint64_t count = particles.size();
-    auto grid =
-        algo::voxelizeParticles(a.positions.data(), count, s, [&] { ctx.checkCancelled(); });
-    const algo::DetailParticles detailParticles{
-        a.positions.data(), a.sources.data(), count,
-        a.copyOrigins.empty() ? nullptr : a.copyOrigins.data(), a.copyOrigins.size() / 3};
-    algo::erodeSurface(*grid, detailParticles, s.radius, detail, [&] { ctx.checkCancelled(); });
-    return {grid, count};
+    Voxelized out;
+    out.count = particles.size();
+    out.grid =
+        algo::voxelizeParticles(a.positions.data(), out.count, s, [&] { ctx.checkCancelled(); });
+    if (detail.eroding() && !a.copyOrigins.empty())
+        out.origins.emplace(a.positions.data(), a.sources.data(), out.count, a.copyOrigins.data(),
+                            a.copyOrigins.size() / 3,
+                            algo::copyOriginCellSize(s.radius, s.voxelSize));
+    return out;
+}
+
+/// Florets grown on the envelope (fixed in space), then its soft edge eroded in the copies'
+/// coordinates, or in world coordinates where the particles have no copies.
+void addDetail(Voxelized& v, const DetailSettings& detail, CookContext& ctx)
+{
+    const bool copies = v.origins && v.origins->cellCount() > 0;
+    const algo::CopyOriginField* field = copies ? &*v.origins : nullptr;
+    const auto cancelled = [&] { ctx.checkCancelled(); };
+    algo::growFlorets(*v.grid, detail.florets, cancelled);
+    algo::erodeSurface(*v.grid, field, detail.erosion, cancelled);
 }
 
 /// The droplets the parameters ask for: the air mass's k, and its typical number unless
@@ -143,6 +160,19 @@ void shapeBaseAndWater(openvdb::FloatGrid& grid, CookContext& ctx)
     if (water) writeWaterMetadata(grid, s.droplets);
 }
 
+/// The detail the parameters ask for; the erosion's frequency is per particle radius.
+DetailSettings detailFrom(const ParamSet& p, double radius)
+{
+    DetailSettings d;
+    d.erosion.amplitude = p.getFloat("detailAmplitude");
+    d.erosion.frequency = p.getFloat("detailFrequency") / radius;
+    d.erosion.octaves = static_cast<int>(p.getInt("detailOctaves"));
+    d.florets.radius = p.getFloat("floretRadius");
+    d.florets.levels = static_cast<int>(p.getInt("floretLevels"));
+    d.florets.children = static_cast<int>(p.getInt("floretChildren"));
+    return d;
+}
+
 class VoxelizerNode final : public Node {
 public:
     void cook(CookContext& ctx) override
@@ -157,15 +187,14 @@ public:
         s.clamp = p.getBool("clamp");
         s.maxBytes = util::nodeAllocationLimitBytes();
 
-        algo::SurfaceDetailSettings detail;
-        detail.amplitude = p.getFloat("detailAmplitude");
-        detail.frequency = p.getFloat("detailFrequency") / s.radius;
-        detail.octaves = static_cast<int>(p.getInt("detailOctaves"));
+        const DetailSettings detail = detailFrom(p, s.radius);
         Voxelized voxelized;
         try {
+            if (detail.florets.radius > 0.0) algo::checkFloretSettings(detail.florets);
             voxelized = s.kernel == algo::VoxelKernel::Gaussian
                             ? splatStreaming(*particles, s, detail, ctx)
                             : splatArrays(*particles, s, detail, ctx);
+            addDetail(voxelized, detail, ctx);
         } catch (const algo::VoxelizeTooLarge& e) {
             throw InputError(ctx.nodeId() + "/params/voxelSize", e.what());
         } catch (const std::invalid_argument& e) {
@@ -199,7 +228,7 @@ void registerVoxelizerNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "Voxelizer";
-    d.version = 5;
+    d.version = 6;
     d.category = "volume";
     d.doc =
         "Splats cloud particles into a sparse OpenVDB fog volume (Sec. 6.3: volume data with "
@@ -213,7 +242,11 @@ void registerVoxelizerNode(Registry& registry)
         "trilinear weights to the 8 voxels around it and blurring with separable passes, so a "
         "particle costs the same at any radius (at 4 voxels 19 times less than 'smooth'; the "
         "paper gives no kernel). Sums are clamped to [0, 1] unless clamp is off, then optionally "
-        "filtered on the active voxels. Surface detail (ours, after production cloud tools): "
+        "filtered on the active voxels. Florets (ours): with floretRadius > 0 the surface "
+        "v = 0.5 becomes a distance field, sinks by floretRadius (not on faces that look "
+        "down), and round lumps of that radius grow back out of it, each carrying "
+        "floretChildren lumps of half its radius, floretLevels generations deep, with a "
+        "one-voxel edge. Surface detail (ours): "
         "where the summed density v lies strictly between 0 and 1 (the soft edge of the "
         "splats), Perlin-Worley noise n in [0, 1] erodes it to (v - e) / (1 - e), e = "
         "detailAmplitude (1 - n), evaluated at the voxel's place in its copy (the voxel minus "
@@ -259,6 +292,13 @@ void registerVoxelizerNode(Registry& registry)
                    16.0),
         intParam("detailOctaves", 2, "",
                  "octaves of the detail noise, each twice as fine (value ours)", 1, 8),
+        floatParam("floretRadius", 0.0, "m",
+                   "radius of the largest cauliflower lumps grown on the envelope (ours); 0: "
+                   "none",
+                   0.0, 10000.0),
+        intParam("floretLevels", 4, "",
+                 "generations of lumps, each half the radius of the one before (value ours)", 1, 6),
+        intParam("floretChildren", 8, "", "lumps on each lump (value ours)", 1, 16),
         boolParam("flatBase", false,
                   "cut the cloud at the condensation level of its column (ours: rising air "
                   "saturates there; the 10th percentile of the condensation heights per "
