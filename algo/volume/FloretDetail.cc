@@ -8,6 +8,7 @@
 #include <openvdb/tools/Prune.h>
 #include <openvdb/tree/LeafManager.h>
 
+#include "algo/CounterRandom.h"
 #include "algo/volume/NearbyDepth.h"
 
 namespace cg::algo {
@@ -83,6 +84,15 @@ public:
     {
         return std::min(mRadius, mDepth.at(world) / kDeepestRoot);
     }
+    /// Whether some place in the box [lo, hi] may take roots of `radius`: its size there
+    /// lies in [radius, 2 radius), or reaches r0 for the largest roots.
+    bool mayHold(const double lo[3], const double hi[3], double radius) const
+    {
+        const auto [least, most] = mDepth.range(lo, hi);
+        const double smallest = std::min(mRadius, least / kDeepestRoot);
+        const double largest = std::min(mRadius, most / kDeepestRoot);
+        return largest >= radius && (radius == mRadius || smallest < 2.0 * radius);
+    }
 
 private:
     double mRadius;
@@ -96,9 +106,50 @@ double floretOverhang(const FloretSettings& s)
     return (1.0 - kShallowestRoot + (kFloretReach - 1.0)) * s.radius;
 }
 
+/// The roots that can reach the box [lo, hi] (world metres) and that `accept` keeps at
+/// their world place, generation by generation, skipping the generations no place within
+/// reach may take. Without a territory they lie on the world's lattice. With one, each copy
+/// that owns a cell within reach places roots on the lattice of its own coordinates (its
+/// seed mixed with its index) and keeps those inside its territory, so a root moves rigidly
+/// with its copy; the roots come back in world coordinates.
+std::vector<FloretRoot> rootsNear(const double lo[3], const double hi[3], const FloretSettings& s,
+                                  const FloretSizes& sizes, const CopyTerritory* territory,
+                                  const RootTest& accept)
+{
+    std::vector<FloretRoot> roots;
+    for (int g = 0; g < s.levels; ++g) {
+        const double radius = std::ldexp(s.radius, -g), reach = kFloretReach * radius;
+        const double wideLo[3] = {lo[0] - reach, lo[1] - reach, lo[2] - reach};
+        const double wideHi[3] = {hi[0] + reach, hi[1] + reach, hi[2] + reach};
+        if (!sizes.mayHold(wideLo, wideHi, radius)) continue;
+        if (!territory || territory->empty()) {
+            gatherGeneration(lo, hi, s, g, accept, roots);
+            continue;
+        }
+        for (std::uint32_t copy : territory->ownersIn(wideLo, wideHi)) {
+            double o[3];
+            territory->origin(copy, o);
+            FloretSettings own = s;
+            own.seed = counterBits(s.seed, 0xc09e5, copy);
+            const double copyLo[3] = {lo[0] - o[0], lo[1] - o[1], lo[2] - o[2]};
+            const double copyHi[3] = {hi[0] - o[0], hi[1] - o[1], hi[2] - o[2]};
+            const auto inTerritory = [&](const double p[3], double r) {
+                const double world[3] = {p[0] + o[0], p[1] + o[1], p[2] + o[2]};
+                return territory->owner(world) == static_cast<std::int64_t>(copy) &&
+                       accept(world, r);
+            };
+            const std::size_t first = roots.size();
+            gatherGeneration(copyLo, copyHi, own, g, inTerritory, roots);
+            for (std::size_t i = first; i < roots.size(); ++i)
+                for (int a = 0; a < 3; ++a) roots[i].centre[a] += o[a];
+        }
+    }
+    return roots;
+}
+
 }  // namespace
 
-void growFlorets(openvdb::FloatGrid& grid, const FloretSettings& s,
+void growFlorets(openvdb::FloatGrid& grid, const FloretSettings& s, const CopyTerritory* territory,
                  const std::function<void()>& checkCancelled)
 {
     if (s.radius == 0.0 || grid.empty()) return;
@@ -136,7 +187,7 @@ void growFlorets(openvdb::FloatGrid& grid, const FloretSettings& s,
         const openvdb::CoordBBox box = leaf.getNodeBoundingBox();
         const double lo[3] = {box.min()[0] * voxel, box.min()[1] * voxel, box.min()[2] * voxel};
         const double hi[3] = {box.max()[0] * voxel, box.max()[1] * voxel, box.max()[2] * voxel};
-        const std::vector<FloretRoot> roots = gatherRoots(lo, hi, s, acceptRoot);
+        const std::vector<FloretRoot> roots = rootsNear(lo, hi, s, sizes, territory, acceptRoot);
         float* values = leaf.buffer().data();
         for (auto on = leaf.getValueMask().beginOn(); on; ++on) {
             const openvdb::Index n = on.pos();

@@ -14,26 +14,30 @@
 /// is dilated by how far lumps can stand out first, and whatever stays empty is switched
 /// off again.
 ///
-/// The florets are fixed in world space: the cloud grows into them rather than carrying
-/// them. Evaluated in the copies' own coordinates (as algo/volume/SurfaceDetail.h does),
-/// they collapse into flat sheets, because copies overlap everywhere in a tower and their
-/// blended origin moves almost as fast as the point itself (docs/notes/
-/// 2026-11-29-cumulus-realism.md). Production tools grow cloud detail on a distance field
-/// the same way (Houdini's cloud noise); the florets and their numbers are ours.
+/// The florets ride with the copies: each root sits on the lattice of one copy's own
+/// coordinates (the point minus the copy's origin, Eq. 12 plus its drift) and is kept only
+/// inside that copy's territory (algo/volume/CopyTerritory.h), so it moves rigidly with the
+/// copy, and no lump is evaluated in a blend of copies' coordinates (which, where copies
+/// overlap as they do everywhere in a tower, squashes lumps into flat sheets). Without a
+/// territory (particles that belong to no copy) the roots are fixed in world space.
+/// Production tools grow cloud detail on a distance field the same way (Houdini's cloud
+/// noise); the florets and their numbers are ours.
 /// Deterministic for any thread count. No engine includes.
 
 #include <functional>
 
 #include <openvdb/openvdb.h>
 
+#include "algo/volume/CopyTerritory.h"
 #include "algo/volume/Florets.h"
 
 namespace cg::algo {
 
 /// Grows `grid` (a fog volume, values in [0, 1]) into florets in place; florets.radius 0
-/// leaves it untouched. A grid whose values never cross 0.5 has no surface and is left as it
-/// is. Throws std::invalid_argument for bad settings.
+/// leaves it untouched. `territory` (null: world space) says which copy owns each region. A grid
+/// whose values never cross 0.5 has no surface and is left as it is. Throws std::invalid_argument
+/// for bad settings.
 void growFlorets(openvdb::FloatGrid& grid, const FloretSettings& florets,
-                 const std::function<void()>& checkCancelled = {});
+                 const CopyTerritory* territory, const std::function<void()>& checkCancelled = {});
 
 }  // namespace cg::algo

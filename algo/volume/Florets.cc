@@ -11,8 +11,9 @@ namespace cg::algo {
 
 namespace {
 
-/// Root cells per root radius: neighbouring roots' spheres overlap (ours).
-constexpr double kRootCell = 1.6;
+/// Root cells per root radius (ours): a root every r^3 keeps the lumps touching when the
+/// roots of overlapping copies, each kept in its own territory, fall at random.
+constexpr double kRootCell = 1.0;
 /// A child's centre lies this share of its parent's radius from the parent's centre.
 constexpr double kChildOffset = 0.75;
 /// Children point no further down than this vertical component (sin 60 degrees).
@@ -67,44 +68,46 @@ void checkFloretSettings(const FloretSettings& s)
         throw std::invalid_argument("florets: children must lie in 1..16");
 }
 
+void gatherGeneration(const double lo[3], const double hi[3], const FloretSettings& s,
+                      int generation, const RootTest& acceptRoot, std::vector<FloretRoot>& roots)
+{
+    const double radius = std::ldexp(s.radius, -generation);
+    const double cell = kRootCell * radius, reach = kFloretReach * radius;
+    const std::uint64_t seed = counterBits(s.seed, 0xf10e7, static_cast<std::uint64_t>(generation));
+    std::int64_t first[3], last[3];
+    for (int a = 0; a < 3; ++a) {
+        first[a] = static_cast<std::int64_t>(std::floor((lo[a] - reach) / cell));
+        last[a] = static_cast<std::int64_t>(std::floor((hi[a] + reach) / cell));
+    }
+    for (std::int64_t cx = first[0]; cx <= last[0]; ++cx)
+        for (std::int64_t cy = first[1]; cy <= last[1]; ++cy)
+            for (std::int64_t cz = first[2]; cz <= last[2]; ++cz) {
+                const std::uint64_t id = mix64(mix64(mix64(seed ^ static_cast<std::uint64_t>(cx)) ^
+                                                     static_cast<std::uint64_t>(cy)) ^
+                                               static_cast<std::uint64_t>(cz));
+                FloretRoot root{{(static_cast<double>(cx) + uniform(id, 0)) * cell,
+                                 (static_cast<double>(cy) + uniform(id, 1)) * cell,
+                                 (static_cast<double>(cz) + uniform(id, 2)) * cell},
+                                radius,
+                                id,
+                                generation};
+                // Only roots whose lumps can reach the box.
+                double gap2 = 0.0;
+                for (int a = 0; a < 3; ++a) {
+                    const double gap =
+                        std::max({lo[a] - root.centre[a], root.centre[a] - hi[a], 0.0});
+                    gap2 += gap * gap;
+                }
+                if (gap2 <= reach * reach && acceptRoot(root.centre, radius)) roots.push_back(root);
+            }
+}
+
 std::vector<FloretRoot> gatherRoots(const double lo[3], const double hi[3], const FloretSettings& s,
                                     const RootTest& acceptRoot)
 {
     std::vector<FloretRoot> roots;
-    double radius = s.radius;
-    for (int generation = 0; generation < s.levels; ++generation, radius *= 0.5) {
-        const double cell = kRootCell * radius, reach = kFloretReach * radius;
-        const std::uint64_t seed =
-            counterBits(s.seed, 0xf10e7, static_cast<std::uint64_t>(generation));
-        std::int64_t first[3], last[3];
-        for (int a = 0; a < 3; ++a) {
-            first[a] = static_cast<std::int64_t>(std::floor((lo[a] - reach) / cell));
-            last[a] = static_cast<std::int64_t>(std::floor((hi[a] + reach) / cell));
-        }
-        for (std::int64_t cx = first[0]; cx <= last[0]; ++cx)
-            for (std::int64_t cy = first[1]; cy <= last[1]; ++cy)
-                for (std::int64_t cz = first[2]; cz <= last[2]; ++cz) {
-                    const std::uint64_t id =
-                        mix64(mix64(mix64(seed ^ static_cast<std::uint64_t>(cx)) ^
-                                    static_cast<std::uint64_t>(cy)) ^
-                              static_cast<std::uint64_t>(cz));
-                    FloretRoot root{{(static_cast<double>(cx) + uniform(id, 0)) * cell,
-                                     (static_cast<double>(cy) + uniform(id, 1)) * cell,
-                                     (static_cast<double>(cz) + uniform(id, 2)) * cell},
-                                    radius,
-                                    id,
-                                    generation};
-                    // Only roots whose lumps can reach the box.
-                    double gap2 = 0.0;
-                    for (int a = 0; a < 3; ++a) {
-                        const double gap =
-                            std::max({lo[a] - root.centre[a], root.centre[a] - hi[a], 0.0});
-                        gap2 += gap * gap;
-                    }
-                    if (gap2 <= reach * reach && acceptRoot(root.centre, radius))
-                        roots.push_back(root);
-                }
-    }
+    for (int generation = 0; generation < s.levels; ++generation)
+        gatherGeneration(lo, hi, s, generation, acceptRoot, roots);
     return roots;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 /// Cauliflower florets: round lumps on round lumps, the relief of a cumulus turret.
 ///
-/// A forest of sphere trees. The roots are one feature point per cubic cell of edge 1.6 r
+/// A forest of sphere trees. The roots are one feature point per cubic cell of edge r
 /// (counter-hashed, so the same on every machine and thread), kept where the caller says
 /// the point lies within a layer under the cloud's surface; each has radius r. Every
 /// sphere of radius r carries `children` spheres of radius r / 2 centred 0.75 r from its
@@ -48,11 +48,15 @@ struct FloretRoot {
 };
 
 /// The roots of every generation whose lumps can reach the box [lo, hi] and that
-/// `acceptRoot` keeps: generation g's are one a cell of edge 1.6 r0 / 2^g, radius r0 / 2^g,
+/// `acceptRoot` keeps: generation g's are one a cell of edge r0 / 2^g, radius r0 / 2^g,
 /// with `levels - g` generations on them, so a thin part of the cloud that holds no root of
 /// the largest size holds smaller ones. Gathered once for a block of points.
 std::vector<FloretRoot> gatherRoots(const double lo[3], const double hi[3], const FloretSettings& s,
                                     const RootTest& acceptRoot);
+
+/// gatherRoots' roots of one generation, appended to `roots`.
+void gatherGeneration(const double lo[3], const double hi[3], const FloretSettings& s,
+                      int generation, const RootTest& acceptRoot, std::vector<FloretRoot>& roots);
 
 /// How far inside the union of the roots' florets x lies (metres; negative outside; -1e30
 /// without roots). `prune` (metres) is the least value the caller cares about: lumps whose

@@ -63,6 +63,25 @@ float NearbyDepth::cellValue(int i, int j, int k) const
     return mDepth[(static_cast<std::size_t>(i) * mDim[1] + j) * mDim[2] + k];
 }
 
+std::pair<double, double> NearbyDepth::range(const double lo[3], const double hi[3]) const
+{
+    if (mDepth.empty()) return {0.0, 0.0};
+    int first[3], last[3];
+    for (int a = 0; a < 3; ++a) {
+        first[a] = static_cast<int>(std::floor(lo[a] / mCell - 0.5)) - mLo[a];
+        last[a] = static_cast<int>(std::floor(hi[a] / mCell - 0.5)) + 1 - mLo[a];
+    }
+    float least = cellValue(first[0], first[1], first[2]), most = least;
+    for (int i = first[0]; i <= last[0]; ++i)
+        for (int j = first[1]; j <= last[1]; ++j)
+            for (int k = first[2]; k <= last[2]; ++k) {
+                const float v = cellValue(i, j, k);
+                least = std::min(least, v);
+                most = std::max(most, v);
+            }
+    return {least, most};
+}
+
 double NearbyDepth::at(const double x[3]) const
 {
     if (mDepth.empty()) return 0.0;

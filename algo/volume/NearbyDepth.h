@@ -6,6 +6,7 @@
 /// within reach on every axis) and interpolated trilinearly between cell centres, so it
 /// varies smoothly. Deterministic; no engine includes.
 
+#include <utility>
 #include <vector>
 
 #include <openvdb/openvdb.h>
@@ -19,6 +20,9 @@ public:
 
     /// The depth near x (world metres), >= 0; beyond the grid, its nearest cell's.
     double at(const double x[3]) const;
+    /// The least and the largest value `at` can take in the box [lo, hi]: over the cells
+    /// whose centres surround some point of it.
+    std::pair<double, double> range(const double lo[3], const double hi[3]) const;
 
 private:
     float cellValue(int i, int j, int k) const;

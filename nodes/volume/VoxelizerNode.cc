@@ -25,40 +25,63 @@ namespace cg {
 
 namespace {
 
-/// The detail carved and eroded into the splats, both evaluated in the copies' coordinates.
+/// The detail grown and eroded on the splats, both riding with the copies.
 struct DetailSettings {
     algo::FloretSettings florets;
     algo::SurfaceDetailSettings erosion;
     bool eroding() const { return erosion.amplitude > 0.0; }
+    bool growing() const { return florets.radius > 0.0; }
 };
 
-/// A voxelized frame, how many particles went into it, and where its copies' origins are
-/// (empty without detail, or for particles without copies: vapour, primitive frames).
+/// A voxelized frame, how many particles went into it, and where its copies are: their
+/// origins as a field for the erosion and their territories for the florets (each empty
+/// unless that detail is on, and for particles without copies: vapour, primitive frames).
 struct Voxelized {
     openvdb::FloatGrid::Ptr grid;
     std::uint64_t count = 0;
     std::optional<algo::CopyOriginField> origins;
+    std::optional<algo::CopyTerritory> territory;
+
+    /// Empty copy records for the detail that is on, to add particles to.
+    void expectCopies(const algo::VoxelizeSettings& s, const DetailSettings& detail)
+    {
+        const double cell = algo::copyOriginCellSize(s.radius, s.voxelSize);
+        if (detail.eroding()) origins.emplace(cell);
+        if (detail.growing()) territory.emplace(cell);
+    }
+    void addCopies(const float* xyz, const std::uint32_t* sources, std::size_t n,
+                   const float* copyOrigins, std::size_t copyCount)
+    {
+        if (copyCount == 0) return;
+        if (origins) origins->add(xyz, sources, n, copyOrigins, copyCount);
+        if (territory) territory->add(xyz, sources, n, copyOrigins, copyCount);
+    }
+    void finishCopies()
+    {
+        if (origins) origins->finish();
+        if (territory) territory->finish();
+    }
 };
 
-/// The gaussian splat and the copy origin field fed chunk by chunk as the particles stream
+/// The gaussian splat and the copy records fed chunk by chunk as the particles stream
 /// (nothing frame-sized when they come from GenerateCloud).
 Voxelized splatStreaming(const CloudParticlesData& particles, const algo::VoxelizeSettings& s,
                          const DetailSettings& detail, CookContext& ctx)
 {
     algo::GaussianSplatter splatter(s);
     Voxelized out;
-    if (detail.eroding()) out.origins.emplace(algo::copyOriginCellSize(s.radius, s.voxelSize));
+    out.expectCopies(s, detail);
     particles.forEachChunk(
         [&](const algo::CloudChunk& chunk) {
             splatter.add(chunk.positions, chunk.count);
-            if (out.origins && chunk.copyCount > 0)
-                out.origins->add(chunk.positions, chunk.sources, chunk.count, chunk.copyOrigins,
-                                 chunk.copyCount);
+            out.addCopies(chunk.positions, chunk.sources, chunk.count, chunk.copyOrigins,
+                          chunk.copyCount);
         },
-        CloudChunkFields{false, detail.eroding()}, [&] { ctx.checkCancelled(); });
+        CloudChunkFields{false, detail.eroding() || detail.growing()},
+        [&] { ctx.checkCancelled(); });
     out.count = splatter.count();
     out.grid = splatter.finish([&] { ctx.checkCancelled(); });
-    if (out.origins) out.origins->finish();
+    out.finishCopies();
     return out;
 }
 
@@ -71,22 +94,22 @@ Voxelized splatArrays(const CloudParticlesData& particles, const algo::VoxelizeS
     out.count = particles.size();
     out.grid =
         algo::voxelizeParticles(a.positions.data(), out.count, s, [&] { ctx.checkCancelled(); });
-    if (detail.eroding() && !a.copyOrigins.empty())
-        out.origins.emplace(a.positions.data(), a.sources.data(), out.count, a.copyOrigins.data(),
-                            a.copyOrigins.size() / 3,
-                            algo::copyOriginCellSize(s.radius, s.voxelSize));
+    out.expectCopies(s, detail);
+    out.addCopies(a.positions.data(), a.sources.data(), out.count, a.copyOrigins.data(),
+                  a.copyOrigins.size() / 3);
+    out.finishCopies();
     return out;
 }
 
-/// Florets grown on the envelope (fixed in space), then its soft edge eroded in the copies'
+/// Florets grown on the envelope, then its soft edge eroded, both in the copies' own
 /// coordinates, or in world coordinates where the particles have no copies.
 void addDetail(Voxelized& v, const DetailSettings& detail, CookContext& ctx)
 {
-    const bool copies = v.origins && v.origins->cellCount() > 0;
-    const algo::CopyOriginField* field = copies ? &*v.origins : nullptr;
     const auto cancelled = [&] { ctx.checkCancelled(); };
-    algo::growFlorets(*v.grid, detail.florets, cancelled);
-    algo::erodeSurface(*v.grid, field, detail.erosion, cancelled);
+    const bool territories = v.territory && !v.territory->empty();
+    algo::growFlorets(*v.grid, detail.florets, territories ? &*v.territory : nullptr, cancelled);
+    const bool copies = v.origins && v.origins->cellCount() > 0;
+    algo::erodeSurface(*v.grid, copies ? &*v.origins : nullptr, detail.erosion, cancelled);
 }
 
 /// The droplets the parameters ask for: the air mass's k, and its typical number unless
@@ -246,7 +269,8 @@ void registerVoxelizerNode(Registry& registry)
         "v = 0.5 becomes a distance field, sinks by floretRadius (not on faces that look "
         "down), and round lumps of that radius grow back out of it, each carrying "
         "floretChildren lumps of half its radius, floretLevels generations deep, with a "
-        "one-voxel edge. Surface detail (ours): "
+        "one-voxel edge, each riding the copy whose territory it grows in. Surface detail "
+        "(ours): "
         "where the summed density v lies strictly between 0 and 1 (the soft edge of the "
         "splats), Perlin-Worley noise n in [0, 1] erodes it to (v - e) / (1 - e), e = "
         "detailAmplitude (1 - n), evaluated at the voxel's place in its copy (the voxel minus "

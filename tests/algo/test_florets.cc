@@ -10,6 +10,7 @@
 #include <openvdb/openvdb.h>
 #include <tbb/global_control.h>
 
+#include "algo/volume/CopyTerritory.h"
 #include "algo/volume/FloretDetail.h"
 #include "algo/volume/Florets.h"
 #include "algo/volume/NearbyDepth.h"
@@ -19,9 +20,9 @@ namespace cg::algo {
 
 namespace {
 
-/// A fog ball: value 1 inside `radius` metres of the origin, 0.5 on its surface, falling to
-/// 0 two voxels out, on voxels of `voxel` metres.
-openvdb::FloatGrid::Ptr fogBall(double radius, double voxel)
+/// A fog ball: value 1 inside `radius` metres of `centre` (whole voxels), 0.5 on its surface,
+/// falling to 0 two voxels out, on voxels of `voxel` metres.
+openvdb::FloatGrid::Ptr fogBall(double radius, double voxel, const openvdb::Coord& centre = {})
 {
     auto grid = openvdb::FloatGrid::create(0.0f);
     grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
@@ -32,7 +33,7 @@ openvdb::FloatGrid::Ptr fogBall(double radius, double voxel)
             for (int k = -n; k <= n; ++k) {
                 const double r = std::sqrt(double(i * i + j * j + k * k)) * voxel;
                 const double v = std::clamp(0.5 - (r - radius) / (4.0 * voxel), 0.0, 1.0);
-                if (v > 0.0) acc.setValue(openvdb::Coord(i, j, k), static_cast<float>(v));
+                if (v > 0.0) acc.setValue(centre + openvdb::Coord(i, j, k), static_cast<float>(v));
             }
     return grid;
 }
@@ -175,7 +176,7 @@ TEST(FloretDetail, LumpsRoughenABallWithoutGrowingItPastTheirReachOrLiftingItsBa
     FloretSettings s;
     s.radius = 200.0;
     s.levels = 4;
-    growFlorets(*ball, s);
+    growFlorets(*ball, s, nullptr);
     // A smooth ball's surface lies within a voxel everywhere; the lumps of 200 m radius give
     // its upper half a relief of tens of metres.
     EXPECT_LT(smooth, 10.0);
@@ -200,7 +201,7 @@ TEST(FloretDetail, TheGridIsTheSameForAnyThreadCountAndRadiusZeroLeavesItAlone)
     for (int threads : {1, 2, 4}) {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
         auto ball = fogBall(600.0, 20.0);
-        growFlorets(*ball, s);
+        growFlorets(*ball, s, nullptr);
         sums.push_back(test::gridChecksum(*ball));
     }
     EXPECT_EQ(sums[0], sums[1]);
@@ -208,9 +209,79 @@ TEST(FloretDetail, TheGridIsTheSameForAnyThreadCountAndRadiusZeroLeavesItAlone)
     auto ball = fogBall(600.0, 20.0);
     const std::uint64_t before = test::gridChecksum(*ball);
     s.radius = 0.0;
-    growFlorets(*ball, s);
+    growFlorets(*ball, s, nullptr);
     EXPECT_EQ(test::gridChecksum(*ball), before);
     EXPECT_NE(sums[0], before);
+}
+
+TEST(CopyTerritory, EachCellBelongsToTheCopyWithMostParticlesTheLowerOnATie)
+{
+    // Cells of 100 m: copy 2 has three particles in cell (0, 0, 0), copy 1 two; in cell
+    // (1, 0, 0) copies 3 and 1 have one each.
+    const std::vector<float> xyz = {10, 10, 10, 20, 20,  20, 30, 30,  30, 40, 40,
+                                    40, 50, 50, 50, 150, 10, 10, 160, 10, 10};
+    const std::vector<std::uint32_t> sources = {2, 1, 2, 1, 2, 3, 1};
+    const std::vector<float> origins = {0, 0, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
+    CopyTerritory t(100.0);
+    // In two chunks, the second first: the order does not matter.
+    t.add(xyz.data() + 12, sources.data() + 4, 3, origins.data(), 4);
+    t.add(xyz.data(), sources.data(), 4, origins.data(), 4);
+    t.finish();
+    const double a[3] = {50, 50, 50}, b[3] = {150, 50, 50}, none[3] = {-50, 50, 50};
+    EXPECT_EQ(t.owner(a), 2);
+    EXPECT_EQ(t.owner(b), 1);
+    EXPECT_EQ(t.owner(none), -1);
+    const double lo[3] = {0, 0, 0}, hi[3] = {199, 99, 99};
+    EXPECT_EQ(t.ownersIn(lo, hi), (std::vector<std::uint32_t>{1, 2}));
+    double o[3];
+    t.origin(3, o);
+    EXPECT_EQ(o[0], 7.0);
+    EXPECT_EQ(o[2], 9.0);
+    CopyTerritory bad(100.0);
+    EXPECT_THROW(bad.add(xyz.data(), sources.data(), 1, origins.data(), 2), std::invalid_argument);
+}
+
+TEST(FloretDetail, LumpsRideWithTheirCopyAndSwimInWorldSpace)
+{
+    // One copy fills a ball; the mapper moves the copy (its particles and its origin) by a
+    // whole number of voxels, territory cells and depth cells: the lumps move with it.
+    const double voxel = 20.0, cell = 320.0;
+    const openvdb::Coord shift(80, 0, 160);  // 1600 m, 0, 3200 m
+    FloretSettings s;
+    s.radius = 200.0;
+    s.levels = 3;
+    auto grown = [&](const openvdb::Coord& at, bool attached) {
+        auto ball = fogBall(800.0, voxel, at);
+        std::vector<float> xyz;
+        for (double x = -800; x <= 800; x += 40)
+            for (double y = -800; y <= 800; y += 40)
+                for (double z = -800; z <= 800; z += 40)
+                    if (x * x + y * y + z * z < 800.0 * 800.0)
+                        for (double c : {x + at[0] * voxel, y + at[1] * voxel, z + at[2] * voxel})
+                            xyz.push_back(static_cast<float>(c));
+        const std::vector<std::uint32_t> sources(xyz.size() / 3, 0);
+        const float origin[3] = {static_cast<float>(at[0] * voxel + 35.0),
+                                 static_cast<float>(at[1] * voxel - 12.0),
+                                 static_cast<float>(at[2] * voxel + 7.0)};
+        CopyTerritory territory(cell);
+        territory.add(xyz.data(), sources.data(), sources.size(), origin, 1);
+        territory.finish();
+        growFlorets(*ball, s, attached ? &territory : nullptr);
+        return ball;
+    };
+    const auto here = grown({}, true), there = grown(shift, true);
+    const auto worldHere = grown({}, false), worldThere = grown(shift, false);
+    const auto a = here->getConstAccessor(), b = there->getConstAccessor();
+    const auto wa = worldHere->getConstAccessor(), wb = worldThere->getConstAccessor();
+    std::size_t voxels = 0, worldDiffer = 0;
+    for (auto v = here->cbeginValueOn(); v; ++v) {
+        ++voxels;
+        EXPECT_EQ(b.getValue(v.getCoord() + shift), *v) << v.getCoord();
+        if (wa.getValue(v.getCoord()) != wb.getValue(v.getCoord() + shift)) ++worldDiffer;
+    }
+    EXPECT_EQ(there->activeVoxelCount(), here->activeVoxelCount());
+    EXPECT_GT(voxels, 100000u);
+    EXPECT_GT(worldDiffer, voxels / 20) << "world-space lumps moved with the ball";
 }
 
 }  // namespace cg::algo
