@@ -388,9 +388,9 @@ std::optional<OutputMap> DiskCache::load(const Key& key, const Registry& registr
 bool DiskCache::store(const Key& key, const OutputMap& outputs) const
 {
     // One buffer per thread, kept between entries: a frame's entries are megabytes, and a
-    // fresh buffer grown for each was reallocated and page-faulted in every time (a cold
-    // default run spent 3-5 s more in the kernel). One larger than kKeptBufferBytes is given
-    // back, so a thread does not hold a large volume's worth of memory for good.
+    // fresh buffer grown for each would be reallocated and page-faulted in every time, kernel
+    // time that a cold run would spend on every entry. One larger than kKeptBufferBytes is
+    // given back, so a thread does not hold a large volume's worth of memory for good.
     thread_local std::vector<unsigned char> bytes;
     // Entries carry checksums that load() verifies: one torn by an operating-system crash
     // reads as a miss, so the write need not wait for the disk.

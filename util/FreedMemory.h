@@ -5,11 +5,10 @@ namespace cg::util {
 
 /// glibc gives every block above its mmap threshold back to the kernel when it is freed and
 /// maps it anew on the next allocation, so the renderer's and the voxelizer's per-frame
-/// buffers were faulted in and zeroed by the kernel again every frame. Blocks up to glibc's
-/// largest threshold come from the heap instead, and freed memory stays there for the next
-/// frame: the default run's late frames render in 0.89 of the time, one 640 x 480 frame of
-/// bench/render_bench.cc in 0.65 (docs/benchmarks.md). Process-wide; elsewhere than glibc,
-/// nothing happens.
+/// buffers would be faulted in and zeroed by the kernel again every frame. Blocks up to
+/// glibc's largest threshold come from the heap instead, and freed memory stays there for
+/// the next frame, which renders faster (docs/benchmarks.md). Process-wide; elsewhere than
+/// glibc, nothing happens.
 void keepFreedMemoryForReuse();
 
 }  // namespace cg::util

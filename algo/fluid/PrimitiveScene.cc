@@ -13,7 +13,7 @@ PrimitiveSettings defaultPrimitiveSettings()
     // (+3 K, 95%, 250 m radius, on for the first 100 s) rises through humid (85%), stably
     // stratified air, condenses ~100 m above the source and billows into a puff that still
     // rises freely at the last frame (the box is tall enough that it never meets the lid);
-    // 58,870 fluid particles at dx = 25 m, 3% more than the earlier 800 x 800 x 1400 m box.
+    // 58,870 fluid particles at dx = 25 m.
     PrimitiveSettings s;
     s.width = 725.0;
     s.height = 1750.0;

@@ -102,9 +102,8 @@ enum class ParentRule : std::uint8_t {
     /// The paper: a level L-1 source r_j uniformly among those with particles, then one of its
     /// N_f(A (t - t0)) particles r_i uniformly; a pair already taken is drawn again.
     PerSource,
-    /// Ours, the rule before mapper version 3: uniformly over all level L-1 cloud particles
-    /// (which weights a parent by its cluster size); a taken draw probes forward to the next
-    /// free particle.
+    /// Ours: uniformly over all level L-1 cloud particles (which weights a parent by its
+    /// cluster size); a taken draw probes forward to the next free particle.
     PerParticle,
 };
 
@@ -117,7 +116,7 @@ enum class PastLastFrame : std::uint8_t {
     /// thermal does that has spent its buoyancy: a grown turret keeps rising, ever slower,
     /// instead of freezing, and rises at most kDriftDecayFrames times the drift.
     Drift,
-    /// The last frame holds: a grown copy stands still (the rule before mapper version 3).
+    /// The last frame holds: a grown copy stands still.
     Hold,
 };
 
@@ -142,8 +141,9 @@ enum class Level1Origin : std::uint8_t {
 
 /// Frames over which the drift is measured: long enough to average out the puff's churning.
 inline constexpr int kDriftFrames = 10;
-/// The drift's decay time, primitive frames (value ours: 30 let the tops of Figures 1 and 7.A
-/// stand still in their last tenths once level 1 copies stood on the condensation level).
+/// The drift's decay time, primitive frames (value ours: long enough that the tops of
+/// Figures 1 and 7.A still rise in their last tenths with level 1 copies standing on the
+/// condensation level).
 inline constexpr double kDriftDecayFrames = 60.0;
 
 struct MappingSettings {

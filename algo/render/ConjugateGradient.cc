@@ -28,7 +28,7 @@ enum Sum { kRz, kRr, kScratch };
 struct Column {
     const std::vector<double>& b;
     std::vector<double>& x;
-    // Written before they are read, so left uninitialised: zeroing them was a pass over
+    // Written before they are read, so left uninitialised: zeroing them would be a pass over
     // memory as long as the solve's first iteration.
     std::unique_ptr<double[]> r, z, p, Ap;
     std::vector<double> partial[3];  ///< per block: r·z, r·r and a scratch sum

@@ -29,23 +29,21 @@ constexpr double kTolerance = 1e-3;  ///< relative residual at which the solve s
 /// lights, which only feeds the gather): R and the clouds' glow need not be exact.
 constexpr double kLimiterTolerance = 1e-2;
 /// The same for the solve after a gather other than the last, which only feeds the next
-/// gather (our choice): 0.1 in place of 1e-2 changed no error against the path tracer by more
-/// than 0.2 points (Figure 9, the synthetic cumulus, Figure 6) and saves a fourth of that
-/// solve. The limiter's solves need their 1e-2: at 0.1 Figure 6 was 1.2 points worse.
+/// gather (our choice): so loose a solve leaves the error against the path tracer as it is
+/// and costs less. The limiter's solves need their kLimiterTolerance: looser, Figure 6's
+/// error grows (docs/notes/code-history.md has the figures).
 constexpr double kFeedTolerance = 0.1;
-/// The gather (SurfaceGather.h), our choices: blocks of 2^3 cells gave the same error
-/// against the path tracer as the cells themselves (docs/rendering.md) at a fifth of the
-/// cost. It is read 4 blocks (8 cells) out along each direction, and run twice, each time
-/// followed by a solve of every light: against the path tracer on Figure 9 one block out and
-/// one gather were 14-18% off, a gather more alone 15-18%, both 10-13%; 2 and 6 blocks were
-/// worse than 4, a third gather moved 0.5 point at most. The last gather's directions decide
-/// how well a face sees a neighbouring cloud: Figure 9 with the sun beside the camera was
-/// 11.1% off at 32 (9.7-11.5% as the directions turned about z), 10.0% at 64, 9.7-10.0% at
-/// 80, 9.6-9.7% at 128 (docs/rendering.md, Renderer version 19). The first gather only
-/// feeds the second's clouds, so it runs on blocks of 4^3 cells read 2 blocks out (the same
-/// reach; an eighth of the blocks to sweep): with 64 last directions, 16 first directions
-/// on them gave 8.2 / 10.0 / 7.3% (front / beside / behind), 8 on them 8.2 / 10.2 / 7.8%,
-/// 16 on 2^3 blocks 8.4 / 10.1 / 7.8%.
+/// The gather (SurfaceGather.h), our choices, each the one with the least error against the
+/// path tracer (docs/rendering.md; the figures in docs/notes/code-history.md): blocks of 2^3
+/// cells give the error of the cells themselves at a fifth of the cost. It is read 4 blocks
+/// (8 cells) out along each direction, nearer or farther being worse, and run twice, each
+/// time followed by a solve of every light, so that the clouds' light a face sees comes from
+/// clouds that already lit and shaded one another; a third gather changes little. The last
+/// gather's directions decide how well a face sees a neighbouring cloud: from 80 on, more
+/// directions, or the same turned about z, give the same error. The first gather only feeds
+/// the second's clouds, so it runs on blocks of 4^3 cells read 2 blocks out (the same reach;
+/// an eighth of the blocks to sweep) along 16 directions; fewer directions or finer blocks
+/// are no better.
 constexpr int kGatherDirections = 80;
 constexpr int kGatherStride = 2;
 constexpr double kGatherClearance = 4.0;

@@ -20,9 +20,10 @@ namespace {
 constexpr int kUnits = GatherLattice::kUnits;
 constexpr int kLanes = 1 + kUnits;  ///< per cell of a sweep: T, then E per unit
 /// The sideways blur's weight a per slice (Sweep::spread), our choice: against the path
-/// tracer on Figure 9 0.3 gave less error than none at every turn of the directions, and
-/// as little as two or four such blurs a slice; it spreads a sweep √(0.6 s) blocks after
-/// s slices, as wide as a 32-direction cone (half-angle 0.36 rad) at about 20 blocks.
+/// tracer on Figure 9 it gives less error than no blur at every turn of the directions, and
+/// as little as two or four such blurs a slice (docs/notes/code-history.md); it spreads a
+/// sweep √(0.6 s) blocks after s slices, as wide as a 32-direction cone (half-angle 0.36 rad)
+/// at about 20 blocks.
 constexpr double kSpreadPerSlice = 0.3;
 
 /// `count` (rounded up to even) unit vectors of a Fibonacci sphere: z = 1 − (2i + 1) / K,
@@ -56,9 +57,9 @@ struct Blocks : CellBox {
 
 /// Cells of a slice per parallel task, at least (our choice): a sweep is thousands of
 /// slices a frame, and a small lattice's (Figure 6's: under a thousand blocks) shared out a
-/// row per task spent more on the tasks than on the cells. 256 rendered the 640 x 480
-/// cumulus of bench/render_bench.cc in 632-646 ms, 1024 in 651-674 ms, one row a task in
-/// 670-686 ms.
+/// row per task spends more on the tasks than on the cells. 256 renders the frame of
+/// bench/render_bench.cc faster than larger grains or a row a task (timings in
+/// docs/notes/code-history.md).
 constexpr int kCellsPerTask = 256;
 
 /// fn(begin, end) over `rows` rows of `length` cells, at least kCellsPerTask cells a task;
@@ -194,8 +195,8 @@ private:
     /// cone of 4π / N steradians, not a ray: without the spread a neighbouring cloud that
     /// lies between two directions' azimuths is missed by both, and one that a direction
     /// meets counts for the whole cone, so the light a face gathers hangs on where the
-    /// directions happen to fall (turning the 16 directions about z moved Figure 9's error
-    /// by up to 5 points). The blur widens each sweep with distance as a cone does, if only
+    /// directions happen to fall (Figure 9's error changes with a turn of the directions
+    /// about z). The blur widens each sweep with distance as a cone does, if only
     /// as √distance. It keeps to the horizontal: across heights it would carry shade and
     /// glow from above the horizon to below it (a slab overhead would dim the view down).
     void spread(int i)

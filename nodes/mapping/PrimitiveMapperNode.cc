@@ -164,15 +164,15 @@ void registerPrimitiveMapperNode(Registry& registry)
                  0, L::kMaxParticlesPerCopy),
         stringParam("parentRule", "source",
                     "Eq. 15's draw of a level L >= 2 parent: 'source' (the paper: a source "
-                    "uniformly, then a particle of it uniformly) or 'particle' (ours, before "
-                    "version 3: uniformly over all level L-1 particles, which favours big "
-                    "parents; a taken draw probes forward to the next free particle)",
+                    "uniformly, then a particle of it uniformly) or 'particle' (ours: uniformly "
+                    "over all level L-1 particles, which favours big parents; a taken draw "
+                    "probes forward to the next free particle)",
                     {"source", "particle"}),
         stringParam("pastLastFrame", "drift",
                     "ours: what a copy does past the primitive's last frame: 'drift' keeps its "
                     "last shape and moves on as a whole with the primitive's mean motion over "
                     "its last 10 frames, so grown turrets keep rising to the end of the "
-                    "animation; 'hold' freezes it (before version 3)",
+                    "animation; 'hold' freezes it",
                     {"drift", "hold"}),
         stringParam("level1Origin", "particle",
                     "where a level 1 copy stands: 'particle' (the paper: on its condensation "
