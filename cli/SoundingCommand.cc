@@ -4,8 +4,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 
+#include "algo/atmosphere/Convective.h"
 #include "algo/atmosphere/Parcel.h"
 #include "algo/atmosphere/SkewT.h"
 #include "cli/Commands.h"
@@ -59,6 +61,13 @@ int soundingCommand(const Args& args)
         std::printf("  LFC:     %s\n", level(a.lfcM, profile).c_str());
         std::printf("  EL:      %s\n", level(a.elM, profile).c_str());
         std::printf("  CAPE:    %.0f J/kg, CIN %.0f J/kg\n", a.capeJPerKg, a.cinJPerKg);
+        try {
+            const algo::ConvectiveLevels c = algo::convectiveLevels(profile);
+            std::printf("  CCL:     %s, convective temperature %.1f C\n",
+                        level(c.cclM, profile).c_str(), c.convectiveTemperatureC);
+        } catch (const std::invalid_argument&) {
+            std::printf("  CCL:     none (the surface mixing ratio never saturates)\n");
+        }
         if (const auto plot = opts.value("--plot")) {
             const algo::SkewTImage image = algo::drawSkewT(profile, a);
             util::AtomicOutput out(*plot);  // whole or not at all

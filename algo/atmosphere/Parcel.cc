@@ -79,13 +79,18 @@ double liftingCondensationHeight(double t, double td)
 
 ParcelAscent liftParcel(const EnvironmentProfile& env, double startM, double stepM)
 {
+    return liftParcel(env, startM, env.temperature(startM), env.dewpoint(startM), stepM);
+}
+
+ParcelAscent liftParcel(const EnvironmentProfile& env, double startM, double t0,
+                        double startDewpointC, double stepM)
+{
     if (!(stepM > 0.0) || !(startM < env.topHeight()))
         throw std::invalid_argument(
             "liftParcel: the step must be positive and the start below "
             "the profile's top");
     ParcelAscent a;
-    const double t0 = env.temperature(startM);
-    a.lclM = startM + liftingCondensationHeight(t0, env.dewpoint(startM));
+    a.lclM = startM + liftingCondensationHeight(t0, startDewpointC);
     a.lclTemperatureC = t0 - thermo::kDryAdiabaticLapse * (a.lclM - startM);
 
     double z = startM;

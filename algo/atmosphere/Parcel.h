@@ -38,4 +38,9 @@ struct ParcelAscent {
 /// correction is under 1 C). Crossings are interpolated linearly between steps.
 ParcelAscent liftParcel(const EnvironmentProfile& environment, double startM, double stepM = 10.0);
 
+/// The same for a parcel that starts at `startM` with its own temperature and dew point
+/// (C): a thermal warmer or moister than the air around it.
+ParcelAscent liftParcel(const EnvironmentProfile& environment, double startM, double startC,
+                        double startDewpointC, double stepM = 10.0);
+
 }  // namespace cg::algo

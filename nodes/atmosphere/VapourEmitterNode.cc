@@ -5,12 +5,20 @@
 #include <stdexcept>
 #include <string>
 
+#include <cmath>
+
+#include <spdlog/spdlog.h>
+
+#include "algo/atmosphere/Convective.h"
+#include "algo/atmosphere/Parcel.h"
+#include "algo/atmosphere/Thermodynamics.h"
 #include "algo/atmosphere/VapourEmission.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
 #include "nodes/atmosphere/AtmosphereNodes.h"
+#include "nodes/data/AtmosphereData.h"
 #include "nodes/data/Map2D.h"
 #include "nodes/data/VapourParticles.h"
 
@@ -47,6 +55,75 @@ std::vector<float> dewpointOffsets(const Map2DData& moisture, const VapourStatic
         offsets[i] = static_cast<float>(amplitude * (2.0 * m - 1.0));
     }
     return offsets;
+}
+
+/// Convective inhibition (J/kg) a thermal starting at rest is taken to cross (ours).
+constexpr double kCinTolerance = 1.0;
+
+/// How a thermal starts against the air it rises from (ours): its temperature and dew point
+/// at the ground, and by how much each particle's start differs from the air at its height.
+struct ThermalStart {
+    double groundC = 0.0, groundDewpointC = 0.0;
+    bool convective = false;
+};
+
+/// With start 'excess' or 'convective': every particle's temperature from the profile, and
+/// its dew point as an offset from the profile's at its start height (what the thermal
+/// integrator reads), added to any from the moisture map. Warns when such a thermal reaches
+/// no level of free convection.
+void startFromProfile(CookContext& ctx, VapourStatics& statics, std::vector<float>& temperature)
+{
+    const ParamSet& p = ctx.params();
+    const auto atmosphereData = ctx.input<AtmosphereData>("atmosphere");
+    if (!atmosphereData || !atmosphereData->atmosphere.profile)
+        throw InputError(ctx.nodeId() + "/inputs/atmosphere",
+                         "start '" + p.getString("start") +
+                             "' needs an atmosphere with a profile (a sounding or the "
+                             "standard atmosphere) to start the vapour relative to its air");
+    const algo::EnvironmentProfile& profile = *atmosphereData->atmosphere.profile;
+    const double excess = p.getFloat("temperatureExcess");
+    const double moisture = p.getFloat("moistureExcess");
+    const double ground = profile.groundHeight();
+    ThermalStart start{profile.temperature(ground), profile.dewpoint(ground),
+                       p.getString("start") == "convective"};
+    if (start.convective) {
+        algo::ConvectiveLevels levels;
+        try {
+            levels = algo::convectiveLevels(profile);
+        } catch (const std::invalid_argument& e) {
+            throw InputError(ctx.nodeId() + "/inputs/atmosphere", e.what());
+        }
+        start.groundC = levels.convectiveTemperatureC;
+        spdlog::info(
+            "{}: convective temperature {:.1f} C, convective condensation level {:.0f} m "
+            "above the ground",
+            ctx.nodeId(), levels.convectiveTemperatureC, levels.cclM - ground);
+    }
+    if (statics.dewpointOffset.empty()) statics.dewpointOffset.assign(statics.size(), 0.0f);
+    for (std::size_t i = 0; i < statics.size(); ++i) {
+        const double z0 = statics.startZ[i];
+        const double air = profile.temperature(ground + z0);
+        // Convective: surface air heated to T_c, risen dry to z0, its mixing ratio kept.
+        const double t =
+            start.convective ? start.groundC - algo::thermo::kDryAdiabaticLapse * z0 : air;
+        const double dewpoint =
+            start.convective ? start.groundDewpointC - algo::thermo::kParcelDewpointLapse * z0
+                             : profile.dewpoint(ground + z0);
+        temperature[i] = static_cast<float>(t + excess);
+        statics.dewpointOffset[i] +=
+            static_cast<float>(dewpoint + moisture - profile.dewpoint(ground + z0));
+    }
+    const algo::ParcelAscent thermal =
+        algo::liftParcel(profile, ground, start.groundC + excess, start.groundDewpointC + moisture);
+    // Particles start at rest: any layer of negative buoyancy below the LFC stops them.
+    if (std::isnan(thermal.lfcM) || thermal.cinJPerKg < -kCinTolerance)
+        spdlog::warn(
+            "{}: a thermal starting {:.1f} C, dew point {:.1f} C, at the ground reaches "
+            "no level of free convection on its own (CIN {:.0f} J/kg{}): clouds stay "
+            "shallow or do not form; start 'convective' or a larger temperatureExcess "
+            "lifts them",
+            ctx.nodeId(), start.groundC + excess, start.groundDewpointC + moisture,
+            thermal.cinJPerKg, std::isnan(thermal.lfcM) ? ", no LFC at all" : "");
 }
 
 class VapourEmitterNode final : public Node {
@@ -91,6 +168,8 @@ public:
             if (amplitude > 0.0)
                 statics->dewpointOffset = dewpointOffsets(*moisture, *statics, amplitude);
         }
+        if (ctx.params().getString("start") != "paper")
+            startFromProfile(ctx, *statics, e.temperature);
         ctx.setOutput("particles", std::make_shared<VapourParticlesData>(
                                        std::move(statics), std::move(e.z), std::move(e.vz),
                                        std::move(e.temperature)));
@@ -103,7 +182,7 @@ void registerVapourEmitterNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "VapourEmitter";
-    d.version = 2;
+    d.version = 3;
     d.category = "atmosphere";
     d.doc =
         "Initial water vapour particles of the stochastic simulation (Sec. 5.1) at time t0. "
@@ -127,12 +206,20 @@ void registerVapourEmitterNode(Registry& registry)
         "particle waits at its start "
         "until a release time drawn uniformly from [0, emissionDuration) s keyed by (seed, "
         "id), so a source keeps feeding its tower, as a real updraft does, instead of "
-        "rising as one bubble.";
+        "rising as one bubble. Also ours: start 'excess' or 'convective' (with the "
+        "atmosphere input's profile) replaces Eq. 5: each particle starts temperatureExcess "
+        "warmer than the air at its height, or than surface air heated to the sounding's "
+        "convective temperature T_c and risen dry (its mixing ratio kept), so any afternoon "
+        "sounding makes cumulus with bases near its convective condensation level; a thermal "
+        "that reaches no level of free convection is reported in the log with its CIN.";
     d.inputs = {
         port("map", "Map2D", "the 1/f^beta density map fNoise(ix, iy) of Eq. 3-5, in [0, 1]"),
         port("moisture", "Map2D",
              "ours, optional: a second map in [0, 1] that perturbs each particle's dew point "
              "(irregular cloud bases)",
+             true),
+        port("atmosphere", "Atmosphere",
+             "ours, for start 'excess' and 'convective': the profile the vapour starts against",
              true)};
     d.outputs = {port("particles", "VapourParticles",
                       "the vapour particles at t0: position, U_vz = 0 and T_v")};
@@ -160,7 +247,21 @@ void registerVapourEmitterNode(Registry& registry)
         floatParam("emissionDuration", 0.0, "s",
                    "ours: particles leave their start at random times over this long (0: all "
                    "at t0, the paper's)",
-                   0.0, 1e6)};
+                   0.0, 1e6),
+        stringParam("start", "paper",
+                    "how vapour starts: paper = Eq. 5's temperatures; excess (ours) = the "
+                    "profile's air at the start height plus temperatureExcess, its dew point "
+                    "plus moistureExcess; convective (ours) = surface air heated to the "
+                    "sounding's convective temperature and risen dry to the start height, plus "
+                    "the excesses, so bases form at the convective condensation level",
+                    {"paper", "excess", "convective"}),
+        floatParam("temperatureExcess", 0.5, "degC",
+                   "excess and convective: how much warmer than that air a thermal starts "
+                   "(a few tenths to a few C in real thermals; value ours)",
+                   -10.0, 10.0),
+        floatParam("moistureExcess", 0.0, "degC",
+                   "excess and convective: how much higher its dew point starts (value ours)",
+                   -20.0, 20.0)};
     d.validate = [](const ParamSet& p, const ParamChecker& check) {
         // Each pair must be an ordered range, or Eq. 3-5 run backwards.
         if (p.getFloat("maxParticlesPerCell") < p.getFloat("minParticlesPerCell"))

@@ -9,7 +9,11 @@
 #include <memory>
 #include <string>
 
+#include <optional>
+#include <stdexcept>
+
 #include "algo/atmosphere/CloudColumn.h"
+#include "algo/atmosphere/Convective.h"
 #include "algo/atmosphere/Parcel.h"
 #include "algo/atmosphere/SkewT.h"
 #include "core/CoreData.h"
@@ -36,9 +40,43 @@ std::string number(double v)
     return text;
 }
 
+/// A profile's convective condensation level and temperature, and the surface parcel heated
+/// to it; none where the air is too dry to form cumulus by heating.
+struct Convection {
+    std::optional<algo::ConvectiveLevels> levels;
+    std::optional<algo::ParcelAscent> thermal;
+};
+
+Convection convectionOf(const algo::EnvironmentProfile& profile)
+{
+    Convection c;
+    try {
+        c.levels = algo::convectiveLevels(profile);
+    } catch (const std::invalid_argument&) {
+        return c;
+    }
+    c.thermal = algo::liftParcel(profile, profile.groundHeight(), c.levels->convectiveTemperatureC,
+                                 profile.dewpoint(profile.groundHeight()));
+    return c;
+}
+
+/// What to tell a reader when no thermal from the ground rises freely to its LFC.
+std::string freeConvectionWarning(const algo::ParcelAscent& parcel, const Convection& c)
+{
+    const algo::ParcelAscent& best = c.thermal ? *c.thermal : parcel;
+    if (!std::isnan(best.lfcM)) return "";
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "no parcel from the ground reaches a level of free convection (CIN %.0f J/kg "
+                  "at the ground's temperature): clouds stay shallow or do not form",
+                  parcel.cinJPerKg);
+    return text;
+}
+
 struct Report {
     const algo::EnvironmentProfile& profile;
     const algo::ParcelAscent& parcel;
+    const Convection& convection;
     const algo::CloudColumn& cloud;
     int frame;
     double time;
@@ -56,7 +94,13 @@ void writeJson(const std::filesystem::path& path, const Report& r)
         << ",\n  \"lcl_m\": " << number(r.parcel.lclM)
         << ",\n  \"lfc_m\": " << number(r.parcel.lfcM) << ",\n  \"el_m\": " << number(r.parcel.elM)
         << ",\n  \"cape_j_per_kg\": " << number(r.parcel.capeJPerKg)
-        << ",\n  \"cin_j_per_kg\": " << number(r.parcel.cinJPerKg)
+        << ",\n  \"cin_j_per_kg\": " << number(r.parcel.cinJPerKg) << ",\n  \"ccl_m\": "
+        << number(r.convection.levels ? r.convection.levels->cclM : std::nan(""))
+        << ",\n  \"convective_temperature_c\": "
+        << number(r.convection.levels ? r.convection.levels->convectiveTemperatureC : std::nan(""))
+        << ",\n  \"convective_lfc_m\": "
+        << number(r.convection.thermal ? r.convection.thermal->lfcM : std::nan(""))
+        << ",\n  \"warning\": \"" << freeConvectionWarning(r.parcel, r.convection) << "\""
         << ",\n  \"cloud_fraction\": {\"bin_m\": " << number(r.cloud.binM)
         << ", \"from_ground\": [";
     for (std::size_t k = 0; k < r.cloud.fraction.size(); ++k)
@@ -106,13 +150,15 @@ public:
         const Atmosphere& atmosphere = ctx.input<AtmosphereData>("atmosphere")->atmosphere;
         const algo::EnvironmentProfile profile = environmentProfileOf(atmosphere);
         const algo::ParcelAscent parcel = algo::liftParcel(profile, profile.groundHeight());
+        const Convection convection = convectionOf(profile);
         const VapourParticlesData& p = *c->particles;
         const algo::CloudColumn cloud = algo::cloudColumn(
             p.xs().data(), p.ys().data(), p.z.data(), c->condensedFrame.data(), p.size(),
             ctx.params().getFloat("heightBin"), ctx.params().getFloat("cellSize"));
         ctx.checkCancelled();
-        const Report report{profile, parcel, cloud, ctx.frame(),
-                            (ctx.frame() - ctx.startFrame()) * ctx.timeStep()};
+        const Report report{profile,     parcel,
+                            convection,  cloud,
+                            ctx.frame(), (ctx.frame() - ctx.startFrame()) * ctx.timeStep()};
 
         const std::filesystem::path base = ctx.outputPath("file");
         const auto withExtension = [&](const char* ext) {
@@ -151,7 +197,10 @@ void registerWriteWeatherReportNode(Registry& registry)
         "share of the ground's cellSize cells, over the particles' bounding box, above which a "
         "condensation particle lies in each heightBin), and the parcel lifted from the "
         "ground: LCL, LFC, EL, CAPE, CIN and its temperature against the environment every "
-        "100 m (the data of a skew-T diagram). CSV: one row per height bin with pressure, "
+        "100 m (the data of a skew-T diagram); the convective condensation level and "
+        "temperature (ccl_m, convective_temperature_c) and the LFC of the surface parcel "
+        "heated to it, and a warning when no parcel from the ground rises freely to an LFC "
+        "(empty otherwise). CSV: one row per height bin with pressure, "
         "environment, dew point, parcel and cloud fraction. PNG: the skew-T log-p diagram "
         "(as `cloudgraph sounding --plot`) with the cloud's extent as a blue bar beside the "
         "LCL, LFC and EL ticks. The paper's Eq. 9 atmosphere is reported as a profile: its "

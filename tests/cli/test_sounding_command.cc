@@ -21,6 +21,7 @@ TEST(SoundingCommand, PrintsTheParcelLevelsOfEitherFormat)
         EXPECT_NE(r.output.find("LCL:     1185 m (1005 m above the ground)"), std::string::npos)
             << r.output;
         EXPECT_NE(r.output.find("CAPE:"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("CCL:"), std::string::npos) << r.output;
     }
 }
 

@@ -9,11 +9,17 @@
 #include <filesystem>
 #include <fstream>
 #include <numeric>
+#include <sstream>
 
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
+#include "algo/atmosphere/Convective.h"
 #include "algo/atmosphere/Parcel.h"
+#include "algo/atmosphere/Thermodynamics.h"
 #include "algo/atmosphere/VapourEmission.h"
+#include "core/Error.h"
 #include "core/Evaluator.h"
 #include "core/Graph.h"
 #include "formats/Sounding.h"
@@ -51,7 +57,10 @@ json pipeline(int frames, double timeStep, const json& atmosphere, const json& e
           {"atmosphere", {{"type", "Atmosphere"}, {"params", atmosphere}}},
           {"emit",
            {{"type", "VapourEmitter"},
-            {"inputs", {{"map", "noise.map"}, {"moisture", "moisture.map"}}},
+            {"inputs",
+             {{"map", "noise.map"},
+              {"moisture", "moisture.map"},
+              {"atmosphere", "atmosphere.atmosphere"}}},
             {"params", emit}}},
           {"rise",
            {{"type", "ThermalIntegrator"},
@@ -108,6 +117,15 @@ protected:
 
     Registry registry;
 };
+
+/// A convective afternoon the project ships nowhere (ours, made up): a mixed layer dry
+/// adiabatic from 31 C at 200 m to 1.7 km, dew point 19 C at the ground; pressures left to
+/// the hydrostatic fill.
+const char* kUnseenSounding =
+    "height_m,temperature_C,dewpoint_C,pressure_hPa,wind_dir_deg,wind_speed_ms\n"
+    "200,31.0,19.0,,230,2.0\n700,26.1,18.1,,235,3.0\n1200,21.2,17.2,,240,4.0\n"
+    "1700,16.3,14.0,,245,5.0\n2500,11.1,5.0,,250,6.0\n3500,4.6,-5.0,,255,7.0\n"
+    "5500,-8.4,-20.0,,260,9.0\n9000,-31.0,-40.0,,265,14.0\n12000,-55.0,-65.0,,270,18.0\n";
 
 algo::EnvironmentProfile deepConvection()
 {
@@ -431,6 +449,11 @@ TEST_F(RealAtmosphere, WeatherReportWritesTheCloudAndTheParcel)
     EXPECT_LT(condensed, 64);  // the last ones released are still rising to their LCL
     EXPECT_GT(report["cloud_top_m"].get<double>(), report["cloud_base_m"].get<double>());
     EXPECT_GT(report["parcel"].size(), 100u);
+    const algo::ConvectiveLevels levels = algo::convectiveLevels(deepConvection());
+    EXPECT_NEAR(report["ccl_m"].get<double>(), levels.cclM, 1e-3 * levels.cclM);
+    EXPECT_NEAR(report["convective_temperature_c"].get<double>(), levels.convectiveTemperatureC,
+                1e-3);
+    EXPECT_EQ(report["warning"], "");  // the deep-convection day's surface air rises freely
     double cloudy = 0.0;
     for (const auto& f : report["cloud_fraction"]["from_ground"])
         cloudy = std::max(cloudy, f.get<double>());
@@ -441,6 +464,146 @@ TEST_F(RealAtmosphere, WeatherReportWritesTheCloudAndTheParcel)
     std::string header;
     std::getline(csv, header);
     EXPECT_EQ(header, "height_m,pressure_hPa,environment_C,dewpoint_C,parcel_C,cloud_fraction");
+}
+
+TEST_F(RealAtmosphere, AConvectiveStartCondensesAnUnseenSoundingAtEachParticlesLcl)
+{
+    test::TempDir dir;
+    test::writeFile(dir / "unseen.csv", kUnseenSounding);
+    const json atmosphere = {{"profile", "sounding"},
+                             {"soundingFile", (dir / "unseen.csv").string()},
+                             {"dryLapseRate", 9.76}};
+    json emit = {{"minParticlesPerCell", 1},
+                 {"maxParticlesPerCell", 1},
+                 {"minHeight", 0},
+                 {"maxHeight", 300}};
+    // The shipped fair-weather graph's Eq. 5 temperatures (22.3-24.8 C) start colder than
+    // this afternoon's 31 C air: nothing rises to condense.
+    json paper = emit;
+    paper["minTemperature"] = 22.3;
+    paper["maxTemperature"] = 24.8;
+    std::size_t paperCondensed = 0;
+    run(pipeline(150, 4.0, atmosphere, paper, {{"buoyancy", "parcel"}}),
+        [&](int, const CondensationData& c) {
+            paperCondensed = static_cast<std::size_t>(
+                std::count_if(c.condensedFrame.begin(), c.condensedFrame.end(),
+                              [](std::int32_t f) { return f >= 0; }));
+        });
+    EXPECT_EQ(paperCondensed, 0u);
+
+    emit["start"] = "convective";
+    emit["temperatureExcess"] = 0.5;
+    std::vector<float> base, lcl;
+    run(pipeline(150, 4.0, atmosphere, emit, {{"buoyancy", "parcel"}}),
+        [&](int frame, const CondensationData& c) {
+            const VapourStatics& st = *c.particles->statics;
+            base.resize(c.particles->size(), std::nanf(""));
+            if (frame == 0) {
+                // Each particle's own LCL from its start: 125 m per C of depression.
+                const auto profile =
+                    profileFromSounding(formats::readSounding((dir / "unseen.csv").string()));
+                for (std::size_t i = 0; i < st.size(); ++i) {
+                    const double td = profile.dewpoint(profile.groundHeight() + st.startZ[i]) +
+                                      st.dewpointOffset[i];
+                    lcl.push_back(static_cast<float>(st.startZ[i] +
+                                                     (c.particles->temperature[i] - td) / 7.96e-3));
+                }
+            }
+            for (std::size_t i = 0; i < base.size(); ++i)
+                if (c.condensedFrame[i] == frame) base[i] = c.particles->z[i];
+        });
+    ASSERT_EQ(base.size(), lcl.size());
+    std::vector<double> errors;
+    for (std::size_t i = 0; i < base.size(); ++i)
+        if (!std::isnan(base[i])) errors.push_back(std::abs(base[i] - lcl[i]) / lcl[i]);
+    EXPECT_GE(errors.size(), 95 * base.size() / 100) << "particles that never condensed";
+    ASSERT_FALSE(errors.empty());
+    std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
+    EXPECT_LT(errors[errors.size() / 2], 0.08);
+    // Their bases sit near the convective condensation level (about 1.5 km up).
+    const auto profile = profileFromSounding(formats::readSounding((dir / "unseen.csv").string()));
+    const double ccl = algo::convectiveLevels(profile).cclM - profile.groundHeight();
+    EXPECT_NEAR(lcl[0], ccl + 0.5 / 7.96e-3, 80.0);
+}
+
+TEST_F(RealAtmosphere, AnExcessStartsEachParticleAboveTheAirAtItsStartHeight)
+{
+    json emit = {{"minParticlesPerCell", 1}, {"maxParticlesPerCell", 1}, {"minHeight", 0},
+                 {"maxHeight", 400},         {"start", "excess"},        {"temperatureExcess", 0.8},
+                 {"moistureExcess", 1.5}};
+    const algo::EnvironmentProfile profile = deepConvection();
+    std::size_t checked = 0;
+    run(pipeline(0, 1.0, soundingAtmosphere(), emit, json::object()),
+        [&](int, const CondensationData& c) {
+            const VapourStatics& st = *c.particles->statics;
+            for (std::size_t i = 0; i < st.size(); ++i, ++checked) {
+                const double air = profile.temperature(profile.groundHeight() + st.startZ[i]);
+                EXPECT_NEAR(c.particles->temperature[i], air + 0.8, 1e-4) << i;
+                EXPECT_NEAR(st.dewpointOffset[i], 1.5, 1e-5) << i;
+            }
+        });
+    EXPECT_EQ(checked, 64u);
+}
+
+TEST_F(RealAtmosphere, AProfileStartWithoutAProfileIsRefusedNamingTheInput)
+{
+    json emit = uniformEmission(30.0);
+    emit["start"] = "convective";
+    // The paper's Eq. 9 line has no profile to start against.
+    try {
+        run(pipeline(0, 1.0, json::object(), emit, json::object()),
+            [](int, const CondensationData&) {});
+        FAIL() << "no error";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("inputs/atmosphere"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("needs an atmosphere with a profile"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+TEST_F(RealAtmosphere, AWeatherReportOfAStableDaySaysNoParcelRisesFreely)
+{
+    // An isothermal day: a lifted parcel is always colder than the air around it.
+    test::TempDir dir;
+    test::writeFile(dir / "stable.csv",
+                    "height_m,temperature_C,dewpoint_C,pressure_hPa,wind_dir_deg,wind_speed_ms\n"
+                    "0,15.0,5.0,,0,0\n10000,15.0,-5.0,,0,0\n");
+    json graph =
+        pipeline(0, 1.0, {{"profile", "sounding"}, {"soundingFile", (dir / "stable.csv").string()}},
+                 uniformEmission(15.0), json::object());
+    graph["nodes"]["report"] = {
+        {"type", "WriteWeatherReport"},
+        {"inputs",
+         {{"condensation", "condense.condensation"}, {"atmosphere", "atmosphere.atmosphere"}}},
+        {"params", {{"file", "weather.####"}}}};
+    const Graph g = parseGraph(graph.dump(), "stable.json", registry);
+    EvaluatorOptions options;
+    options.outDir = dir.path();
+    Evaluator(registry, options).cookFrames(g, 0, 0, {"report"});
+    const json report = json::parse(std::ifstream(dir / "weather.0000.json"));
+    EXPECT_NE(report["warning"].get<std::string>().find("no parcel from the ground reaches a "
+                                                        "level of free convection (CIN"),
+              std::string::npos)
+        << report["warning"];
+}
+
+TEST_F(RealAtmosphere, AThermalThatReachesNoLevelOfFreeConvectionIsReportedWithItsCin)
+{
+    // Started 3 C colder than the air, no thermal of the unseen afternoon rises freely.
+    test::TempDir dir;
+    test::writeFile(dir / "unseen.csv", kUnseenSounding);
+    std::ostringstream log;
+    auto sink = std::make_shared<spdlog::sinks::ostream_sink_mt>(log);
+    spdlog::default_logger()->sinks().push_back(sink);
+    run(pipeline(0, 1.0, {{"profile", "sounding"}, {"soundingFile", (dir / "unseen.csv").string()}},
+                 {{"start", "excess"}, {"temperatureExcess", -3.0}}, json::object()),
+        [](int, const CondensationData&) {});
+    auto& sinks = spdlog::default_logger()->sinks();
+    sinks.erase(std::remove(sinks.begin(), sinks.end(), sink), sinks.end());
+    EXPECT_NE(log.str().find("reaches no level of free convection on its own (CIN -"),
+              std::string::npos)
+        << log.str();
 }
 
 }  // namespace cg
