@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 
@@ -69,7 +70,9 @@ int soundingCommand(const Args& args)
             std::printf("  CCL:     none (the surface mixing ratio never saturates)\n");
         }
         if (const auto plot = opts.value("--plot")) {
-            const algo::SkewTImage image = algo::drawSkewT(profile, a);
+            algo::SkewTOptions o;
+            o.title = std::filesystem::path(file).filename().string();
+            const algo::SkewTImage image = algo::drawSkewT(profile, a, o);
             util::AtomicOutput out(*plot);  // whole or not at all
             formats::writePngRgb8(out.tempPath().string(), image.width, image.height, image.rgb);
             out.commit();

@@ -172,6 +172,7 @@ public:
         algo::SkewTOptions o;
         o.cloudBaseM = profile.groundHeight() + cloud.baseM;
         o.cloudTopM = profile.groundHeight() + cloud.topM;
+        o.title = "Weather report, frame " + std::to_string(ctx.frame());
         const algo::SkewTImage image = algo::drawSkewT(profile, parcel, o);
         formats::writePngRgb8(png.tempPath().string(), image.width, image.height, image.rgb);
         ctx.checkCancelled();
