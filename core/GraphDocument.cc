@@ -29,7 +29,8 @@ GraphDocument::GraphDocument(Graph graph, const Registry& registry)
 }
 
 std::unique_ptr<GraphDocument> GraphDocument::load(const std::filesystem::path& path,
-                                                   const Registry& registry, LoadOptions options)
+                                                   const Registry& registry,
+                                                   const LoadOptions& options)
 {
     try {
         std::string text = readGraphText(path, options);

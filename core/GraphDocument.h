@@ -53,7 +53,8 @@ public:
     /// Loads a graph file (errors name the file and JSON pointer, as the CLI's do). A graph
     /// being built may still lack nodes or wires: cook and save check it whole.
     static std::unique_ptr<GraphDocument> load(const std::filesystem::path& path,
-                                               const Registry& registry, LoadOptions options = {});
+                                               const Registry& registry,
+                                               const LoadOptions& options = {});
     /// A graph from JSON text; `name` prefixes error locations, relative input files are
     /// found under `baseDir`.
     static std::unique_ptr<GraphDocument> parse(const std::string& text, const std::string& name,

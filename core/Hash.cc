@@ -32,7 +32,7 @@ bool Key::fromHex(std::string_view text, Key& out)
         if (c >= '0' && c <= '9')
             d = static_cast<std::uint64_t>(c - '0');
         else if (c >= 'a' && c <= 'f')
-            d = static_cast<std::uint64_t>(c - 'a' + 10);
+            d = static_cast<std::uint64_t>(c - 'a') + 10;
         else
             return false;
         parts[i / 16] = (parts[i / 16] << 4) | d;

@@ -38,7 +38,7 @@ const std::vector<std::string>& rgbaNames()
 /// The data window of a file we can read: from (0, 0), at most 65536 pixels a side.
 void checkedSize(const Imf::Header& header, int& width, int& height)
 {
-    const Imath::Box2i dw = header.dataWindow();
+    const Imath::Box2i& dw = header.dataWindow();
     width = dw.max.x - dw.min.x + 1;
     height = dw.max.y - dw.min.y + 1;
     if (dw.min.x != 0 || dw.min.y != 0 || width <= 0 || height <= 0 || width > (1 << 16) ||

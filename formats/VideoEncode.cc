@@ -109,6 +109,7 @@ void encodeVideo(const VideoEncodeSettings& s, const fs::path& output,
         "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf",
         std::to_string(s.crf), "-movflags", "+faststart", "-f", "mp4", output.string()};
     std::vector<char*> args;
+    args.reserve(argv.size() + 1);
     for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
 

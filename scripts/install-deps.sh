@@ -21,6 +21,7 @@ if [ "${1:-}" = "--tests" ]; then
     packages+=(
         clang libclang-rt-14-dev  # the sanitizer build and the libFuzzer targets (CI)
         clang-format  # ctest -L format: every C++ source as .clang-format says
+        clang-tidy  # ctest -L tidy: the changed C++ sources pass .clang-tidy
         blender  # ctest -L blender follows the user guide's Blender steps (Debian 12: 3.4)
         python3-pytest python3-openvdb  # ctest -L python: the Python module's tests, a FogVolume as a pyopenvdb grid
         chromium chromium-driver  # ctest -L browser: serve's page in headless Chromium

@@ -18,6 +18,7 @@ void adviseHugePages(void* p, std::size_t bytes)
     const std::uintptr_t begin = (at + page - 1) / page * page;
     const std::uintptr_t end = (at + bytes) / page * page;
     if (end > begin)
+        // NOLINTNEXTLINE(performance-no-int-to-ptr): madvise takes the page-aligned address.
         static_cast<void>(::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE));
 #else
     static_cast<void>(p);

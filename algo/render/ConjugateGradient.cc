@@ -95,6 +95,7 @@ int solveConjugateGradient(const SparseSystem& A, const std::vector<SolveColumn>
     state.reserve(columns.size());
     for (const SolveColumn& c : columns) state.emplace_back(*c.b, *c.x, blocks);
     std::vector<Column*> active;
+    active.reserve(state.size());
     for (Column& c : state) active.push_back(&c);
 
     // r = b − A x, z = p = r / diag; |b|, r·z and r·r.

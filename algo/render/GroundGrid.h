@@ -21,8 +21,9 @@ struct GroundGrid {
     }
     RenderVec3 point(std::size_t at) const
     {
+        const std::size_t row = at / static_cast<std::size_t>(n[0]);
         return {min[0] + spacing * double(at % static_cast<std::size_t>(n[0])),
-                min[1] + spacing * double(at / static_cast<std::size_t>(n[0])), 0.0};
+                min[1] + spacing * double(row), 0.0};
     }
 
     /// The four points around p and their bilinear weights; false beyond the grid.

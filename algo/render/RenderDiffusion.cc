@@ -79,6 +79,7 @@ GroundGrid groundMapUnder(const RenderVec3& lo, const RenderVec3& hi, double spa
 
 }  // namespace
 
+// NOLINTNEXTLINE(readability-function-size): its steps share the solver's state; to be split.
 RenderDiffusion::RenderDiffusion(const openvdb::FloatGrid& grid, const RenderLightMap& sunMap,
                                  const RenderMedium& medium, int cellVoxels, GroundPlane ground,
                                  const std::function<bool()>& cancelled)

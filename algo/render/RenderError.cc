@@ -71,9 +71,12 @@ LuminanceError luminanceError(const RenderedImage& image, const RenderedImage& r
     if (e.pixels == 0) return e;
     e.ratio = sum / sumRef;
     std::vector<double> errors;
+    errors.reserve(refAndError.size());
     for (const auto& [l, err] : refAndError) errors.push_back(err);
     for (const double v : errors) e.mean += v / static_cast<double>(errors.size());
-    std::nth_element(errors.begin(), errors.begin() + errors.size() * 9 / 10, errors.end());
+    std::nth_element(errors.begin(),
+                     errors.begin() + static_cast<std::ptrdiff_t>(errors.size() * 9 / 10),
+                     errors.end());
     e.p90 = errors[errors.size() * 9 / 10];
     std::sort(refAndError.begin(), refAndError.end());
     const std::size_t half = refAndError.size() / 2;

@@ -153,8 +153,8 @@ const std::string* Request::header(std::string_view lowerName) const
 
 std::string Request::headerOr(std::string_view lowerName, std::string fallback) const
 {
-    const std::string* value = header(lowerName);
-    return value ? *value : std::move(fallback);
+    if (const std::string* value = header(lowerName)) return *value;
+    return fallback;
 }
 
 bool percentDecode(std::string_view text, bool plusIsSpace, std::string& decoded)

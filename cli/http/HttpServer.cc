@@ -265,10 +265,10 @@ void Server::run()
         polled.assign({{mListenFd, POLLIN, 0}, {mWakeFd, POLLIN, 0}});
         auto next = Clock::now() + std::chrono::milliseconds(kMaxPollMs);
         for (const Connection& c : connections) {
-            const short events = c.state == Connection::State::Writing    ? POLLOUT
-                                 : c.state == Connection::State::Handling ? 0
-                                                                          : POLLIN;
-            polled.push_back({c.fd, events, 0});
+            const int events = c.state == Connection::State::Writing    ? POLLOUT
+                               : c.state == Connection::State::Handling ? 0
+                                                                        : POLLIN;
+            polled.push_back({c.fd, static_cast<short>(events), 0});
             if (c.state != Connection::State::Handling) next = std::min(next, c.deadline);
         }
         const auto wait = std::chrono::ceil<std::chrono::milliseconds>(next - Clock::now());

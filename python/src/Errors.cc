@@ -42,7 +42,7 @@ const char* classOf(const InputError& e)
 }
 
 void raise(const char* cls, const std::string& message, const std::string& where,
-           const std::string& node, py::dict extra = {})
+           const std::string& node, const py::dict& extra = {})
 {
     py::object type = py::module_::import("cloudgraph.errors").attr(cls);
     py::object error = type(message);
@@ -56,6 +56,7 @@ void raise(const char* cls, const std::string& message, const std::string& where
 
 void registerErrorTranslator()
 {
+    // NOLINTNEXTLINE(performance-unnecessary-value-param): pybind11's translator type.
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);

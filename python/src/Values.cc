@@ -132,7 +132,7 @@ void bindValues(py::module_& m)
             "cell_size", [](const MapValue& v) { return v.map->cellSize; }, "metres")
         .def(
             "__array__",
-            [](const MapValue& v, py::object dtype) {
+            [](const MapValue& v, const py::object& dtype) {
                 py::array a = mapValues(v);
                 return dtype.is_none() ? a : a.attr("astype")(dtype).cast<py::array>();
             },
