@@ -16,7 +16,7 @@
 #include <exception>
 #include <string>
 
-#include "algo/render/RenderError.h"
+#include "algo/render/metrics/RenderError.h"
 #include "formats/ExrFile.h"
 
 namespace {

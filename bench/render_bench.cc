@@ -16,9 +16,9 @@
 
 #include <openvdb/io/File.h>
 
-#include "algo/render/RenderPathTrace.h"
-#include "algo/render/RenderVolume.h"
-#include "algo/render/SyntheticCumulus.h"
+#include "algo/render/integrators/RenderPathTrace.h"
+#include "algo/render/integrators/RenderVolume.h"
+#include "algo/render/scenes/SyntheticCumulus.h"
 #include "algo/volume/Voxelize.h"
 #include "util/FreedMemory.h"
 

@@ -51,10 +51,10 @@
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 
-#include "algo/render/Display.h"
-#include "algo/render/RenderError.h"
-#include "algo/render/RenderPathTrace.h"
-#include "algo/render/RenderVolume.h"
+#include "algo/render/image/Display.h"
+#include "algo/render/integrators/RenderPathTrace.h"
+#include "algo/render/integrators/RenderVolume.h"
+#include "algo/render/metrics/RenderError.h"
 #include "core/Hash.h"
 #include "formats/PngFile.h"
 

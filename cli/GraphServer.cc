@@ -15,7 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "algo/render/Display.h"
+#include "algo/render/image/Display.h"
 #include "cli/PreviewPicture.h"
 #include "core/Error.h"
 #include "core/NodeDeclJson.h"

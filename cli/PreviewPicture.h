@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "algo/render/Display.h"
+#include "algo/render/image/Display.h"
 #include "core/Data.h"
 
 namespace cg::cli {

@@ -12,6 +12,9 @@
 /// interpolated linearly between frames floor s and floor s + 1. Past the primitive's last
 /// frame a copy keeps its last shape and, by default, drifts on as a whole with the
 /// primitive's mean motion over its last frames (PastLastFrame).
+///
+/// Implemented in three files: Mapping.cc (the formulas and origins), MappingSources.cc
+/// (stepSources) and MappingGeneration.cc (forEachCloudChunk, generateCloudParticles).
 
 #include <algorithm>
 #include <cstddef>

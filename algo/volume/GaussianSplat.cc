@@ -171,6 +171,15 @@ struct GaussianSplatter::Deposit {
         return {byKey.begin(), byKey.end()};
     }
 
+    /// Frees every thread's blocks once the blur has read them.
+    void releaseBlocks()
+    {
+        for (LocalDeposit& local : locals) {
+            local.blocks.clear();
+            local.recent.clear();
+        }
+    }
+
     std::int64_t* newOrOldBlock(LocalDeposit& local, std::uint64_t key)
     {
         Block& b = local.blocks[key];
@@ -237,12 +246,19 @@ void GaussianSplatter::add(const float* xyz, std::size_t count)
     mCount.fetch_add(count);
 }
 
-openvdb::FloatGrid::Ptr GaussianSplatter::finish(const std::function<void()>& checkCancelled)
+namespace {
+
+/// Blocks by key, as foldHalos returns them.
+using BlockMap = std::unordered_map<std::uint64_t, const std::int64_t*>;
+/// Blocks with their keys: the summed blocks in key order, then those foldHalos adds.
+using KeyedBlocks = std::vector<std::pair<std::uint64_t, std::int64_t*>>;
+
+/// One block per key: each key's blocks from every thread summed into the first of them, the
+/// others freed. The weights are integers, so any order of summing gives the same deposit.
+KeyedBlocks sumThreadBlocks(tbb::enumerable_thread_specific<LocalDeposit>& locals)
 {
-    Deposit& d = *mDeposit;
-    // 1. One block per key: the threads' blocks summed (integers: any order gives the same).
     std::vector<std::pair<std::uint64_t, Block*>> parts;
-    for (LocalDeposit& local : d.locals)
+    for (LocalDeposit& local : locals)
         for (auto& [key, block] : local.blocks) parts.emplace_back(key, &block);
     std::sort(parts.begin(), parts.end(),
               [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -250,7 +266,7 @@ openvdb::FloatGrid::Ptr GaussianSplatter::finish(const std::function<void()>& ch
     for (std::size_t i = 0; i < parts.size(); ++i)
         if (i == 0 || parts[i].first != parts[i - 1].first) firsts.push_back(i);
     firsts.push_back(parts.size());
-    std::vector<std::pair<std::uint64_t, std::int64_t*>> summed(firsts.size() - 1);
+    KeyedBlocks summed(firsts.size() - 1);
     tbb::parallel_for(std::size_t(0), summed.size(), [&](std::size_t u) {
         std::int64_t* sum = parts[firsts[u]].second->get();
         for (std::size_t j = firsts[u] + 1; j < firsts[u + 1]; ++j) {
@@ -260,20 +276,16 @@ openvdb::FloatGrid::Ptr GaussianSplatter::finish(const std::function<void()>& ch
         }
         summed[u] = {parts[firsts[u]].first, sum};
     });
-    if (checkCancelled) checkCancelled();
-    std::vector<Block> added;  // blocks that only halo layers reach
-    const std::unordered_map<std::uint64_t, const std::int64_t*> blocks =
-        d.foldHalos(summed, added);
-    const std::size_t blockCount = summed.size();
-    if (checkCancelled) checkCancelled();
+    return summed;
+}
 
-    // 2. The bricks the blur can reach: each block's voxels, widened by the taps.
-    const double rv = mSettings.radius / mSettings.voxelSize;
-    const std::vector<float> taps = blurTaps(gaussianKernelSigma(rv));
-    const int reach = static_cast<int>(taps.size() / 2);
+/// The keys of the bricks the blur can reach, sorted: each block's voxels widened by `reach`
+/// voxels on every side.
+std::vector<std::uint64_t> bricksInReach(const KeyedBlocks& blocks, int reach)
+{
     std::vector<std::uint64_t> bricks;
-    for (std::size_t u = 0; u < blockCount; ++u) {
-        const openvdb::Coord b = blockCoord(summed[u].first);
+    for (const auto& block : blocks) {
+        const openvdb::Coord b = blockCoord(block.first);
         int lo[3], hi[3];
         for (int a = 0; a < 3; ++a) {
             lo[a] = (b[a] * kBlock - reach) >> kBrickLog2;
@@ -285,161 +297,287 @@ openvdb::FloatGrid::Ptr GaussianSplatter::finish(const std::function<void()>& ch
     }
     std::sort(bricks.begin(), bricks.end());
     bricks.erase(std::unique(bricks.begin(), bricks.end()), bricks.end());
+    return bricks;
+}
+
+/// Throws VoxelizeTooLarge when `brickCount` blurred bricks beside the deposit's
+/// `depositBytes` would pass maxBytes (0: no limit): checked before any brick is blurred, so
+/// that a too large grid fails early.
+void checkBricksFitLimit(std::uint64_t depositBytes, std::size_t brickCount, std::uint64_t maxBytes)
+{
     constexpr std::uint64_t kBrickBytes = std::uint64_t(kBrick) * kBrick * kBrick * sizeof(float);
-    if (d.maxBytes != 0 && d.bytes.load() + bricks.size() * kBrickBytes > d.maxBytes)
+    if (maxBytes != 0 && depositBytes + brickCount * kBrickBytes > maxBytes)
         throw VoxelizeTooLarge("voxelize: the blurred grid would pass the limit of " +
-                               std::to_string(d.maxBytes >> 20) +
+                               std::to_string(maxBytes >> 20) +
                                " MiB; use larger voxels (voxelSize)");
+}
 
-    // 3. Each brick: its deposit and a margin of `reach` voxels, converted to density, then
-    // blurred along z, y and x; only the leaves holding something are kept.
-    // Each particle carries the kernel's integral (in voxels) times its peak density.
-    const double mass = mSettings.density * kernelIntegral(VoxelKernel::Gaussian, rv);
-    const double scale = mass / kWeightUnit;
-    const int span = kBrick + 2 * reach;
-    const int width = static_cast<int>(taps.size());
-    constexpr int kLeaves = (kBrick / 8) * (kBrick / 8) * (kBrick / 8);
-    std::vector<std::unique_ptr<LeafT>> leaves(bricks.size() * kLeaves);
-    struct Scratch {
-        std::vector<float> in, alongZ, alongY, out;
-    };
-    tbb::enumerable_thread_specific<Scratch> scratch([&] {
-        return Scratch{std::vector<float>(std::size_t(span) * span * span),
-                       std::vector<float>(std::size_t(span) * span * kBrick),
-                       std::vector<float>(std::size_t(span) * kBrick * kBrick),
-                       std::vector<float>(std::size_t(kBrick) * kBrick * kBrick)};
-    });
-    const bool clamp = mSettings.clamp;
-    tbb::parallel_for(std::size_t(0), bricks.size(), [&](std::size_t k) {
-        Scratch& s = scratch.local();
-        const openvdb::Coord brick = blockCoord(bricks[k]);
-        const openvdb::Coord origin(brick.x() * kBrick, brick.y() * kBrick, brick.z() * kBrick);
-        const openvdb::Coord lo = origin - openvdb::Coord(reach);  // first voxel of `in`
-        // in[x][y][z]: the deposit over [lo, lo + span)^3, gathered block by block.
-        std::fill(s.in.begin(), s.in.end(), 0.0f);
-        const openvdb::Coord firstBlock(lo.x() >> kBlockLog2, lo.y() >> kBlockLog2,
-                                        lo.z() >> kBlockLog2);
-        const openvdb::Coord lastBlock((lo.x() + span - 1) >> kBlockLog2,
-                                       (lo.y() + span - 1) >> kBlockLog2,
-                                       (lo.z() + span - 1) >> kBlockLog2);
-        bool any = false;
-        for (int bx = firstBlock.x(); bx <= lastBlock.x(); ++bx)
-            for (int by = firstBlock.y(); by <= lastBlock.y(); ++by)
-                for (int bz = firstBlock.z(); bz <= lastBlock.z(); ++bz) {
-                    const auto found = blocks.find(blockKey(bx, by, bz));
-                    if (found == blocks.end()) continue;
-                    any = true;
-                    const std::int64_t* b = found->second;
-                    const openvdb::Coord b0(bx * kBlock, by * kBlock, bz * kBlock);
-                    int from[3], to[3];
-                    for (int a = 0; a < 3; ++a) {
-                        from[a] = std::max(b0[a], lo[a]);
-                        to[a] = std::min(b0[a] + kBlock, lo[a] + span);
-                    }
-                    for (int x = from[0]; x < to[0]; ++x)
-                        for (int y = from[1]; y < to[1]; ++y) {
-                            const std::int64_t* src = b + blockIndex(x - b0.x(), y - b0.y(), 0);
-                            float* dst =
-                                &s.in[(std::size_t(x - lo.x()) * span + (y - lo.y())) * span];
-                            for (int z = from[2]; z < to[2]; ++z)
-                                dst[z - lo.z()] = static_cast<float>(
-                                    static_cast<double>(src[z - b0.z()]) * scale);
-                        }
-                }
-        if (!any) return;
-        // The box of `in` that holds the nonzero deposit: outside it every term of the blur
-        // is w times +0, which leaves a sum unchanged, so the passes only run over the box
-        // and what it reaches. Around sparse particles (vapour) that is a small part.
-        int inLo[3] = {span, span, span}, inHi[3] = {-1, -1, -1};
-        for (int x = 0; x < span; ++x)
-            for (int y = 0; y < span; ++y) {
-                const float* row = &s.in[(std::size_t(x) * span + y) * span];
-                const auto nonzero = [](float v) { return v != 0.0f; };
-                const float* first = std::find_if(row, row + span, nonzero);
-                if (first == row + span) continue;
-                const float* last = std::find_if(std::make_reverse_iterator(row + span),
-                                                 std::make_reverse_iterator(row), nonzero)
-                                        .base() -
-                                    1;
-                inLo[0] = std::min(inLo[0], x), inHi[0] = std::max(inHi[0], x);
-                inLo[1] = std::min(inLo[1], y), inHi[1] = std::max(inHi[1], y);
-                inLo[2] = std::min(inLo[2], static_cast<int>(first - row));
-                inHi[2] = std::max(inHi[2], static_cast<int>(last - row));
-            }
-        if (inHi[0] < 0) return;  // the deposit here rounded to zero
-        // Output voxel o sums in[o .. o + width - 1]: nonzero only for o in [lo - width + 1, hi].
-        int outLo[3], outHi[3];
-        for (int a = 0; a < 3; ++a) {
-            outLo[a] = std::max(0, inLo[a] - (width - 1));
-            outHi[a] = std::min(kBrick - 1, inHi[a]);
-        }
-        const int zCount = outHi[2] - outLo[2] + 1;
-        // Along z: alongZ[x][y][z] for the box's rows.
-        for (int x = inLo[0]; x <= inHi[0]; ++x)
-            for (int y = inLo[1]; y <= inHi[1]; ++y) {
-                const float* row = &s.in[(std::size_t(x) * span + y) * span];
-                float* out = &s.alongZ[(std::size_t(x) * span + y) * kBrick];
-                std::fill(out + outLo[2], out + outHi[2] + 1, 0.0f);
-                for (int t = 0; t < width; ++t) {
-                    const float w = taps[t];
-                    for (int z = outLo[2]; z <= outHi[2]; ++z) out[z] += w * row[z + t];
-                }
-            }
-        // Along y: alongY[x][y][z], the rows outside the box being zeros.
-        for (int x = inLo[0]; x <= inHi[0]; ++x)
-            for (int y = outLo[1]; y <= outHi[1]; ++y) {
-                float* out = &s.alongY[(std::size_t(x) * kBrick + y) * kBrick];
-                std::fill(out + outLo[2], out + outHi[2] + 1, 0.0f);
-                for (int t = std::max(0, inLo[1] - y); t < width && y + t <= inHi[1]; ++t) {
-                    const float w = taps[t];
-                    const float* row = &s.alongZ[(std::size_t(x) * span + y + t) * kBrick];
-                    for (int z = outLo[2]; z <= outHi[2]; ++z) out[z] += w * row[z];
-                }
-            }
-        // Along x: out[x][y][z], zero over the leaves the box touches, so that they are whole.
-        int leafLo[3], leafHi[3];
-        for (int a = 0; a < 3; ++a) {
-            leafLo[a] = outLo[a] & ~7;
-            leafHi[a] = outHi[a] | 7;
-        }
-        for (int x = leafLo[0]; x <= leafHi[0]; ++x)
-            for (int y = leafLo[1]; y <= leafHi[1]; ++y) {
-                float* row = &s.out[(std::size_t(x) * kBrick + y) * kBrick];
-                std::fill(row + leafLo[2], row + leafHi[2] + 1, 0.0f);
-            }
-        for (int x = outLo[0]; x <= outHi[0]; ++x)
-            for (int t = std::max(0, inLo[0] - x); t < width && x + t <= inHi[0]; ++t) {
-                const float w = taps[t];
-                for (int y = outLo[1]; y <= outHi[1]; ++y) {
-                    float* out = &s.out[(std::size_t(x) * kBrick + y) * kBrick + outLo[2]];
-                    const float* row =
-                        &s.alongY[(std::size_t(x + t) * kBrick + y) * kBrick + outLo[2]];
-                    for (int z = 0; z < zCount; ++z) out[z] += w * row[z];
-                }
-            }
-        for (int x = leafLo[0]; x <= leafHi[0]; x += 8)
-            for (int y = leafLo[1]; y <= leafHi[1]; y += 8)
-                for (int z = leafLo[2]; z <= leafHi[2]; z += 8)
-                    leaves[k * kLeaves +
-                           static_cast<std::size_t>(
-                               ((x / 8) * (kBrick / 8) + y / 8) * (kBrick / 8) + z / 8)] =
-                        leafFromDense(&s.out[(std::size_t(x) * kBrick + y) * kBrick + z],
-                                      kBrick * kBrick, kBrick, origin + openvdb::Coord(x, y, z),
-                                      clamp);
-    });
-    for (LocalDeposit& local : d.locals) {
-        local.blocks.clear();
-        local.recent.clear();
+/// Leaves (8^3 voxels) a brick holds.
+constexpr int kLeaves = (kBrick / 8) * (kBrick / 8) * (kBrick / 8);
+
+/// A box of voxels, [lo, hi] on each axis.
+struct VoxelBox {
+    int lo[3];
+    int hi[3];
+};
+
+/// One thread's arrays for blurring a brick: the deposit with its margin (span^3), the passes
+/// along z (span^2 kBrick) and y (span kBrick^2), and the brick's output (kBrick^3).
+struct BlurScratch {
+    std::vector<float> in, alongZ, alongY, out;
+};
+
+/// What blurs every brick alike: the deposit's blocks, the 1D taps and the density a unit of
+/// deposited weight makes.
+struct BrickBlur {
+    BrickBlur(const BlockMap& depositBlocks, const std::vector<float>& kernelTaps,
+              double densityPerWeight, bool clampToOne)
+        : blocks(depositBlocks),
+          taps(kernelTaps),
+          scale(densityPerWeight),
+          clamp(clampToOne),
+          reach(static_cast<int>(kernelTaps.size() / 2)),
+          span(kBrick + 2 * reach),
+          width(static_cast<int>(kernelTaps.size()))
+    {
     }
-    if (checkCancelled) checkCancelled();
 
+    const BlockMap& blocks;
+    const std::vector<float>& taps;
+    double scale;  ///< density per unit of deposited weight
+    bool clamp;    ///< clamp the output to 1
+    int reach;     ///< taps a side
+    int span;      ///< voxels a side of the deposit gathered for a brick: kBrick + 2 reach
+    int width;     ///< taps in all: 2 reach + 1
+};
+
+/// Fills in[x][y][z] with the deposit over [lo, lo + span)^3 converted to density, gathered
+/// block by block; false when no block lies there.
+bool gatherDeposit(const BrickBlur& blur, const openvdb::Coord& lo, std::vector<float>& in)
+{
+    const int span = blur.span;
+    std::fill(in.begin(), in.end(), 0.0f);
+    const openvdb::Coord firstBlock(lo.x() >> kBlockLog2, lo.y() >> kBlockLog2,
+                                    lo.z() >> kBlockLog2);
+    const openvdb::Coord lastBlock((lo.x() + span - 1) >> kBlockLog2,
+                                   (lo.y() + span - 1) >> kBlockLog2,
+                                   (lo.z() + span - 1) >> kBlockLog2);
+    bool any = false;
+    for (int bx = firstBlock.x(); bx <= lastBlock.x(); ++bx)
+        for (int by = firstBlock.y(); by <= lastBlock.y(); ++by)
+            for (int bz = firstBlock.z(); bz <= lastBlock.z(); ++bz) {
+                const auto found = blur.blocks.find(blockKey(bx, by, bz));
+                if (found == blur.blocks.end()) continue;
+                any = true;
+                const std::int64_t* b = found->second;
+                const openvdb::Coord b0(bx * kBlock, by * kBlock, bz * kBlock);
+                int from[3], to[3];
+                for (int a = 0; a < 3; ++a) {
+                    from[a] = std::max(b0[a], lo[a]);
+                    to[a] = std::min(b0[a] + kBlock, lo[a] + span);
+                }
+                for (int x = from[0]; x < to[0]; ++x)
+                    for (int y = from[1]; y < to[1]; ++y) {
+                        const std::int64_t* src = b + blockIndex(x - b0.x(), y - b0.y(), 0);
+                        float* dst = &in[(std::size_t(x - lo.x()) * span + (y - lo.y())) * span];
+                        for (int z = from[2]; z < to[2]; ++z)
+                            dst[z - lo.z()] = static_cast<float>(
+                                static_cast<double>(src[z - b0.z()]) * blur.scale);
+                    }
+            }
+    return any;
+}
+
+/// The box of `in` that holds the nonzero deposit (hi[0] < 0 when there is none): outside it
+/// every term of the blur is w times +0, which leaves a sum unchanged, so the passes only run
+/// over the box and what it reaches. Around sparse particles (vapour) that is a small part.
+VoxelBox nonzeroBox(const std::vector<float>& in, int span)
+{
+    VoxelBox box{{span, span, span}, {-1, -1, -1}};
+    for (int x = 0; x < span; ++x)
+        for (int y = 0; y < span; ++y) {
+            const float* row = &in[(std::size_t(x) * span + y) * span];
+            const auto nonzero = [](float v) { return v != 0.0f; };
+            const float* first = std::find_if(row, row + span, nonzero);
+            if (first == row + span) continue;
+            const float* last = std::find_if(std::make_reverse_iterator(row + span),
+                                             std::make_reverse_iterator(row), nonzero)
+                                    .base() -
+                                1;
+            box.lo[0] = std::min(box.lo[0], x), box.hi[0] = std::max(box.hi[0], x);
+            box.lo[1] = std::min(box.lo[1], y), box.hi[1] = std::max(box.hi[1], y);
+            box.lo[2] = std::min(box.lo[2], static_cast<int>(first - row));
+            box.hi[2] = std::max(box.hi[2], static_cast<int>(last - row));
+        }
+    return box;
+}
+
+/// The brick's voxels the blur of `in` reaches: output voxel o sums in[o .. o + width - 1],
+/// so it is nonzero only for o in [lo - width + 1, hi].
+VoxelBox reachedBox(const VoxelBox& in, int width)
+{
+    VoxelBox out{};
+    for (int a = 0; a < 3; ++a) {
+        out.lo[a] = std::max(0, in.lo[a] - (width - 1));
+        out.hi[a] = std::min(kBrick - 1, in.hi[a]);
+    }
+    return out;
+}
+
+/// The whole leaves that hold `box`: the output is kept leaf by leaf.
+VoxelBox leafBox(const VoxelBox& box)
+{
+    VoxelBox leaves{};
+    for (int a = 0; a < 3; ++a) {
+        leaves.lo[a] = box.lo[a] & ~7;
+        leaves.hi[a] = box.hi[a] | 7;
+    }
+    return leaves;
+}
+
+/// The first pass, along z: alongZ[x][y][z] for the rows of the nonzero box.
+void blurAlongZ(const BrickBlur& blur, const VoxelBox& in, const VoxelBox& out, BlurScratch& s)
+{
+    const int span = blur.span;
+    for (int x = in.lo[0]; x <= in.hi[0]; ++x)
+        for (int y = in.lo[1]; y <= in.hi[1]; ++y) {
+            const float* row = &s.in[(std::size_t(x) * span + y) * span];
+            float* dst = &s.alongZ[(std::size_t(x) * span + y) * kBrick];
+            std::fill(dst + out.lo[2], dst + out.hi[2] + 1, 0.0f);
+            for (int t = 0; t < blur.width; ++t) {
+                const float w = blur.taps[t];
+                for (int z = out.lo[2]; z <= out.hi[2]; ++z) dst[z] += w * row[z + t];
+            }
+        }
+}
+
+/// The second pass, along y: alongY[x][y][z], the rows outside the nonzero box being zeros.
+void blurAlongY(const BrickBlur& blur, const VoxelBox& in, const VoxelBox& out, BlurScratch& s)
+{
+    const int span = blur.span;
+    for (int x = in.lo[0]; x <= in.hi[0]; ++x)
+        for (int y = out.lo[1]; y <= out.hi[1]; ++y) {
+            float* dst = &s.alongY[(std::size_t(x) * kBrick + y) * kBrick];
+            std::fill(dst + out.lo[2], dst + out.hi[2] + 1, 0.0f);
+            for (int t = std::max(0, in.lo[1] - y); t < blur.width && y + t <= in.hi[1]; ++t) {
+                const float w = blur.taps[t];
+                const float* row = &s.alongZ[(std::size_t(x) * span + y + t) * kBrick];
+                for (int z = out.lo[2]; z <= out.hi[2]; ++z) dst[z] += w * row[z];
+            }
+        }
+}
+
+/// The last pass, along x: out[x][y][z], zeroed first over `leaves` so that the leaves the
+/// box touches are whole.
+void blurAlongX(const BrickBlur& blur, const VoxelBox& in, const VoxelBox& out,
+                const VoxelBox& leaves, BlurScratch& s)
+{
+    for (int x = leaves.lo[0]; x <= leaves.hi[0]; ++x)
+        for (int y = leaves.lo[1]; y <= leaves.hi[1]; ++y) {
+            float* row = &s.out[(std::size_t(x) * kBrick + y) * kBrick];
+            std::fill(row + leaves.lo[2], row + leaves.hi[2] + 1, 0.0f);
+        }
+    const int zCount = out.hi[2] - out.lo[2] + 1;
+    for (int x = out.lo[0]; x <= out.hi[0]; ++x)
+        for (int t = std::max(0, in.lo[0] - x); t < blur.width && x + t <= in.hi[0]; ++t) {
+            const float w = blur.taps[t];
+            for (int y = out.lo[1]; y <= out.hi[1]; ++y) {
+                float* dst = &s.out[(std::size_t(x) * kBrick + y) * kBrick + out.lo[2]];
+                const float* row =
+                    &s.alongY[(std::size_t(x + t) * kBrick + y) * kBrick + out.lo[2]];
+                for (int z = 0; z < zCount; ++z) dst[z] += w * row[z];
+            }
+        }
+}
+
+/// Cuts the output over `leaves` into OpenVDB leaves, each at its slot among the brick's
+/// kLeaves (x-major); a leaf with nothing active stays null.
+void keepLeaves(const std::vector<float>& out, const VoxelBox& leaves, const openvdb::Coord& origin,
+                bool clamp, std::unique_ptr<LeafT>* brickLeaves)
+{
+    for (int x = leaves.lo[0]; x <= leaves.hi[0]; x += 8)
+        for (int y = leaves.lo[1]; y <= leaves.hi[1]; y += 8)
+            for (int z = leaves.lo[2]; z <= leaves.hi[2]; z += 8)
+                brickLeaves[static_cast<std::size_t>(
+                    ((x / 8) * (kBrick / 8) + y / 8) * (kBrick / 8) + z / 8)] =
+                    leafFromDense(&out[(std::size_t(x) * kBrick + y) * kBrick + z], kBrick * kBrick,
+                                  kBrick, origin + openvdb::Coord(x, y, z), clamp);
+}
+
+/// One brick: its deposit and a margin of `reach` voxels, converted to density, then blurred
+/// along z, y and x; only the leaves holding something are kept in `brickLeaves`.
+void blurBrick(const BrickBlur& blur, const openvdb::Coord& brick, BlurScratch& s,
+               std::unique_ptr<LeafT>* brickLeaves)
+{
+    const openvdb::Coord origin(brick.x() * kBrick, brick.y() * kBrick, brick.z() * kBrick);
+    const openvdb::Coord lo = origin - openvdb::Coord(blur.reach);  // first voxel of `in`
+    if (!gatherDeposit(blur, lo, s.in)) return;
+    const VoxelBox in = nonzeroBox(s.in, blur.span);
+    if (in.hi[0] < 0) return;  // the deposit here rounded to zero
+    const VoxelBox out = reachedBox(in, blur.width);
+    blurAlongZ(blur, in, out, s);
+    blurAlongY(blur, in, out, s);
+    const VoxelBox leaves = leafBox(out);
+    blurAlongX(blur, in, out, leaves, s);
+    keepLeaves(s.out, leaves, origin, blur.clamp, brickLeaves);
+}
+
+/// Every brick blurred, in parallel: kLeaves slots a brick, in the bricks' order, null where
+/// nothing is active. Each brick writes only its own slots, so the result does not depend on
+/// the thread count.
+std::vector<std::unique_ptr<LeafT>> blurBricks(const BrickBlur& blur,
+                                               const std::vector<std::uint64_t>& bricks)
+{
+    std::vector<std::unique_ptr<LeafT>> leaves(bricks.size() * kLeaves);
+    const int span = blur.span;
+    tbb::enumerable_thread_specific<BlurScratch> scratch([&] {
+        return BlurScratch{std::vector<float>(std::size_t(span) * span * span),
+                           std::vector<float>(std::size_t(span) * span * kBrick),
+                           std::vector<float>(std::size_t(span) * kBrick * kBrick),
+                           std::vector<float>(std::size_t(kBrick) * kBrick * kBrick)};
+    });
+    tbb::parallel_for(std::size_t(0), bricks.size(), [&](std::size_t k) {
+        blurBrick(blur, blockCoord(bricks[k]), scratch.local(), &leaves[k * kLeaves]);
+    });
+    return leaves;
+}
+
+/// The grid "density" (fog volume, background 0) that takes over the blurred leaves.
+openvdb::FloatGrid::Ptr densityGrid(std::vector<std::unique_ptr<LeafT>>& leaves, double voxelSize)
+{
     auto grid = openvdb::FloatGrid::create(0.0f);
     for (auto& leaf : leaves)
         if (leaf) grid->tree().addLeaf(leaf.release());
     grid->setName("density");
     grid->setGridClass(openvdb::GRID_FOG_VOLUME);
-    grid->setTransform(openvdb::math::Transform::createLinearTransform(mSettings.voxelSize));
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(voxelSize));
     return grid;
+}
+
+}  // namespace
+
+openvdb::FloatGrid::Ptr GaussianSplatter::finish(const std::function<void()>& checkCancelled)
+{
+    Deposit& d = *mDeposit;
+    KeyedBlocks summed = sumThreadBlocks(d.locals);
+    if (checkCancelled) checkCancelled();
+    std::vector<Block> added;  // blocks that only halo layers reach
+    const BlockMap blocks = d.foldHalos(summed, added);
+    if (checkCancelled) checkCancelled();
+
+    const double rv = mSettings.radius / mSettings.voxelSize;
+    const std::vector<float> taps = blurTaps(gaussianKernelSigma(rv));
+    const std::vector<std::uint64_t> bricks =
+        bricksInReach(summed, static_cast<int>(taps.size() / 2));
+    checkBricksFitLimit(d.bytes.load(), bricks.size(), d.maxBytes);
+
+    // Each particle carries the kernel's integral (in voxels) times its peak density.
+    const double mass = mSettings.density * kernelIntegral(VoxelKernel::Gaussian, rv);
+    const BrickBlur blur(blocks, taps, mass / kWeightUnit, mSettings.clamp);
+    std::vector<std::unique_ptr<LeafT>> leaves = blurBricks(blur, bricks);
+    d.releaseBlocks();
+    if (checkCancelled) checkCancelled();
+    return densityGrid(leaves, mSettings.voxelSize);
 }
 
 }  // namespace cg::algo

@@ -20,8 +20,8 @@ public:
     const int height;
     const std::vector<float> rgba;  ///< 4 floats per pixel, top row first
     /// Optional, a renderer's: 3 floats (linear RGB) per pixel, top row first, the radiance
-    /// behind the volume, so rgba = cloud + (1 - alpha) background (algo/render/CloudLayer.h).
-    /// Empty for images that have none.
+    /// behind the volume, so rgba = cloud + (1 - alpha) background
+    /// (algo/render/image/CloudLayer.h). Empty for images that have none.
     const std::vector<float> background;
 
     bool hasBackground() const { return !background.empty(); }

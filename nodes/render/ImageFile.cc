@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "algo/render/CloudLayer.h"
+#include "algo/render/image/CloudLayer.h"
 #include "formats/ExrFile.h"
 #include "formats/PngFile.h"
 #include "nodes/data/Image.h"

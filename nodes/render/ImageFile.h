@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "algo/render/Display.h"
+#include "algo/render/image/Display.h"
 
 namespace cg {
 

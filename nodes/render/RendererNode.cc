@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "algo/render/RenderPathTrace.h"
-#include "algo/render/RenderVolume.h"
+#include "algo/render/integrators/RenderPathTrace.h"
+#include "algo/render/integrators/RenderVolume.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
@@ -100,13 +100,9 @@ public:
             takeVolumeOptics(*volume->grid, settings.medium, ctx);
         const bool pathTrace = ctx.params().getString("mode") == "pathtrace";
         const auto cancelled = [&ctx] { return ctx.cancelToken().cancelled(); };
-        algo::RenderedImage img;
-        try {
-            img = pathTrace ? algo::renderPathTraced(*volume->grid, settings, cancelled)
-                            : algo::renderFogVolume(*volume->grid, settings, cancelled);
-        } catch (const std::invalid_argument& e) {
-            throw InputError(ctx.nodeId(), e.what());
-        }
+        algo::RenderedImage img = pathTrace
+                                      ? algo::renderPathTraced(*volume->grid, settings, cancelled)
+                                      : algo::renderFogVolume(*volume->grid, settings, cancelled);
         ctx.checkCancelled();
         ctx.setOutput("image",
                       std::make_shared<ImageData>(img.width, img.height, std::move(img.rgba),

@@ -2,7 +2,7 @@
 
 #include <memory>
 
-#include "algo/render/SyntheticCumulus.h"
+#include "algo/render/scenes/SyntheticCumulus.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "algo/render/Display.h"
+#include "algo/render/image/Display.h"
 #include "core/CoreData.h"
 #include "core/Node.h"
 #include "core/Registry.h"

@@ -3,7 +3,7 @@
 #include <memory>
 #include <string>
 
-#include "algo/render/RenderOccupancy.h"
+#include "algo/render/media/RenderOccupancy.h"
 #include "core/Error.h"
 #include "core/Hash.h"
 #include "core/Node.h"
@@ -26,13 +26,9 @@ public:
     {
         const std::string& file = ctx.params().getString("file");
         if (file.empty()) throw InputError(ctx.nodeId(), "ReadVDB: parameter 'file' is empty");
-        try {
-            openvdb::FloatGrid::Ptr grid = formats::readVdbFogVolume(
-                file, ctx.params().getString("grid"), util::nodeAllocationLimitBytes());
-            ctx.setOutput("volume", std::make_shared<FogVolumeData>(std::move(grid)));
-        } catch (const formats::FormatError& e) {
-            throw InputError(e.where(), e.message());  // a bad file is bad input: exit 2
-        }
+        openvdb::FloatGrid::Ptr grid = formats::readVdbFogVolume(
+            file, ctx.params().getString("grid"), util::nodeAllocationLimitBytes());
+        ctx.setOutput("volume", std::make_shared<FogVolumeData>(std::move(grid)));
     }
 };
 

@@ -9,7 +9,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "Values.h"
-#include "algo/render/Display.h"
+#include "algo/render/image/Display.h"
 #include "nodes/data/Image.h"
 #include "nodes/render/ImageFile.h"
 

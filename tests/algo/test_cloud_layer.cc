@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "algo/render/CloudLayer.h"
+#include "algo/render/image/CloudLayer.h"
 
 namespace cg {
 

@@ -1,5 +1,6 @@
-// solveConjugateGradient (algo/render/ConjugateGradient.h): the solution of a known system,
-// columns solved together equal to each solved alone, and the same bits for any thread count.
+// solveConjugateGradient (algo/render/lighting/ConjugateGradient.h): the solution of a known
+// system, columns solved together equal to each solved alone, and the same bits for any thread
+// count.
 
 #include <cmath>
 #include <random>
@@ -7,7 +8,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
-#include "algo/render/ConjugateGradient.h"
+#include "algo/render/lighting/ConjugateGradient.h"
 
 namespace cg {
 namespace {

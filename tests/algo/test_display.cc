@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "algo/CounterRandom.h"
-#include "algo/render/Display.h"
-#include "algo/render/ToneMap.h"
+#include "algo/render/image/Display.h"
+#include "algo/render/image/ToneMap.h"
 
 namespace cg::algo {
 namespace {

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "algo/render/Phase.h"
+#include "algo/render/media/Phase.h"
 
 namespace cg {
 namespace {

@@ -5,9 +5,9 @@
 
 #include <cmath>
 
-#include "algo/render/Phase.h"
-#include "algo/render/RenderVolume.h"
-#include "algo/render/ToneMap.h"
+#include "algo/render/image/ToneMap.h"
+#include "algo/render/integrators/RenderVolume.h"
+#include "algo/render/media/Phase.h"
 #include "support/RenderTestVolumes.h"
 
 namespace cg {

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <string>
 
-#include "algo/render/RenderError.h"
-#include "algo/render/RenderPathTrace.h"
-#include "algo/render/RenderVolume.h"
+#include "algo/render/integrators/RenderPathTrace.h"
+#include "algo/render/integrators/RenderVolume.h"
+#include "algo/render/metrics/RenderError.h"
 
 namespace cg {
 

@@ -1,12 +1,12 @@
-// The fast renderer's multiple-scattering solve (algo/render/RenderDiffusion.h).
+// The fast renderer's multiple-scattering solve (algo/render/lighting/RenderDiffusion.h).
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-#include "algo/render/RenderDiffusion.h"
-#include "algo/render/RenderLightMap.h"
-#include "algo/render/RenderOccupancy.h"
+#include "algo/render/lighting/RenderDiffusion.h"
+#include "algo/render/lighting/RenderLightMap.h"
+#include "algo/render/media/RenderOccupancy.h"
 #include "support/RenderTestVolumes.h"
 
 namespace cg {

@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 #include <openvdb/tools/Interpolation.h>
 
-#include "algo/render/RenderLightMap.h"
-#include "algo/render/RenderOccupancy.h"
+#include "algo/render/lighting/RenderLightMap.h"
+#include "algo/render/media/RenderOccupancy.h"
 #include "support/RenderTestVolumes.h"
 
 namespace cg {

@@ -11,9 +11,9 @@
 #include <openvdb/tools/Interpolation.h>
 
 #include "algo/CounterRandom.h"
-#include "algo/render/RenderOccupancy.h"
-#include "algo/render/RenderPathTrace.h"
-#include "algo/render/RenderVolume.h"
+#include "algo/render/integrators/RenderPathTrace.h"
+#include "algo/render/integrators/RenderVolume.h"
+#include "algo/render/media/RenderOccupancy.h"
 
 namespace cg {
 namespace {

@@ -9,8 +9,8 @@
 #include <cstring>
 #include <functional>
 
-#include "algo/render/Phase.h"
-#include "algo/render/RenderPathTrace.h"
+#include "algo/render/integrators/RenderPathTrace.h"
+#include "algo/render/media/Phase.h"
 #include "support/RenderTestVolumes.h"
 
 namespace cg {

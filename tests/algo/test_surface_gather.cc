@@ -1,11 +1,12 @@
-// What surface faces and the ground see through the clear air (algo/render/SurfaceGather.h).
+// What surface faces and the ground see through the clear air
+// (algo/render/lighting/SurfaceGather.h).
 
 #include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-#include "algo/render/SurfaceGather.h"
+#include "algo/render/lighting/SurfaceGather.h"
 
 namespace cg {
 namespace {

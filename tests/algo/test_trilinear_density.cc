@@ -6,7 +6,7 @@
 #include <openvdb/tools/Interpolation.h>
 
 #include "algo/CounterRandom.h"
-#include "algo/render/TrilinearDensity.h"
+#include "algo/render/media/TrilinearDensity.h"
 #include "support/RenderTestVolumes.h"
 
 namespace cg {

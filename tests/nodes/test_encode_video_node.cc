@@ -3,15 +3,9 @@
 
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -28,45 +22,11 @@
 #include "support/TestUtil.h"
 #include "util/FramePattern.h"
 
-extern char** environ;
-
 namespace cg {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-/// The first executable `name` on PATH, or empty.
-std::string findOnPath(const std::string& name)
-{
-    const char* path = std::getenv("PATH");
-    std::stringstream dirs(path ? path : "/usr/local/bin:/usr/bin:/bin");
-    std::string dir;
-    while (std::getline(dirs, dir, ':')) {
-        const fs::path candidate = fs::path(dir.empty() ? "." : dir) / name;
-        if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
-    }
-    return "";
-}
-
-/// Runs `argv` without a shell; the exit status (-1 if it did not run), stdout in `output`.
-int spawn(const std::vector<std::string>& argv, const fs::path& log, std::string& output)
-{
-    std::vector<char*> args;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    pid_t pid = -1;
-    const int rc = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    if (rc != 0) return -1;
-    int status = 0;
-    const bool exited = ::waitpid(pid, &status, 0) == pid && WIFEXITED(status);
-    output = test::readFile(log);
-    return exited ? WEXITSTATUS(status) : -1;
-}
 
 class EncodeVideoTest : public ::testing::Test {
 protected:
@@ -140,7 +100,7 @@ TEST(FramePattern, OutputFileProblemsAreNamed)
 
 TEST_F(EncodeVideoTest, EncodesTheWrittenFramesIntoAnMp4)
 {
-    if (findOnPath("ffmpeg").empty()) GTEST_SKIP() << "ffmpeg is not installed";
+    if (test::findOnPath("ffmpeg").empty()) GTEST_SKIP() << "ffmpeg is not installed";
     const Graph g = parse(std::string(kParams) + "}");
     Evaluator ev = evaluator();
     ev.cookFrames(g, 0, 3);
@@ -152,15 +112,15 @@ TEST_F(EncodeVideoTest, EncodesTheWrittenFramesIntoAnMp4)
     ASSERT_GT(bytes.size(), 8u);
     EXPECT_EQ(bytes.substr(4, 4), "ftyp");
 
-    const std::string ffprobe = findOnPath("ffprobe");
+    const std::string ffprobe = test::findOnPath("ffprobe");
     if (ffprobe.empty()) return;
-    std::string probe;
-    ASSERT_EQ(spawn({ffprobe, "-v", "error", "-select_streams", "v:0", "-count_frames",
-                     "-show_entries", "stream=codec_name,pix_fmt,width,height,nb_read_frames",
-                     "-of", "default=noprint_wrappers=1", mp4.string()},
-                    out / "ffprobe.log", probe),
-              0)
-        << probe;
+    const test::ProgramResult run =
+        test::runProgram({ffprobe, "-v", "error", "-select_streams", "v:0", "-count_frames",
+                          "-show_entries", "stream=codec_name,pix_fmt,width,height,nb_read_frames",
+                          "-of", "default=noprint_wrappers=1", mp4.string()},
+                         out / "ffprobe.log", /*alsoStderr=*/false);
+    const std::string& probe = run.output;
+    ASSERT_EQ(run.status, 0) << probe;
     EXPECT_NE(probe.find("codec_name=h264"), std::string::npos) << probe;
     EXPECT_NE(probe.find("pix_fmt=yuv420p"), std::string::npos) << probe;
     EXPECT_NE(probe.find("width=34"), std::string::npos) << probe;  // padded to even

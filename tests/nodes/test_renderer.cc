@@ -9,8 +9,8 @@
 #include <memory>
 #include <string>
 
-#include "algo/render/RenderVolume.h"
-#include "algo/render/SyntheticCumulus.h"
+#include "algo/render/integrators/RenderVolume.h"
+#include "algo/render/scenes/SyntheticCumulus.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Evaluator.h"

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "algo/render/Display.h"
-#include "algo/render/RenderVolume.h"
-#include "algo/render/ToneMap.h"
+#include "algo/render/image/Display.h"
+#include "algo/render/image/ToneMap.h"
+#include "algo/render/integrators/RenderVolume.h"
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Evaluator.h"

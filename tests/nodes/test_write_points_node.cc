@@ -4,18 +4,11 @@
 
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <filesystem>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -36,8 +29,6 @@
 #include "nodes/volume/VolumeNodes.h"
 #include "support/FixtureNodes.h"
 #include "support/TestUtil.h"
-
-extern char** environ;
 
 namespace cg {
 
@@ -284,40 +275,6 @@ pts::PointDataGrid::Ptr readBack(const fs::path& path)
     return openvdb::gridPtrCast<pts::PointDataGrid>(base);
 }
 
-/// The first executable `name` on PATH, or empty.
-std::string findOnPath(const std::string& name)
-{
-    const char* path = std::getenv("PATH");
-    std::stringstream dirs(path ? path : "/usr/local/bin:/usr/bin:/bin");
-    std::string dir;
-    while (std::getline(dirs, dir, ':')) {
-        const fs::path candidate = fs::path(dir.empty() ? "." : dir) / name;
-        if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
-    }
-    return "";
-}
-
-/// Runs `argv` without a shell; returns the exit status (-1 if it did not run) and fills
-/// `output` with stdout and stderr.
-int spawn(const std::vector<std::string>& argv, const fs::path& log, std::string& output)
-{
-    std::vector<char*> args;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    pid_t pid = -1;
-    const int rc = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    if (rc != 0) return -1;
-    int status = 0;
-    const bool exited = ::waitpid(pid, &status, 0) == pid && WIFEXITED(status);
-    output = test::readFile(log);
-    return exited ? WEXITSTATUS(status) : -1;
-}
-
 }  // namespace
 
 TEST_F(WritePointsTest, WritesAFilePerFrameThatReadsBack)
@@ -355,14 +312,15 @@ TEST_F(WritePointsTest, WritesAFilePerFrameThatReadsBack)
 
 TEST_F(WritePointsTest, VdbPrintReadsTheWrittenFile)
 {
-    const std::string vdbPrint = findOnPath("vdb_print");
+    const std::string vdbPrint = test::findOnPath("vdb_print");
     ASSERT_FALSE(vdbPrint.empty())
         << "vdb_print is not on PATH: install the Debian package libopenvdb-tools "
            "(scripts/install-deps.sh lists it); this test needs it and does not skip";
     const fs::path path = write(parse(R"({"file": "print.####.vdb"})"), 5);
-    std::string output;
-    ASSERT_EQ(spawn({vdbPrint, path.string(), "-l", "-m"}, out / "vdb_print.log", output), 0)
-        << output;
+    const test::ProgramResult run =
+        test::runProgram({vdbPrint, path.string(), "-l", "-m"}, out / "vdb_print.log");
+    const std::string& output = run.output;
+    ASSERT_EQ(run.status, 0) << output;
     EXPECT_NE(output.find("points"), std::string::npos) << output;
     EXPECT_NE(output.find("ptdataidx"), std::string::npos) << output;    // the point grid type
     EXPECT_NE(output.find("WritePoints"), std::string::npos) << output;  // our creator

@@ -4,17 +4,9 @@
 
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -31,8 +23,6 @@
 #include "nodes/volume/VolumeNodes.h"
 #include "support/FixtureNodes.h"
 #include "support/TestUtil.h"
-
-extern char** environ;
 
 namespace cg {
 
@@ -138,45 +128,6 @@ openvdb::FloatGrid::Ptr readBack(const fs::path& path)
     const auto base = file.readGrid("density");
     file.close();
     return openvdb::gridPtrCast<openvdb::FloatGrid>(base);
-}
-
-/// The first executable `name` on PATH, or empty.
-std::string findOnPath(const std::string& name)
-{
-    const char* path = std::getenv("PATH");
-    std::stringstream dirs(path ? path : "/usr/local/bin:/usr/bin:/bin");
-    std::string dir;
-    while (std::getline(dirs, dir, ':')) {
-        const fs::path candidate = fs::path(dir.empty() ? "." : dir) / name;
-        if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
-    }
-    return "";
-}
-
-struct SpawnResult {
-    int status = -1;
-    std::string output;
-};
-
-/// Runs `argv` without a shell (posix_spawn), stdout and stderr into `log`.
-SpawnResult spawn(const std::vector<std::string>& argv, const fs::path& log)
-{
-    std::vector<char*> args;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    pid_t pid = -1;
-    SpawnResult run;
-    const int rc = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    if (rc != 0) return run;
-    int status = 0;
-    if (::waitpid(pid, &status, 0) == pid && WIFEXITED(status)) run.status = WEXITSTATUS(status);
-    run.output = test::readFile(log);
-    return run;
 }
 
 }  // namespace
@@ -315,12 +266,13 @@ TEST_F(WriteVdbTest, WhichFramesAreWrittenDoesNotDependOnWhatWasCookedBefore)
 
 TEST_F(WriteVdbTest, VdbPrintReadsTheWrittenFile)
 {
-    const std::string vdbPrint = findOnPath("vdb_print");
+    const std::string vdbPrint = test::findOnPath("vdb_print");
     ASSERT_FALSE(vdbPrint.empty())
         << "vdb_print is not on PATH: install the Debian package libopenvdb-tools "
            "(scripts/install-deps.sh lists it); this test needs it and does not skip";
     const fs::path path = write(parse(R"({"file": "print.####.vdb"})"), 5);
-    const SpawnResult run = spawn({vdbPrint, path.string(), "-l", "-m"}, out / "vdb_print.log");
+    const test::ProgramResult run =
+        test::runProgram({vdbPrint, path.string(), "-l", "-m"}, out / "vdb_print.log");
     ASSERT_EQ(run.status, 0) << run.output;
     EXPECT_NE(run.output.find("density"), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("fog volume"), std::string::npos) << run.output;

@@ -11,7 +11,7 @@
 
 #include <openvdb/openvdb.h>
 
-#include "algo/render/RenderVolume.h"
+#include "algo/render/integrators/RenderVolume.h"
 
 namespace cg::test {
 

@@ -1,5 +1,6 @@
 #pragma once
-/// Helpers for tests: temporary directories, files, and running the cloudgraph CLI.
+/// Helpers for tests: temporary directories, files, and running the cloudgraph CLI and other
+/// programs.
 
 #include <filesystem>
 #include <string>
@@ -57,5 +58,21 @@ CliResult runCli(const std::vector<std::string>& args);
 
 /// Path of a file under the source tree's tests/data.
 std::filesystem::path dataPath(const std::string& relative);
+
+/// The first executable `name` on PATH (/usr/local/bin:/usr/bin:/bin when PATH is unset), or
+/// empty: a test of an outside program (ffmpeg, vdb_print) skips or fails clearly without it.
+std::string findOnPath(const std::string& name);
+
+/// What runProgram returns.
+struct ProgramResult {
+    int status = -1;     ///< the exit status; -1 when it did not start or did not exit normally
+    std::string output;  ///< what it wrote to the log
+};
+
+/// Runs `argv` (argv[0] a path, as findOnPath gives) without a shell and waits for it. Its
+/// stdout goes to the file `log`, and its stderr too with `alsoStderr` (else to the test's
+/// stderr); the log comes back as output.
+ProgramResult runProgram(const std::vector<std::string>& argv, const std::filesystem::path& log,
+                         bool alsoStderr = true);
 
 }  // namespace cg::test

@@ -1,4 +1,4 @@
-#include "algo/render/ConjugateGradient.h"
+#include "algo/render/lighting/ConjugateGradient.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "algo/render/DiffuseLight.h"
+#include "algo/render/lighting/DiffuseLight.h"
 
 #include <algorithm>
 #include <cmath>

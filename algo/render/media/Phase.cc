@@ -1,4 +1,4 @@
-#include "algo/render/Phase.h"
+#include "algo/render/media/Phase.h"
 
 #include <tbb/parallel_for.h>
 

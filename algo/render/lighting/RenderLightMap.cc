@@ -1,4 +1,4 @@
-#include "algo/render/RenderLightMap.h"
+#include "algo/render/lighting/RenderLightMap.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "algo/render/TrilinearDensity.h"
+#include "algo/render/media/TrilinearDensity.h"
 #include "util/CheckedSize.h"
 
 namespace cg::algo {

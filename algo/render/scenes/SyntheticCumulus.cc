@@ -1,4 +1,4 @@
-#include "algo/render/SyntheticCumulus.h"
+#include "algo/render/scenes/SyntheticCumulus.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "algo/render/SyntheticCumulusNoise.h"
+#include "algo/render/scenes/SyntheticCumulusNoise.h"
 
 namespace cg::algo {
 

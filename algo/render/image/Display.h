@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "algo/render/ToneMap.h"
+#include "algo/render/image/ToneMap.h"
 
 namespace cg::algo {
 

@@ -1,4 +1,4 @@
-#include "algo/render/RenderOccupancy.h"
+#include "algo/render/media/RenderOccupancy.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "algo/render/RenderError.h"
+#include "algo/render/metrics/RenderError.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "algo/render/SyntheticCumulus.h"
+#include "algo/render/scenes/SyntheticCumulus.h"
 
 namespace cg::algo {
 

@@ -13,7 +13,7 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
 
-#include "algo/render/RenderOccupancy.h"
+#include "algo/render/media/RenderOccupancy.h"
 
 namespace cg::algo {
 

@@ -1,4 +1,4 @@
-#include "algo/render/RenderPathTrace.h"
+#include "algo/render/integrators/RenderPathTrace.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,10 +10,10 @@
 #include <tbb/parallel_for.h>
 
 #include "algo/CounterRandom.h"
-#include "algo/render/Phase.h"
-#include "algo/render/RenderOccupancy.h"
 #include "algo/render/RenderRays.h"
-#include "algo/render/TrilinearDensity.h"
+#include "algo/render/media/Phase.h"
+#include "algo/render/media/RenderOccupancy.h"
+#include "algo/render/media/TrilinearDensity.h"
 
 namespace cg::algo {
 

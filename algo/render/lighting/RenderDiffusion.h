@@ -41,10 +41,10 @@
 
 #include <openvdb/openvdb.h>
 
-#include "algo/render/DiffuseLight.h"
-#include "algo/render/GroundGrid.h"
-#include "algo/render/RenderLightMap.h"
 #include "algo/render/RenderSettings.h"
+#include "algo/render/lighting/DiffuseLight.h"
+#include "algo/render/lighting/GroundGrid.h"
+#include "algo/render/lighting/RenderLightMap.h"
 
 namespace cg::algo {
 
@@ -88,6 +88,9 @@ public:
     int iterations() const { return mIterations; }  ///< of the longest of the solves
 
 private:
+    /// The constructor's steps and the state they share while solving (RenderDiffusion.cc).
+    class Solver;
+
     std::size_t index(int i, int j, int k) const
     {
         return (static_cast<std::size_t>(i) * static_cast<std::size_t>(mN[1]) +

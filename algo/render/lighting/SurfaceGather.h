@@ -32,9 +32,9 @@
 
 #include <openvdb/openvdb.h>
 
-#include "algo/render/GroundGrid.h"
-#include "algo/render/Phase.h"
 #include "algo/render/RenderSettings.h"
+#include "algo/render/lighting/GroundGrid.h"
+#include "algo/render/media/Phase.h"
 
 namespace cg::algo {
 

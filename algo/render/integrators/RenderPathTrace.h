@@ -20,7 +20,7 @@
 #include <openvdb/openvdb.h>
 
 #include "algo/render/RenderSettings.h"
-#include "algo/render/RenderVolume.h"
+#include "algo/render/integrators/RenderVolume.h"
 
 namespace cg::algo {
 

@@ -1,4 +1,4 @@
-#include "algo/render/SurfaceGather.h"
+#include "algo/render/lighting/SurfaceGather.h"
 
 #include <algorithm>
 #include <array>
@@ -6,12 +6,13 @@
 #include <limits>
 #include <numeric>
 #include <stdexcept>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "algo/render/DiffuseLight.h"
 #include "algo/render/RenderRays.h"
+#include "algo/render/lighting/DiffuseLight.h"
 
 namespace cg::algo {
 
@@ -409,139 +410,198 @@ double entering(const Blocks& lattice, const RenderVec3& q, const RenderVec3& u)
     return clipToBox(q, u, lo, hi, near, far) ? near : -1.0;
 }
 
-/// The gather on the lattice's blocks of `stride` cells.
-Gathered gatherOn(const GatherLattice& fine, Blocks& lattice, const std::vector<GatherFace>& faces,
-                  const GatherGround& ground, int directions, double clearance, int stride,
-                  const std::function<bool()>& cancelled)
+/// Each face kind's cosine weights over the directions on each side of the horizon, and the
+/// ground's over those above it: what the views' sums are divided by.
+struct DirectionWeights {
+    double face[6][2] = {};
+    double ground = 0.0;
+};
+
+DirectionWeights weightsOver(const std::vector<RenderVec3>& dirs, const RenderVec3 (&normal)[6])
 {
-    // Directions above the horizon first: the ground's map is complete before a face looks
-    // down at it.
-    const std::vector<RenderVec3> dirs = fibonacciSphere(std::max(2, directions));
-    // Each face kind's cosine weights over the directions on each side of the horizon.
-    double weight[6][2] = {};
+    DirectionWeights out;
     for (int kind = 0; kind < 6; ++kind)
         for (const RenderVec3& d : dirs) {
-            const double c = d.dot(fine.normal[kind]);
-            if (c > 0.0) weight[kind][d.z() > 0.0 ? 0 : 1] += c;
+            const double c = d.dot(normal[kind]);
+            if (c > 0.0) out.face[kind][d.z() > 0.0 ? 0 : 1] += c;
         }
-    double groundWeight = 0.0;
-    for (const RenderVec3& d : dirs) groundWeight += std::max(0.0, d.z());
+    for (const RenderVec3& d : dirs) out.ground += std::max(0.0, d.z());
+    return out;
+}
 
-    Gathered out;
-    if (ground.present)
-        out.ground.assign(ground.map.points(), GroundView{0.0, {0.0, 0.0, 0.0, 0.0}});
-    const openvdb::Mat3d metresPerCell = lattice.cellsPerMetre.inverse();
-    const auto cellOf = [&](const RenderVec3& world) {
-        return lattice.cellsPerMetre * (world - lattice.origin);
-    };
-    // The faces by the air cell they open onto: what a direction's lookup reads, and the
-    // ground point it reaches, depend on the air cell alone, so its faces share them. Their
-    // views are summed in that order and put back in the faces' order at the end.
-    std::vector<std::size_t> byAir(faces.size());
-    std::iota(byAir.begin(), byAir.end(), std::size_t(0));
-    const auto airOf = [&](std::size_t f) {
-        const std::array<int, 3>& a = faces[f].air;
-        return fine.cell(a[0], a[1], a[2]);
-    };
-    std::stable_sort(byAir.begin(), byAir.end(),
-                     [&](std::size_t x, std::size_t y) { return airOf(x) < airOf(y); });
+/// A gather's faces and ground points and what each has seen so far, summed direction by
+/// direction. The faces are taken by the air cell they open onto: what a direction's lookup
+/// reads, and the ground point it reaches, depend on the air cell alone, so its faces share
+/// them. Their views are summed in that order and put back in the faces' order at the end.
+class Gather {
+public:
+    Gather(const GatherLattice& fine, Blocks& lattice, const std::vector<GatherFace>& faces,
+           const GatherGround& ground, int stride);
+
+    void finishGroundMap(double weight);
+    void look(const RenderVec3& d, double clearance);
+    Gathered result(const double (&weight)[6][2]);
+
+private:
     struct Air {
-        std::size_t first = 0;  ///< its first face in byAir
+        std::size_t first = 0;  ///< its first face in mByAir
         unsigned kinds = 0;     ///< bit k: it has a face of kind k
         RenderVec3 at{0.0};     ///< its centre in the swept lattice's cells
     };
-    std::vector<Air> airs;
-    for (std::size_t i = 0; i < byAir.size(); ++i) {
-        const GatherFace& face = faces[byAir[i]];
-        if (i == 0 || airOf(byAir[i]) != airOf(byAir[i - 1])) {
+
+    void groupByAir(const std::vector<GatherFace>& faces, int stride);
+    void groundLooksUp(const RenderVec3& d, const RenderVec3& u);
+    void facesLook(const RenderVec3& d, const RenderVec3& u, double reach);
+
+    const GatherLattice& mFine;
+    Blocks& mLattice;
+    const GatherGround& mGround;
+    const openvdb::Mat3d mMetresPerCell;
+    std::vector<GroundView> mGroundViews;  ///< per point of the ground's map
+    std::vector<std::size_t> mByAir;       ///< the faces in the order of their air cells
+    std::vector<Air> mAirs;
+    std::vector<int> mKindOf;          ///< per face in mByAir, its kind
+    std::vector<GatheredView> mViews;  ///< per face in mByAir, its sums
+    std::vector<float> mField;
+    Sweep mSweep;
+};
+
+Gather::Gather(const GatherLattice& fine, Blocks& lattice, const std::vector<GatherFace>& faces,
+               const GatherGround& ground, int stride)
+    : mFine(fine),
+      mLattice(lattice),
+      mGround(ground),
+      mMetresPerCell(lattice.cellsPerMetre.inverse()),
+      mField(kLanes * lattice.cells()),
+      mSweep(lattice, mField)
+{
+    if (ground.present)
+        mGroundViews.assign(ground.map.points(), GroundView{0.0, {0.0, 0.0, 0.0, 0.0}});
+    groupByAir(faces, stride);
+}
+
+void Gather::groupByAir(const std::vector<GatherFace>& faces, int stride)
+{
+    mByAir.resize(faces.size());
+    std::iota(mByAir.begin(), mByAir.end(), std::size_t(0));
+    const auto airOf = [&](std::size_t f) {
+        const std::array<int, 3>& a = faces[f].air;
+        return mFine.cell(a[0], a[1], a[2]);
+    };
+    std::stable_sort(mByAir.begin(), mByAir.end(),
+                     [&](std::size_t x, std::size_t y) { return airOf(x) < airOf(y); });
+    for (std::size_t i = 0; i < mByAir.size(); ++i) {
+        const GatherFace& face = faces[mByAir[i]];
+        if (i == 0 || airOf(mByAir[i]) != airOf(mByAir[i - 1])) {
             Air air;
             air.first = i;
             air.at = (RenderVec3(face.air[0], face.air[1], face.air[2]) + RenderVec3(0.5)) /
                          double(stride) -
                      RenderVec3(0.5);
-            airs.push_back(air);
+            mAirs.push_back(air);
         }
-        airs.back().kinds |= 1u << face.kind;
+        mAirs.back().kinds |= 1u << face.kind;
     }
-    std::vector<int> kindOf(byAir.size());
-    for (std::size_t i = 0; i < byAir.size(); ++i) kindOf[i] = faces[byAir[i]].kind;
-    std::vector<GatheredView> views(byAir.size());
-    for (GatheredView& v : views) v.transmittance[0] = v.transmittance[1] = 0.0;
+    mKindOf.resize(mByAir.size());
+    for (std::size_t i = 0; i < mByAir.size(); ++i) mKindOf[i] = faces[mByAir[i]].kind;
+    mViews.resize(mByAir.size());
+    for (GatheredView& v : mViews) v.transmittance[0] = v.transmittance[1] = 0.0;
+}
 
-    std::vector<float> field(kLanes * lattice.cells());
-    Sweep sweep(lattice, field);
-    bool mapDone = false;
-    for (const RenderVec3& d : dirs) {
-        if (cancelled && cancelled()) break;
-        const int side = d.z() > 0.0 ? 0 : 1;
-        if (side == 1 && !mapDone) {
-            for (GroundView& g : out.ground) {
-                g.sky /= groundWeight;
-                for (double& e : g.emitted) e /= groundWeight;
-            }
-            smooth(ground.map, static_cast<int>(ground.smoothing / ground.map.spacing), out.ground);
-            mapDone = true;
-        }
-        const RenderVec3 u = lattice.cellsPerMetre * d;
-        sourcesToward(fine, lattice, d);
-        sweep.run(u);
-        if (side == 0)  // each ground point looks up along d, into the lattice where it meets it
-            tbb::parallel_for(std::size_t(0), out.ground.size(), [&](std::size_t at) {
-                const RenderVec3 q = cellOf(ground.map.point(at));
-                const double t = entering(lattice, q, u);
-                GroundView& g = out.ground[at];
-                if (t < 0.0) {
-                    g.sky += d.z();
-                    return;
-                }
-                RenderVec3 in = q + u * t;
-                for (int a = 0; a < 3; ++a) in[a] = std::clamp(in[a], 0.0, lattice.n[a] - 1.0);
-                double seen[kLanes];
-                sweep.lookup(in, seen);
-                g.sky += d.z() * seen[0];
-                for (int l = 0; l < kUnits; ++l) g.emitted[l] += d.z() * seen[1 + l];
-            });
-        const double reach = clearance / std::abs(u[sweep.dominantAxis()]);
-        double facing[6];
-        unsigned facingKinds = 0;
-        for (int kind = 0; kind < 6; ++kind) {
-            facing[kind] = d.dot(fine.normal[kind]);
-            if (facing[kind] > 0.0) facingKinds |= 1u << kind;
-        }
-        const bool toGround = side == 1 && ground.present;
-        tbb::parallel_for(std::size_t(0), airs.size(), [&](std::size_t a) {
-            const Air& air = airs[a];
-            if (!(air.kinds & facingKinds)) return;
-            double seen[kLanes];
-            sweep.lookup(air.at + u * reach, seen);
-            // Below the horizon, the ground point this direction reaches and what it sends back.
-            double sends[GatheredView::kGroundUnits];
-            if (toGround) {
-                const RenderVec3 from = lattice.origin + metresPerCell * air.at;
-                const double down = std::max(0.0, from.z()) / -d.z();
-                groundSends(ground, out.ground,
-                            RenderVec3(from.x() + d.x() * down, from.y() + d.y() * down, 0.0),
-                            sends);
-            }
-            const std::size_t end = a + 1 < airs.size() ? airs[a + 1].first : byAir.size();
-            for (std::size_t i = air.first; i < end; ++i) {
-                const double c = facing[kindOf[i]];
-                if (!(c > 0.0)) continue;
-                GatheredView& v = views[i];
-                v.transmittance[side] += c * seen[0];
-                for (int l = 0; l < kUnits; ++l) v.emitted[side][l] += c * seen[1 + l];
-                if (toGround)
-                    for (int g = 0; g < GatheredView::kGroundUnits; ++g)
-                        v.ground[g] += c * seen[0] * sends[g];
-            }
-        });
+/// Turns the ground points' sums over the directions above the horizon into means and blurs
+/// the map: it is complete before a face looks down at it.
+void Gather::finishGroundMap(double weight)
+{
+    for (GroundView& g : mGroundViews) {
+        g.sky /= weight;
+        for (double& e : g.emitted) e /= weight;
     }
-    out.faces.resize(faces.size());
-    tbb::parallel_for(std::size_t(0), byAir.size(), [&](std::size_t i) {
-        GatheredView& v = out.faces[byAir[i]];
-        v = views[i];
+    smooth(mGround.map, static_cast<int>(mGround.smoothing / mGround.map.spacing), mGroundViews);
+}
+
+/// Sweeps the lattice along d and adds what is seen along it: by the ground points (d above
+/// the horizon) and by the faces that face d, from `clearance` swept cells out.
+void Gather::look(const RenderVec3& d, double clearance)
+{
+    const int side = d.z() > 0.0 ? 0 : 1;
+    const RenderVec3 u = mLattice.cellsPerMetre * d;
+    sourcesToward(mFine, mLattice, d);
+    mSweep.run(u);
+    if (side == 0) groundLooksUp(d, u);
+    facesLook(d, u, clearance / std::abs(u[mSweep.dominantAxis()]));
+}
+
+/// Each ground point looks up along d, into the lattice where it meets it.
+void Gather::groundLooksUp(const RenderVec3& d, const RenderVec3& u)
+{
+    tbb::parallel_for(std::size_t(0), mGroundViews.size(), [&](std::size_t at) {
+        const RenderVec3 q = mLattice.cellsPerMetre * (mGround.map.point(at) - mLattice.origin);
+        const double t = entering(mLattice, q, u);
+        GroundView& g = mGroundViews[at];
+        if (t < 0.0) {
+            g.sky += d.z();
+            return;
+        }
+        RenderVec3 in = q + u * t;
+        for (int a = 0; a < 3; ++a) in[a] = std::clamp(in[a], 0.0, mLattice.n[a] - 1.0);
+        double seen[kLanes];
+        mSweep.lookup(in, seen);
+        g.sky += d.z() * seen[0];
+        for (int l = 0; l < kUnits; ++l) g.emitted[l] += d.z() * seen[1 + l];
+    });
+}
+
+/// Each air cell looks along d, `reach` metres out; each of its faces that faces d adds what
+/// it sees, cosine-weighted, on d's side of the horizon, and below it the ground's light.
+void Gather::facesLook(const RenderVec3& d, const RenderVec3& u, double reach)
+{
+    const int side = d.z() > 0.0 ? 0 : 1;
+    double facing[6];
+    unsigned facingKinds = 0;
+    for (int kind = 0; kind < 6; ++kind) {
+        facing[kind] = d.dot(mFine.normal[kind]);
+        if (facing[kind] > 0.0) facingKinds |= 1u << kind;
+    }
+    const bool toGround = side == 1 && mGround.present;
+    tbb::parallel_for(std::size_t(0), mAirs.size(), [&](std::size_t a) {
+        const Air& air = mAirs[a];
+        if (!(air.kinds & facingKinds)) return;
+        double seen[kLanes];
+        mSweep.lookup(air.at + u * reach, seen);
+        // Below the horizon, the ground point this direction reaches and what it sends back.
+        double sends[GatheredView::kGroundUnits];
+        if (toGround) {
+            const RenderVec3 from = mLattice.origin + mMetresPerCell * air.at;
+            const double down = std::max(0.0, from.z()) / -d.z();
+            groundSends(mGround, mGroundViews,
+                        RenderVec3(from.x() + d.x() * down, from.y() + d.y() * down, 0.0), sends);
+        }
+        const std::size_t end = a + 1 < mAirs.size() ? mAirs[a + 1].first : mByAir.size();
+        for (std::size_t i = air.first; i < end; ++i) {
+            const double c = facing[mKindOf[i]];
+            if (!(c > 0.0)) continue;
+            GatheredView& v = mViews[i];
+            v.transmittance[side] += c * seen[0];
+            for (int l = 0; l < kUnits; ++l) v.emitted[side][l] += c * seen[1 + l];
+            if (toGround)
+                for (int g = 0; g < GatheredView::kGroundUnits; ++g)
+                    v.ground[g] += c * seen[0] * sends[g];
+        }
+    });
+}
+
+/// The faces' means over their hemispheres, in the faces' order, and the ground's map; once,
+/// at the end.
+Gathered Gather::result(const double (&weight)[6][2])
+{
+    Gathered out;
+    out.ground = std::move(mGroundViews);
+    out.faces.resize(mByAir.size());
+    tbb::parallel_for(std::size_t(0), mByAir.size(), [&](std::size_t i) {
+        GatheredView& v = out.faces[mByAir[i]];
+        v = mViews[i];
         for (int side = 0; side < 2; ++side) {
-            const double w = weight[kindOf[i]][side];
+            const double w = weight[mKindOf[i]][side];
             if (!(w > 0.0)) {
                 v.transmittance[side] = 1.0;
                 continue;
@@ -553,6 +613,28 @@ Gathered gatherOn(const GatherLattice& fine, Blocks& lattice, const std::vector<
         }
     });
     return out;
+}
+
+/// The gather on the lattice's blocks of `stride` cells.
+Gathered gatherOn(const GatherLattice& fine, Blocks& lattice, const std::vector<GatherFace>& faces,
+                  const GatherGround& ground, int directions, double clearance, int stride,
+                  const std::function<bool()>& cancelled)
+{
+    // Directions above the horizon first: the ground's map is complete before a face looks
+    // down at it.
+    const std::vector<RenderVec3> dirs = fibonacciSphere(std::max(2, directions));
+    const DirectionWeights weights = weightsOver(dirs, fine.normal);
+    Gather gather(fine, lattice, faces, ground, stride);
+    bool mapDone = false;
+    for (const RenderVec3& d : dirs) {
+        if (cancelled && cancelled()) break;
+        if (!(d.z() > 0.0) && !mapDone) {
+            gather.finishGroundMap(weights.ground);
+            mapDone = true;
+        }
+        gather.look(d, clearance);
+    }
+    return gather.result(weights.face);
 }
 
 }  // namespace

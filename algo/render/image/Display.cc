@@ -1,4 +1,4 @@
-#include "algo/render/Display.h"
+#include "algo/render/image/Display.h"
 
 #include <algorithm>
 #include <cmath>

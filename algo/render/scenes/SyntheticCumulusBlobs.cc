@@ -1,4 +1,4 @@
-#include "algo/render/SyntheticCumulus.h"
+#include "algo/render/scenes/SyntheticCumulus.h"
 
 #include <algorithm>
 #include <cmath>

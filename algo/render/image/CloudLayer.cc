@@ -1,4 +1,4 @@
-#include "algo/render/CloudLayer.h"
+#include "algo/render/image/CloudLayer.h"
 
 #include <algorithm>
 #include <cstddef>

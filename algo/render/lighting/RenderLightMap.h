@@ -16,8 +16,8 @@
 
 #include <openvdb/openvdb.h>
 
-#include "algo/render/RenderOccupancy.h"
 #include "algo/render/RenderSettings.h"
+#include "algo/render/media/RenderOccupancy.h"
 
 namespace cg::algo {
 

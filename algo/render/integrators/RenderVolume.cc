@@ -1,4 +1,4 @@
-#include "algo/render/RenderVolume.h"
+#include "algo/render/integrators/RenderVolume.h"
 
 #include <cmath>
 #include <cstdint>
@@ -11,13 +11,13 @@
 #include <tbb/parallel_for.h>
 
 #include "algo/CounterRandom.h"
-#include "algo/render/DiffuseLight.h"
-#include "algo/render/Phase.h"
-#include "algo/render/RenderDiffusion.h"
-#include "algo/render/RenderLightMap.h"
-#include "algo/render/RenderOccupancy.h"
 #include "algo/render/RenderRays.h"
-#include "algo/render/TrilinearDensity.h"
+#include "algo/render/lighting/DiffuseLight.h"
+#include "algo/render/lighting/RenderDiffusion.h"
+#include "algo/render/lighting/RenderLightMap.h"
+#include "algo/render/media/Phase.h"
+#include "algo/render/media/RenderOccupancy.h"
+#include "algo/render/media/TrilinearDensity.h"
 
 namespace cg::algo {
 
