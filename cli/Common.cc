@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <set>
+#include <stdexcept>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -107,33 +108,81 @@ void checkOutputPlaces(const Graph& graph, const std::vector<std::string>& targe
     }
 }
 
-void OptionParser::parse()
+namespace {
+
+/// The command named `name` in the table; a name missing there is a bug of this program.
+const CommandSpec& commandNamed(const std::string& name)
+{
+    const CommandSpec* command = findCommand(name);
+    if (!command) throw std::logic_error("command '" + name + "' is not in the command table");
+    return *command;
+}
+
+/// One argument: a positional (an empty name), or an option's name and its "--name=value".
+struct Token {
+    std::string name;
+    std::optional<std::string> inlineValue;
+};
+
+Token tokenOf(const std::string& a)
+{
+    if (a.size() < 2 || a[0] != '-' || a == "-") return {};
+    if (const auto eq = a.find('='); eq != std::string::npos && a.rfind("--", 0) == 0)
+        return {a.substr(0, eq), a.substr(eq + 1)};
+    return {a, std::nullopt};
+}
+
+}  // namespace
+
+OptionParser::OptionParser(const std::vector<std::string>& args, const std::string& command)
+    : mArgs(args), mCommand(commandNamed(command))
+{
+}
+
+const OptionSpec* OptionParser::find(const std::string& name) const
+{
+    const std::string wanted = name == "-h" ? "--help" : name;
+    for (const auto* list : {&mCommand.options, &commonOptions()})
+        for (const OptionSpec& o : *list)
+            if (o.name == wanted) return &o;
+    return nullptr;
+}
+
+bool OptionParser::asksForHelp() const
 {
     for (std::size_t i = 0; i < mArgs.size(); ++i) {
+        const Token t = tokenOf(mArgs[i]);
+        if ((t.name == "--help" || t.name == "-h") && !t.inlineValue) return true;
+        const OptionSpec* o = t.name.empty() ? nullptr : find(t.name);
+        if (o && !o->value.empty() && !t.inlineValue) ++i;  // skip its value
+    }
+    return false;
+}
+
+void OptionParser::parse()
+{
+    const std::string seeHelp = " (see cloudgraph " + mCommand.name + " --help)";
+    for (std::size_t i = 0; i < mArgs.size(); ++i) {
         const std::string& a = mArgs[i];
-        if (a.size() < 2 || a[0] != '-' || a == "-") {
+        const Token t = tokenOf(a);
+        if (t.name.empty()) {
             mPositionals.push_back(a);
             continue;
         }
-        std::string name = a;
-        std::optional<std::string> inlineValue;
-        if (const auto eq = a.find('='); eq != std::string::npos && a.rfind("--", 0) == 0) {
-            name = a.substr(0, eq);
-            inlineValue = a.substr(eq + 1);
-        }
-        if (std::find(mFlags.begin(), mFlags.end(), name) != mFlags.end() && !inlineValue) {
-            mSeen.emplace_back(name, "");
-        } else if (std::find(mValueOptions.begin(), mValueOptions.end(), name) !=
-                   mValueOptions.end()) {
-            if (inlineValue) {
-                mSeen.emplace_back(name, *inlineValue);
+        const OptionSpec* o = find(t.name);
+        if (o && o->value.empty() && !t.inlineValue) {
+            mSeen.emplace_back(o->name, "");
+        } else if (o && !o->value.empty()) {
+            if (t.inlineValue) {
+                mSeen.emplace_back(o->name, *t.inlineValue);
             } else if (i + 1 < mArgs.size()) {
-                mSeen.emplace_back(name, mArgs[++i]);
+                mSeen.emplace_back(o->name, mArgs[++i]);
             } else {
-                throw InputError("command line", "option " + name + " needs a value");
+                throw InputError("command line",
+                                 "option " + o->name + " needs a value " + o->value + seeHelp);
             }
         } else {
-            throw InputError("command line", "unknown option '" + a + "' (see --help)");
+            throw InputError("command line", "unknown option '" + a + "'" + seeHelp);
         }
     }
     if (has("-v")) spdlog::set_level(spdlog::level::debug);
@@ -182,12 +231,6 @@ void configureLogging()
     spdlog::set_level(spdlog::level::info);
 }
 
-void declareNodeTypeOptions(OptionParser& opts)
-{
-    opts.valueOption("--plugin");
-    opts.valueOption("--python-nodes");
-}
-
 void buildRegistry(Registry& registry, const OptionParser& opts)
 {
     registerBuiltinNodes(registry);
@@ -202,14 +245,6 @@ void buildRegistry(Registry& registry, const OptionParser& opts)
                      "this cloudgraph was built without Python (pybind11-dev "
                      "and python3-dev, or the sanitizer build)");
 #endif
-}
-
-void declareGraphOptions(OptionParser& opts)
-{
-    opts.valueOption("--set");
-    declareNodeTypeOptions(opts);
-    opts.flag("--allow-outside-out");
-    opts.flag("--allow-graph-programs");
 }
 
 LoadOptions graphLoadOptions(const OptionParser& opts)

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/CommandTable.h"
 #include "core/Graph.h"
 #include "core/Registry.h"
 
@@ -17,17 +18,18 @@ constexpr int kExitOk = 0;
 constexpr int kExitFailure = 1;
 constexpr int kExitBadInput = 2;
 
-/// A minimal option scanner: flags, options with a value (repeatable), and positionals.
-/// Every command takes -v (debug logging) and -q (errors only).
+/// A minimal option scanner: flags, options with a value (repeatable), and positionals. The
+/// options are those of the command's entry in CommandTable and the common ones (-v: debug
+/// logging, -q: errors only, --help or -h).
 class OptionParser {
 public:
-    explicit OptionParser(const std::vector<std::string>& args) : mArgs(args), mFlags{"-v", "-q"} {}
-    /// Declares an option that takes a value (e.g. "--out").
-    void valueOption(const std::string& name) { mValueOptions.push_back(name); }
-    /// Declares a flag (e.g. "--markdown").
-    void flag(const std::string& name) { mFlags.push_back(name); }
+    /// `command` names an entry of commandTable() (std::logic_error when none does).
+    OptionParser(const std::vector<std::string>& args, const std::string& command);
+    /// True when -h or --help stands where an option may (not as another option's value),
+    /// whatever else the arguments hold. Throws nothing.
+    bool asksForHelp() const;
     /// Parses and applies -v/-q; throws InputError("command line", ...) on an unknown option
-    /// or a missing value.
+    /// or a missing value, pointing at `cloudgraph COMMAND --help`.
     void parse();
 
     bool has(const std::string& name) const;
@@ -36,9 +38,11 @@ public:
     const std::vector<std::string>& positionals() const { return mPositionals; }
 
 private:
+    /// The option `name` declares ("-h" is "--help"), or nullptr.
+    const OptionSpec* find(const std::string& name) const;
+
     const std::vector<std::string>& mArgs;
-    std::vector<std::string> mValueOptions;
-    std::vector<std::string> mFlags;
+    const CommandSpec& mCommand;
     std::vector<std::pair<std::string, std::string>> mSeen;
     std::vector<std::string> mPositionals;
 };
@@ -51,16 +55,11 @@ std::int64_t parseIntegerOption(const std::string& text, const std::string& opti
 /// Sets up spdlog on stderr at info level (OptionParser::parse applies -v/-q).
 void configureLogging();
 
-/// Declares the options that add node types: --plugin and --python-nodes.
-void declareNodeTypeOptions(OptionParser& opts);
 /// The built-in nodes, plugins from CLOUDGRAPH_PLUGIN_PATH and --plugin, and the Python nodes
 /// of --python-nodes files.
 void buildRegistry(Registry& registry, const OptionParser& opts);
 
-/// Declares the options that choose and edit a graph: --set, --allow-outside-out, and the
-/// node type options.
-void declareGraphOptions(OptionParser& opts);
-/// How declareGraphOptions' flags load a graph (outside --out, graph programs).
+/// How the graph options' flags (CommandTable) load a graph (outside --out, graph programs).
 LoadOptions graphLoadOptions(const OptionParser& opts);
 /// Builds the registry (with --plugin), loads the one positional graph file and applies
 /// every --set. Throws InputError on any bad input.

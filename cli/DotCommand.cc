@@ -11,8 +11,7 @@ namespace cg::cli {
 
 int dotCommand(const Args& args)
 {
-    OptionParser opts(args);
-    declareNodeTypeOptions(opts);
+    OptionParser opts(args, "dot");
     return guarded([&] {
         opts.parse();
         if (opts.positionals().size() != 1)

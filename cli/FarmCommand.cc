@@ -76,12 +76,7 @@ void submit(const fs::path& script)
 
 int farmCommand(const Args& args)
 {
-    OptionParser opts(args);
-    declareGraphOptions(opts);
-    for (const char* o : {"--chunk", "--cache", "--out", "--scheduler", "--frames", "--threads",
-                          "--cache-memory-mb", "--sbatch"})
-        opts.valueOption(o);
-    opts.flag("--submit");
+    OptionParser opts(args, "farm");
     return guarded([&] {
         opts.parse();
         if (const auto s = opts.value("--scheduler"); s && *s != "slurm")

@@ -11,7 +11,7 @@ namespace cg::cli {
 
 int infoCommand(const Args& args)
 {
-    OptionParser opts(args);
+    OptionParser opts(args, "info");
     return guarded([&] {
         opts.parse();
         if (opts.positionals().size() != 1)

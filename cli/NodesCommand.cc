@@ -141,9 +141,7 @@ std::string summary(const std::string& doc)
 
 int nodesCommand(const Args& args)
 {
-    OptionParser opts(args);
-    opts.flag("--markdown");
-    declareNodeTypeOptions(opts);
+    OptionParser opts(args, "nodes");
     return guarded([&] {
         opts.parse();
         Registry registry;

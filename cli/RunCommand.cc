@@ -1,6 +1,5 @@
-// cloudgraph run GRAPH [--frames A:B] [--chunk N [--task I]] [--simulations-only]
-//                      [--set node.param=value]... [--cache DIR] [--out DIR] [--threads N]
-//                      [--report FILE] [--plugin PATH]... [--python-nodes FILE]... [--farm-token T]
+// cloudgraph run GRAPH [options]: cooks a graph for its frames. The options and their help
+// are in cli/CommandTable.cc (`cloudgraph run --help`).
 
 #include <csignal>
 #include <cstdio>
@@ -15,6 +14,7 @@
 #include "cli/FarmToken.h"
 #include "cli/FrameChunks.h"
 #include "cli/ProgressBar.h"
+#include "core/CacheBound.h"
 #include "core/Error.h"
 #include "core/Evaluator.h"
 #include "core/Graph.h"
@@ -119,16 +119,32 @@ void checkOutputLocations(const OptionParser& opts)
     }
 }
 
+/// --cache-limit in bytes: what the disk cache is pruned to after the run (none: unbounded).
+std::optional<std::uint64_t> cacheLimit(const OptionParser& opts)
+{
+    const auto limit = opts.value("--cache-limit");
+    if (!limit) return std::nullopt;
+    if (!opts.value("--cache")) throw InputError("--cache-limit", "needs --cache DIR");
+    return parseByteSize(*limit, "--cache-limit");
+}
+
+/// Prunes the cache to `limit` and says what went, in the log and the report.
+void boundCache(const std::string& cache, std::uint64_t limit, nlohmann::json& report)
+{
+    const CacheUsage removed = pruneCache(cache, limit);
+    if (removed.entries > 0)
+        spdlog::info(
+            "cache: removed {} least recently used entries ({:.1f} MiB) to stay "
+            "within --cache-limit",
+            removed.entries, static_cast<double>(removed.bytes) / (1 << 20));
+    report["cachePruned"] = {{"entries", removed.entries}, {"bytes", removed.bytes}};
+}
+
 }  // namespace
 
 int runCommand(const Args& args)
 {
-    OptionParser opts(args);
-    declareGraphOptions(opts);
-    for (const char* o : {"--frames", "--cache", "--out", "--threads", "--report",
-                          "--cache-memory-mb", "--chunk", "--task", "--farm-token"})
-        opts.valueOption(o);
-    opts.flag("--simulations-only");
+    OptionParser opts(args, "run");
     return guarded([&] {
         opts.parse();
         std::optional<tbb::global_control> threadLimit;
@@ -136,6 +152,7 @@ int runCommand(const Args& args)
             threadLimit.emplace(tbb::global_control::max_allowed_parallelism,
                                 parseIntegerOption(*t, "--threads", "a thread count", 1, 1024));
         checkOutputLocations(opts);
+        const std::optional<std::uint64_t> limit = cacheLimit(opts);
 
         Registry registry;
         const Graph graph = loadGraphFromOptions(opts, registry, "run");
@@ -196,6 +213,7 @@ int runCommand(const Args& args)
         report["frames"] = {frames.start, frames.end};
         report["wallSeconds"] = wall;
         report["failed"] = false;
+        if (limit) boundCache(*opts.value("--cache"), *limit, report);
         if (auto r = opts.value("--report")) writeReport(*r, report);
         const auto& totals = report["totals"];
         spdlog::info("cooked frames {}..{} in {:.2f} s: {} cooks, {} memory hits, {} disk hits",

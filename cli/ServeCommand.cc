@@ -39,10 +39,7 @@ std::filesystem::path webDir()
 
 int serveCommand(const Args& args)
 {
-    OptionParser opts(args);
-    declareGraphOptions(opts);
-    for (const char* o : {"--port", "--host", "--allow-host", "--out", "--cache"})
-        opts.valueOption(o);
+    OptionParser opts(args, "serve");
     return guarded([&] {
         opts.parse();
         if (opts.positionals().size() != 1)

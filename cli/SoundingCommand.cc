@@ -37,8 +37,7 @@ std::string level(double z, const algo::EnvironmentProfile& profile)
 
 int soundingCommand(const Args& args)
 {
-    OptionParser opts(args);
-    opts.valueOption("--plot");
+    OptionParser opts(args, "sounding");
     return guarded([&] {
         opts.parse();
         if (opts.positionals().size() != 1)

@@ -11,8 +11,7 @@ namespace cg::cli {
 
 int validateCommand(const Args& args)
 {
-    OptionParser opts(args);
-    declareGraphOptions(opts);
+    OptionParser opts(args, "validate");
     return guarded([&] {
         opts.parse();
         Registry registry;

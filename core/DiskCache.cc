@@ -368,8 +368,10 @@ std::optional<OutputMap> DiskCache::load(const Key& key, const Registry& registr
         }
         std::vector<unsigned char> payload(static_cast<std::size_t>(payloadSize));
         readAt(file->fd, payload.data(), payload.size(), kHeaderSize);
-        return decodePayload(payload.data(), payload.size(), getU64(header + 40), registry,
-                             outputs);
+        OutputMap loaded =
+            decodePayload(payload.data(), payload.size(), getU64(header + 40), registry, outputs);
+        ::futimens(file->fd, nullptr);  // marks it recently used for pruneCache (best effort)
+        return loaded;
     } catch (const DamagedEntry& e) {
         spdlog::warn("disk cache: damaged entry {}: {}; recooking", path.string(), e.what());
     } catch (const std::exception& e) {

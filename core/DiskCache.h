@@ -41,7 +41,8 @@ public:
     /// when absent or damaged (damaged entries are removed, with a warning).
     /// `outputs`, when given, are the node's declared output ports: an entry with other
     /// names or types is damaged. I/O errors and entries too large for the memory available
-    /// now are misses that leave the entry in place.
+    /// now are misses that leave the entry in place. A load refreshes the entry's
+    /// modification time, which pruneCache (CacheBound.h) reads as its last use.
     std::optional<OutputMap> load(const Key& key, const Registry& registry,
                                   const std::vector<PortDecl>* outputs = nullptr) const;
     /// Stores the outputs. Returns false (storing nothing) when a value's type cannot be

@@ -1,6 +1,8 @@
 #pragma once
 /// The engine's error types. Their class decides the CLI's exit code:
-/// InputError (bad graph, parameter or file) exits 2, anything else exits 1.
+/// InputError (bad graph, parameter or file) exits 2, anything else exits 1. A node's cook
+/// may also let a std::invalid_argument out (an algorithm's refusal, a file reader's
+/// formats::FormatError): the evaluator makes it a CookError with inputFault() at the node.
 
 #include <stdexcept>
 #include <string>
@@ -44,7 +46,8 @@ public:
     {
     }
     const std::string& nodeId() const { return mNodeId; }
-    /// True when the cause was bad input (an InputError inside the node).
+    /// True when the cause was bad input (an InputError or std::invalid_argument inside the
+    /// node).
     bool inputFault() const { return mInputFault; }
 
 private:

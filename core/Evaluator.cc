@@ -356,6 +356,10 @@ private:
                 throw CookError(node.id, mGraph.locate("/nodes/" + e.where()), frame, e.message(),
                                 true);
             throw CookError(node.id, mGraph.locate(node.pointer), frame, e.what(), true);
+        } catch (const std::invalid_argument& e) {
+            // The libraries below the engine report bad input this way: an algorithm's
+            // arguments, a file reader's formats::FormatError. Bad input: exit 2, at the node.
+            throw CookError(node.id, mGraph.locate(node.pointer), frame, e.what(), true);
         } catch (const std::exception& e) {
             throw CookError(node.id, mGraph.locate(node.pointer), frame, e.what(), false);
         }

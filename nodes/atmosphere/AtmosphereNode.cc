@@ -4,7 +4,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/Error.h"
 #include "core/Hash.h"
 #include "core/Node.h"
 #include "core/Registry.h"
@@ -93,14 +92,7 @@ class AtmosphereNode final : public Node {
 public:
     void cook(CookContext& ctx) override
     {
-        try {
-            ctx.setOutput("atmosphere",
-                          std::make_shared<AtmosphereData>(atmosphereFrom(ctx.params())));
-        } catch (const formats::FormatError& e) {
-            throw InputError(e.where(), e.message());  // a bad file is bad input: exit 2
-        } catch (const std::invalid_argument& e) {
-            throw InputError(ctx.nodeId(), e.what());
-        }
+        ctx.setOutput("atmosphere", std::make_shared<AtmosphereData>(atmosphereFrom(ctx.params())));
     }
 };
 

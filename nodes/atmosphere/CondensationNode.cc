@@ -2,12 +2,10 @@
 // (pseudocode lines 9-14); records when each condensed and when the first one did.
 
 #include <optional>
-#include <stdexcept>
 
 #include "algo/atmosphere/ColumnThermal.h"
 #include "algo/atmosphere/Condensation.h"
 #include "core/CoreData.h"
-#include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
@@ -47,20 +45,16 @@ public:
             before = algo::CondensationState{previous->condensedFrame, previous->condensedHeight,
                                              previous->firstFrame, 0};
         algo::CondensationState now;
-        try {
-            const auto frame = static_cast<std::int32_t>(ctx.frame());
-            if (atmosphere.profile || !particles->statics->dewpointOffset.empty()) {
-                const std::vector<float> dewpoints = particleDewpoints(*data, *particles);
-                now = algo::condenseStep(before ? &*before : nullptr, particles->temperature.data(),
-                                         dewpoints.data(), particles->z.data(), particles->size(),
-                                         frame);
-            } else {
-                now = algo::condenseStep(before ? &*before : nullptr, particles->temperature.data(),
-                                         particles->z.data(), particles->size(),
-                                         atmosphere.dewPoint, frame);
-            }
-        } catch (const std::invalid_argument& e) {
-            throw InputError(ctx.nodeId(), e.what());
+        const auto frame = static_cast<std::int32_t>(ctx.frame());
+        if (atmosphere.profile || !particles->statics->dewpointOffset.empty()) {
+            const std::vector<float> dewpoints = particleDewpoints(*data, *particles);
+            now =
+                algo::condenseStep(before ? &*before : nullptr, particles->temperature.data(),
+                                   dewpoints.data(), particles->z.data(), particles->size(), frame);
+        } else {
+            now = algo::condenseStep(before ? &*before : nullptr, particles->temperature.data(),
+                                     particles->z.data(), particles->size(), atmosphere.dewPoint,
+                                     frame);
         }
         ctx.setOutput("firstFrame", std::make_shared<IntData>(now.firstFrame));
         ctx.setOutput("count", std::make_shared<IntData>(static_cast<std::int64_t>(now.count)));

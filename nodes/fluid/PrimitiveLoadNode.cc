@@ -21,15 +21,10 @@ public:
         const std::string& file = ctx.params().getString("file");
         if (file.empty())
             throw InputError(ctx.nodeId(), "PrimitiveLoad: parameter 'file' is empty");
-        try {
-            formats::PrimitiveFileReader reader(file);
-            std::vector<float> positions = reader.readAll();
-            ctx.setOutput("primitive",
-                          std::make_shared<PrimitiveSetData>(reader.frameTime(), reader.counts(),
-                                                             std::move(positions)));
-        } catch (const formats::FormatError& e) {
-            throw InputError(e.where(), e.message());  // a bad file is bad input: exit 2
-        }
+        formats::PrimitiveFileReader reader(file);
+        std::vector<float> positions = reader.readAll();
+        ctx.setOutput("primitive", std::make_shared<PrimitiveSetData>(
+                                       reader.frameTime(), reader.counts(), std::move(positions)));
     }
 };
 

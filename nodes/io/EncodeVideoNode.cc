@@ -69,8 +69,6 @@ public:
                                  "Ubuntu: sudo apt-get install -y ffmpeg, or run "
                                  "scripts/install-deps.sh) or set the environment variable " +
                                  std::string(kProgramVariable) + " to its full path");
-        } catch (const std::invalid_argument& e) {
-            throw InputError(ctx.nodeId(), e.what());
         }
         out.commit();
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));

@@ -220,18 +220,12 @@ public:
             addDetail(voxelized, detail, ctx);
         } catch (const algo::VoxelizeTooLarge& e) {
             throw InputError(ctx.nodeId() + "/params/voxelSize", e.what());
-        } catch (const std::invalid_argument& e) {
-            throw InputError(ctx.nodeId(), e.what());
         }
         openvdb::FloatGrid& grid = *voxelized.grid;
         algo::filterVolume(grid, algo::voxelFilterFromName(p.getString("filter")),
                            static_cast<int>(p.getInt("filterWidth")),
                            static_cast<int>(p.getInt("filterIterations")));
-        try {
-            shapeBaseAndWater(grid, ctx);
-        } catch (const std::invalid_argument& e) {
-            throw InputError(ctx.nodeId(), e.what());
-        }
+        shapeBaseAndWater(grid, ctx);
 
         // Provenance for whoever opens the file (vdb_print, Houdini, Blender).
         grid.insertMeta("frame", openvdb::Int32Metadata(ctx.frame()));

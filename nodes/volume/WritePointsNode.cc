@@ -3,11 +3,9 @@
 
 #include <cstddef>
 #include <memory>
-#include <stdexcept>
 #include <string>
 
 #include "core/CoreData.h"
-#include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "formats/PointsGrid.h"
@@ -42,14 +40,9 @@ public:
                 },
                 CloudChunkFields{attributes, attributes}, [&] { ctx.checkCancelled(); });
         };
-        openvdb::points::PointDataGrid::Ptr grid;
-        try {
-            const formats::ParticlePointsGridBuilder builder(chunks, s);
-            if (!writesSequenceFrame(ctx, /*empty=*/builder.count() == 0)) return;
-            grid = builder.build();
-        } catch (const std::invalid_argument& e) {
-            throw InputError(ctx.nodeId(), e.what());
-        }
+        const formats::ParticlePointsGridBuilder builder(chunks, s);
+        if (!writesSequenceFrame(ctx, /*empty=*/builder.count() == 0)) return;
+        const openvdb::points::PointDataGrid::Ptr grid = builder.build();
         grid->insertMeta("frame", openvdb::Int32Metadata(ctx.frame()));
         grid->insertMeta("units", openvdb::StringMetadata("metres"));
         ctx.checkCancelled();

@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/CommandTable.h"
+#include "core/CacheBound.h"
 #include "support/TestUtil.h"
 
 namespace cg {
@@ -53,6 +55,64 @@ TEST(Cli, HelpAndVersion)
     EXPECT_EQ(version.output.rfind("cloudgraph ", 0), 0u);
     EXPECT_EQ(runCli({"frobnicate"}).exitCode, 2);
     EXPECT_EQ(runCli({"run", "--no-such-option", "x.json"}).exitCode, 2);
+    EXPECT_EQ(runCli({}).exitCode, 2);  // the overview, on stderr
+    const auto helpWord = runCli({"help"});
+    EXPECT_EQ(helpWord.exitCode, 0);
+    EXPECT_EQ(helpWord.output, help.output);
+    for (const cli::CommandSpec& c : cli::commandTable()) {
+        EXPECT_FALSE(c.summary.empty()) << c.name;
+        EXPECT_NE(help.output.find("cloudgraph " + c.name + " "), std::string::npos) << c.name;
+        EXPECT_NE(help.output.find(c.summary), std::string::npos) << c.name;
+    }
+    EXPECT_EQ(runCli({"help", "frobnicate"}).exitCode, 2);
+}
+
+/// The options of each command come from one table (cli/CommandTable.cc) that the parser and
+/// the help both read: an option added without a line of help fails here.
+TEST(Cli, EveryCommandsHelpListsEachOfItsOptions)
+{
+    ASSERT_GE(cli::commandTable().size(), 8u);
+    for (const cli::CommandSpec& c : cli::commandTable()) {
+        std::vector<cli::OptionSpec> options = c.options;
+        options.insert(options.end(), cli::commonOptions().begin(), cli::commonOptions().end());
+        std::set<std::string> names;
+        for (const cli::OptionSpec& o : options) {
+            EXPECT_TRUE(names.insert(o.name).second) << c.name << ": " << o.name << " twice";
+            EXPECT_FALSE(o.help.empty()) << c.name << ": " << o.name << " has no help";
+        }
+        const auto help = runCli({c.name, "--help"});
+        EXPECT_EQ(help.exitCode, 0) << c.name << ": " << help.errors;
+        EXPECT_EQ(help.output.rfind("usage: cloudgraph " + c.name, 0), 0u) << help.output;
+        for (const cli::OptionSpec& o : options) {
+            // One line: "  --name VALUE   its help".
+            const std::string shown = "\n  " + o.name + (o.value.empty() ? "" : " " + o.value);
+            const std::size_t at = help.output.find(shown + " ");
+            ASSERT_NE(at, std::string::npos) << c.name << " --help lacks " << o.name;
+            const std::string line = help.output.substr(at, help.output.find('\n', at + 1) - at);
+            EXPECT_NE(line.find(o.help), std::string::npos) << c.name << ": " << line;
+        }
+        for (const std::vector<std::string>& same :
+             {std::vector<std::string>{c.name, "-h"}, {"help", c.name}, {c.name, "x", "--help"}}) {
+            const auto r = runCli(same);
+            EXPECT_EQ(r.exitCode, 0) << c.name << ": " << r.errors;
+            EXPECT_EQ(r.output, help.output) << same.back();
+        }
+        const auto bad = runCli({c.name, "--no-such-option", "x"});
+        EXPECT_EQ(bad.exitCode, 2) << c.name;
+        EXPECT_NE(bad.errors.find("unknown option '--no-such-option'"), std::string::npos)
+            << bad.errors;
+        EXPECT_NE(bad.errors.find("cloudgraph " + c.name + " --help"), std::string::npos)
+            << bad.errors;
+        EXPECT_TRUE(bad.output.empty()) << bad.output;
+    }
+    // "--help" as another option's value asks for nothing: the missing graph is the error.
+    const auto value = runCli({"run", "missing.json", "--out", "--help"});
+    EXPECT_EQ(value.exitCode, 2);
+    EXPECT_NE(value.errors.find("missing.json"), std::string::npos) << value.errors;
+    const auto noValue = runCli({"run", "missing.json", "--frames"});
+    EXPECT_EQ(noValue.exitCode, 2);
+    EXPECT_NE(noValue.errors.find("option --frames needs a value A:B"), std::string::npos)
+        << noValue.errors;
 }
 
 TEST(Cli, BadGraphCorpusIsRefusedWithExitCode2AndALocation)
@@ -137,6 +197,34 @@ TEST(Cli, EditingNode3CooksExactly3To5AcrossRunsSharingACache)
             EXPECT_EQ(rec["reason"], "input 'rate' changed");
         }
     }
+}
+
+TEST(Cli, CacheLimitPrunesTheCacheAfterTheRunAndNeedsACache)
+{
+    TempDir dir;
+    const std::string graph = dataPath("good/chain5.json").string();
+    const std::string cache = (dir / "cache").string();
+    const auto run = [&](const std::string& limit, const std::string& report) {
+        return runCli({"run", graph, "--cache", cache, "--out", (dir / "out").string(), "--frames",
+                       "0:1", "--cache-limit", limit, "--report", report, "-q"});
+    };
+    ASSERT_EQ(run("1G", (dir / "r1.json").string()).exitCode, 0);
+    const CacheUsage before = cacheUsage(cache);
+    ASSERT_GT(before.entries, 0u);
+    EXPECT_EQ(readJson(dir / "r1.json")["cachePruned"]["entries"], 0);
+
+    ASSERT_EQ(run("0", (dir / "r2.json").string()).exitCode, 0);
+    EXPECT_EQ(cacheUsage(cache).entries, 0u);
+    EXPECT_EQ(readJson(dir / "r2.json")["cachePruned"]["entries"], before.entries);
+    EXPECT_EQ(readJson(dir / "r2.json")["cachePruned"]["bytes"], before.bytes);
+
+    const auto noCache =
+        runCli({"run", graph, "--out", (dir / "out").string(), "--cache-limit", "1G"});
+    EXPECT_EQ(noCache.exitCode, 2);
+    EXPECT_NE(noCache.errors.find("--cache-limit"), std::string::npos) << noCache.errors;
+    const auto bad = runCli({"run", graph, "--cache", cache, "--cache-limit", "lots"});
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_NE(bad.errors.find("'lots' is not a size"), std::string::npos) << bad.errors;
 }
 
 TEST(Cli, TwoProcessesSharingOneCacheBothSucceedWithIdenticalOutputs)

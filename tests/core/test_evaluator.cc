@@ -2,12 +2,17 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <memory>
+#include <stdexcept>
+
 #include <tbb/global_control.h>
 
 #include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Evaluator.h"
 #include "core/Graph.h"
+#include "formats/FormatError.h"
 #include "nodes/Builtin.h"
 #include "nodes/DeclHelpers.h"
 #include "support/FixtureNodes.h"
@@ -41,6 +46,23 @@ protected:
     std::vector<float> values(const OutputsPtr& out, const std::string& port)
     {
         return std::dynamic_pointer_cast<const FloatArrayData>(out->at(port))->values;
+    }
+
+    /// Registers `type`, a node whose cook calls `body` (which throws).
+    void addThrowingNode(const std::string& type, std::function<void(CookContext&)> body)
+    {
+        struct Impl final : Node {
+            explicit Impl(std::function<void(CookContext&)> f) : fn(std::move(f)) {}
+            void cook(CookContext& ctx) override { fn(ctx); }
+            std::function<void(CookContext&)> fn;
+        };
+        NodeDecl d;
+        d.type = type;
+        d.category = "test";
+        d.doc = "throws on purpose";
+        d.outputs = {port("values", "FloatArray", "never set")};
+        d.create = [body] { return std::make_unique<Impl>(body); };
+        registry.addNode(d);
     }
 
     Registry registry;
@@ -284,6 +306,39 @@ TEST_F(EvaluatorTest, FailedCookCachesNothingAndNamesTheNode)
     }
     g.setParam("bad", "failAtFrame", -1);
     EXPECT_NO_THROW(ev.cookFrames(g, 0, 5));
+}
+
+TEST_F(EvaluatorTest, InvalidArgumentFromACookIsBadInputNamingTheNode)
+{
+    // Algorithms and file readers refuse bad input with std::invalid_argument (a FormatError is
+    // one); the evaluator reports it as a node's InputError would be, so nodes need no catch.
+    addThrowingNode("TestInvalidArgument",
+                    [](CookContext&) { throw std::invalid_argument("the map is empty"); });
+    addThrowingNode("TestFormatError", [](CookContext&) {
+        throw formats::FormatError("p.cgp:12", "not a primitive set");
+    });
+    addThrowingNode("TestInputError",
+                    [](CookContext& ctx) { throw InputError(ctx.nodeId(), "the map is empty"); });
+    const auto failure = [&](const std::string& type) {
+        Graph g = parse(R"({"cloudgraph": 1, "frames": {"start": 2, "end": 2},
+            "nodes": {"bad": {"type": ")" +
+                        type + R"("}}})");
+        Evaluator ev(registry, {});
+        try {
+            ev.cookFrames(g, 2, 2);
+        } catch (const CookError& e) {
+            EXPECT_EQ(e.nodeId(), "bad") << type;
+            EXPECT_TRUE(e.inputFault()) << type;
+            return std::string(e.what());
+        }
+        ADD_FAILURE() << type << " did not throw a CookError";
+        return std::string();
+    };
+    const std::string asInputError = failure("TestInputError");
+    EXPECT_EQ(asInputError, "test.json:/nodes/bad: node 'bad' frame 2: the map is empty");
+    EXPECT_EQ(failure("TestInvalidArgument"), asInputError);
+    EXPECT_EQ(failure("TestFormatError"),
+              "test.json:/nodes/bad: node 'bad' frame 2: p.cgp:12: not a primitive set");
 }
 
 TEST_F(EvaluatorTest, CancellationThrowsAndCachesNothing)
