@@ -20,7 +20,8 @@ void registerFogVolumeType(Registry& registry)
 {
     openvdb::initialize();
     registry.addDataType({"FogVolume",
-                          "an OpenVDB fog volume (FloatGrid 'density', values in [0, 1])",
+                          "an OpenVDB fog volume (FloatGrid 'density', values >= 0: fog density in "
+                          "[0, 1], above 1 with water optics)",
                           [](ByteReader& in) -> DataPtr {
                               return std::make_shared<FogVolumeData>(decodeFogVolume(in));
                           }});

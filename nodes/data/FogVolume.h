@@ -1,5 +1,6 @@
 #pragma once
-/// A fog volume: an OpenVDB FloatGrid of class fog volume named "density", values in [0, 1],
+/// A fog volume: an OpenVDB FloatGrid of class fog volume named "density", finite values >= 0
+/// (a fog density in [0, 1], or above 1 where the Voxelizer's water optics or a read VDB put them),
 /// whose transform carries the voxel size in metres. Shared read-only between nodes.
 
 #include <openvdb/openvdb.h>

@@ -23,9 +23,9 @@
 ///              3 u64 origin (a multiple of 8), 8 u64 value mask (bit i is voxel i in
 ///              OpenVDB's offset order, word 0 first), 512 f32 values (active or not)
 ///
-/// Every value is finite and in [0, 1]; every voxel a tile or leaf covers has coordinates of
-/// magnitude below 2^30; no tile or leaf lies inside a tile of a higher level; the internal
-/// nodes the tiles and leaves need take at most 256 MiB beyond 32 times the leaves' memory
+/// Every value is finite and >= 0 (water volumes go above 1); every voxel a tile or leaf covers has
+/// coordinates of magnitude below 2^30; no tile or leaf lies inside a tile of a higher level; the
+/// internal nodes the tiles and leaves need take at most 256 MiB beyond 32 times the leaves' memory
 /// (a few bytes of tile must not make megabytes of nodes). The decoder refuses anything
 /// else, so a mutated entry is a miss to recook, never a crash or an absurd allocation; the
 /// encoder refuses (returns false for) any grid the decoder would refuse.
@@ -115,15 +115,17 @@ std::optional<std::string> matrixProblem(const openvdb::Mat4d& m)
     return std::nullopt;
 }
 
-bool valueOk(float v) { return v >= 0.0f && v <= 1.0f; }  // NaN is not
+/// A fog density (0..1) or, from the Voxelizer's water optics or a read VDB, any larger
+/// finite value; NaN is not.
+bool valueOk(float v) { return v >= 0.0f && std::isfinite(v); }
 
 std::optional<std::string> valueProblem(float v)
 {
-    if (!valueOk(v)) return "value " + std::to_string(v) + " is outside [0, 1]";
+    if (!valueOk(v)) return "value " + std::to_string(v) + " is negative or not finite";
     return std::nullopt;
 }
 
-/// The first of a leaf's values outside [0, 1], or nullptr.
+/// The first of a leaf's values that is negative or not finite, or nullptr.
 const float* firstBadValue(const float* values)
 {
     const float* end = values + Leaf::SIZE;

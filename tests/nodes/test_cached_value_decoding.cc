@@ -1035,6 +1035,16 @@ TEST(CachedValueDecoding, FogVolumeRoundTripsAVoxelizerGridExactly)
     EXPECT_EQ(back->grid->transform().mapType(), "UniformScaleMap");
 }
 
+/// Values above 1 (a water volume's extinction-scaled values, a read VDB's, unclamped sums)
+/// are kept: such a volume is cached like any other, not cooked again in every process.
+TEST(CachedValueDecoding, FogVolumeRoundTripsValuesAboveOneExactly)
+{
+    const FloatGrid::Ptr unclamped = voxelized(false);
+    ASSERT_GT(openvdb::tools::minMax(unclamped->tree()).max(), 1.0f);
+    unclamped->tree().addTile(1, Coord(800, 0, 0), 2.5f, true);
+    expectSameGrid(*unclamped, *roundTrip(FogVolumeData(unclamped))->grid);
+}
+
 TEST(CachedValueDecoding, FogVolumeRoundTripsTilesExactly)
 {
     FloatGrid::Ptr grid = voxelized();
@@ -1085,9 +1095,6 @@ TEST(CachedValueDecoding, FogVolumeEncoderRefusesGridsItCannotHold)
         return !FogVolumeData(g).serialize(out);
     };
     EXPECT_FALSE(refused(voxelized()));
-    const FloatGrid::Ptr unclamped = voxelized(false);  // sums above 1: not a fog volume
-    ASSERT_GT(openvdb::tools::minMax(unclamped->tree()).max(), 1.0f);
-    EXPECT_TRUE(refused(unclamped));
     auto changed = [](const std::function<void(FloatGrid&)>& change) {
         FloatGrid::Ptr g = voxelized();
         change(*g);
@@ -1099,7 +1106,7 @@ TEST(CachedValueDecoding, FogVolumeEncoderRefusesGridsItCannotHold)
         [](FloatGrid& g) { g.insertMeta("v", openvdb::Vec3DMetadata(openvdb::Vec3d(1.0))); })));
     EXPECT_TRUE(refused(changed([](FloatGrid& g) { g.tree().setValueOff(Coord(0, 0, 0), kNaN); })));
     EXPECT_TRUE(
-        refused(changed([](FloatGrid& g) { g.tree().addTile(1, Coord(800, 0, 0), 2.0f, true); })));
+        refused(changed([](FloatGrid& g) { g.tree().addTile(1, Coord(800, 0, 0), -2.0f, true); })));
     EXPECT_TRUE(
         refused(changed([](FloatGrid& g) { g.tree().setValueOn(Coord(1 << 30, 0, 0), 0.5f); })));
     EXPECT_TRUE(refused(
@@ -1259,10 +1266,9 @@ TEST(CachedValueDecoding, FogVolumeRefusesForgedTilesAndLeaves)
                      "tile coordinate 1073741824 is out of range");
     expectFogRefused([](F& f) { f.tiles[2].z = std::int64_t{1} << 31; },
                      "coordinate 2147483648 is outside");
-    expectFogRefused([](F& f) { f.tiles[0].value = 1.5f; },
-                     "tile value 1.500000 is outside [0, 1]");
-    expectFogRefused([](F& f) { f.tiles[0].value = -0.25f; }, "outside [0, 1]");
-    expectFogRefused([](F& f) { f.tiles[0].value = kNaN; }, "outside [0, 1]");
+    expectFogRefused([](F& f) { f.tiles[0].value = -0.25f; },
+                     "tile value -0.250000 is negative or not finite");
+    expectFogRefused([](F& f) { f.tiles[0].value = kNaN; }, "negative or not finite");
     expectFogRefused([](F& f) { f.tiles[0].active = 2; }, "tile state 2 is above 1");
     expectFogRefused([](F& f) { f.tiles[0].active = 0, f.tiles[0].value = 0.0f; },
                      "an inactive tile holds the background");
@@ -1285,10 +1291,10 @@ TEST(CachedValueDecoding, FogVolumeRefusesForgedTilesAndLeaves)
     expectFogRefused([](F& f) { std::swap(f.leaves[0], f.leaves[1]); },
                      "leaves are out of order or repeated");
     expectFogRefused([](F& f) { f.leaves[1].x = 0; }, "leaves are out of order or repeated");
-    expectFogRefused([](F& f) { f.leaves[1].values[300] = 1.0f + 1e-6f; },
-                     "leaf value 1.000001 is outside [0, 1]");
-    expectFogRefused([](F& f) { f.leaves[0].values[0] = kInf; }, "leaf value inf is outside");
-    expectFogRefused([](F& f) { f.leaves[0].values[511] = -kNaN; }, "outside [0, 1]");
+    expectFogRefused([](F& f) { f.leaves[1].values[300] = -1e-6f; },
+                     "leaf value -0.000001 is negative or not finite");
+    expectFogRefused([](F& f) { f.leaves[0].values[0] = kInf; }, "leaf value inf is negative");
+    expectFogRefused([](F& f) { f.leaves[0].values[511] = -kNaN; }, "negative or not finite");
     expectFogRefused([](F& f) { f.leaves[1].x = 8; }, "a leaf lies inside a tile");
     expectFogRefused([](F& f) { f.leaves[1].x = 128 + 16; }, "a leaf lies inside a tile");
     expectFogRefused([](F& f) { f.leaves[1].x = 4096 + 512; }, "a leaf lies inside a tile");
@@ -1334,7 +1340,7 @@ void expectFogInvariants(const FloatGrid& g)
     std::size_t bad = 0;
     for (auto it = g.tree().cbeginLeaf(); it; ++it) {
         for (openvdb::Index i = 0; i < 512; ++i)
-            bad += !(it->getValue(i) >= 0.0f && it->getValue(i) <= 1.0f);
+            bad += !(it->getValue(i) >= 0.0f && std::isfinite(it->getValue(i)));
         const Coord o = it->origin();
         bad += std::abs(std::int64_t{o.x()}) >= (1 << 30) ||
                std::abs(std::int64_t{o.y()}) >= (1 << 30) ||
@@ -1343,7 +1349,7 @@ void expectFogInvariants(const FloatGrid& g)
     auto tile = g.tree().cbeginValueAll();
     tile.setMaxDepth(tile.getLeafDepth() - 1);
     for (; tile; ++tile) {
-        bad += !(*tile >= 0.0f && *tile <= 1.0f);
+        bad += !(*tile >= 0.0f && std::isfinite(*tile));
         openvdb::CoordBBox box;
         tile.getBoundingBox(box);
         for (int a = 0; a < 3; ++a) bad += box.min()[a] <= -(1 << 30) || box.max()[a] >= (1 << 30);
