@@ -1,7 +1,7 @@
-// The realism measures of docs/voxelizer.md on the small Figure 6 with the cloud's water
-// (Voxelizer optics 'water'): crisp tops and a base at the condensation level, the targets
-// of issue 53 that hold; the others (median base, base spread, outline dimension) are
-// printed for the record. A golden statistic on a reduced graph, not a timed test.
+// The realism measures of docs/voxelizer.md on the small Figure 6 as shipped, with the
+// cloud's water (Voxelizer optics 'water'): crisp tops and a base at the condensation level
+// are asserted; the median base, base spread and outline dimension are printed for the
+// record. A golden statistic on a reduced graph, not a timed test.
 
 #include <gtest/gtest.h>
 
@@ -27,13 +27,9 @@ TEST(CloudLook, SmallFigure6WithWaterHasCrispTopsAndItsBaseAtTheCondensationLeve
     Registry registry;
     registerBuiltinNodes(registry);
     std::ifstream in(graphsDir() / "figure6_towering_cumulus.json");
-    nlohmann::json doc = nlohmann::json::parse(in);
-    auto& vox = doc["nodes"]["voxelize"];
-    vox["inputs"]["condensation"] = "condense.condensation";
-    vox["inputs"]["atmosphere"] = "atmosphere.atmosphere";
-    vox["params"]["optics"] = "water";
-    vox["params"]["density"] = 1.0;
-    Graph g = parseGraph(doc.dump(), "figure6_water.json", registry);
+    const nlohmann::json doc = nlohmann::json::parse(in);
+    ASSERT_EQ(doc["nodes"]["voxelize"]["params"]["optics"], "water") << "the shipped look";
+    Graph g = parseGraph(doc.dump(), "figure6_towering_cumulus.json", registry);
     findSpec("figure6_towering_cumulus")->shrink(g);
     // 80% of the range, as the issue measures.
     const int frame = g.frames.start + (g.frames.end - g.frames.start) * 8 / 10;
@@ -69,13 +65,16 @@ TEST(CloudLook, SmallFigure6WithWaterHasCrispTopsAndItsBaseAtTheCondensationLeve
     ASSERT_GT(m.thickColumns, 100u);
     // The sunlit surface is a few mean free paths deep (6 m for 1 g/m^3): target 50 m.
     EXPECT_LE(m.topEdgeMedian, 50.0);
-    // The lowest bases sit on the condensation level: not below it (the cut), and within a
-    // voxel and the cut's transition above it. The median base is 9% of the depth above it on
-    // this small graph (2% on the full Figure 6): the undersides of turrets that overhang the
-    // tower's base, which the issue's 15% base-spread target is about and which stays open.
+    // The lowest bases sit on the condensation level: not below it (the cut), and not far
+    // above. Adiabatic water grows from nothing at the base, so where a particle's 0.2 of
+    // density covers the base thinly (a fifth of the core's water) the optical depth from
+    // below reaches 0.5 about 75 m up (closed form: tau(H) = 0.168 (0.6 v 2e-3 /m)^(2/3)
+    // (3/5) H^(5/3)), 40 m in the core: within two of this graph's 80 m voxels and the cut's
+    // transition. The median base lies higher: the undersides of turrets that overhang the
+    // tower's base, which the 15% base-spread target is about and which stays open.
     const double voxel = grid.voxelSize()[0];
     EXPECT_GE(m.baseP10, base->value() - 0.5 * voxel);
-    EXPECT_LE(m.baseP10, base->value() + voxel + 20.0);
+    EXPECT_LE(m.baseP10, base->value() + 2.0 * voxel + 20.0);
 }
 
 }  // namespace cg::golden
