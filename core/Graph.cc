@@ -124,6 +124,7 @@ void Graph::addNode(GraphNode node)
 
 void Graph::validateNode(const GraphNode& node) const
 {
+    checkFramesNumbered(node);
     if (!node.decl->validate) return;
     const ParamChecker checker{locate(node.pointer), limits.allocationLimitBytes};
     try {
@@ -131,6 +132,25 @@ void Graph::validateNode(const GraphNode& node) const
     } catch (const InputError& e) {
         // ParamChecker names the parameter; the message also names the node.
         throw InputError(e.where(), e.message() + " (node '" + node.id + "')");
+    }
+}
+
+void Graph::checkFramesNumbered(const GraphNode& node) const
+{
+    if (!node.decl->framesWritten) return;
+    for (std::size_t i = 0; i < node.decl->params.size(); ++i) {
+        const ParamDecl& decl = node.decl->params[i];
+        if (decl.role != ParamRole::OutputPath) continue;
+        const auto* file = std::get_if<std::string>(&node.params.valueAt(i));
+        if (!file || util::firstHashRun(std::filesystem::path(*file).filename().string())) continue;
+        if (node.decl->framesWritten(node.params, frames.start, frames.end) < 2) continue;
+        throw InputError(locate(node.pointer + "/params/" + decl.name),
+                         "'" + *file + "' has no #### frame number, but the node writes it " +
+                             "on several frames of " + std::to_string(frames.start) + ".." +
+                             std::to_string(frames.end) +
+                             ": each would overwrite the last; put #### in the file name (it "
+                             "becomes the frame) or write one frame ('every') (node '" +
+                             node.id + "')");
     }
 }
 

@@ -96,6 +96,8 @@ public:
     void finalize();
     /// Runs every node's NodeDecl::validate. Throws InputError.
     void validateNode(const GraphNode& node) const;
+    /// Refuses an output file name without #### that the node writes on several frames.
+    void checkFramesNumbered(const GraphNode& node) const;
 
     /// `pointer` prefixed by the source name, as errors name places ("g.json:/nodes/a").
     std::string locate(const std::string& pointer) const;

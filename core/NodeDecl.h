@@ -66,6 +66,11 @@ struct NodeDecl {
     std::function<std::unique_ptr<Node>()> create;
     /// Extra checks across parameters (e.g. allocation sizes); throw through ParamChecker.
     std::function<void(const ParamSet&, const ParamChecker&)> validate;
+    /// A writer's frames: how many of the frames start..end it writes a file on (a count above
+    /// 1 means "several"; writers stop counting there). With it, an output file name without
+    /// a #### frame number that would be written on several frames is refused at load, since
+    /// each frame would overwrite the last. Unset: not checked (a writer that writes once).
+    std::function<int(const ParamSet&, int start, int end)> framesWritten;
     /// Extra key ingredients, e.g. the content hash of an input file.
     std::function<void(const ParamSet&, Hasher&)> hashExtra;
     /// JSON parameter values that make a quick cook, for tests (the contract test applies them

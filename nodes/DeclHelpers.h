@@ -1,6 +1,7 @@
 #pragma once
 /// Short constructors for parameter and port declarations, so a node file reads as a table.
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -131,6 +132,11 @@ inline NodeDecl writerDecl(std::string type, std::string doc, PortDecl input,
         outputPathParam("file", std::move(defaultFile), "file name, relative to --out"),
         intParam("every", 1, "frames",
                  "write frames start, start + every, start + 2 every, ...; skip the rest", 1)};
+    d.framesWritten = [](const ParamSet& p, int start, int end) {
+        return end < start ? 0
+                           : 1 + static_cast<int>(
+                                     std::min<std::int64_t>(1, (end - start) / p.getInt("every")));
+    };
     return d;
 }
 

@@ -1,5 +1,8 @@
 #include "nodes/io/WriterSupport.h"
 
+#include <algorithm>
+#include <cstdint>
+
 #include "nodes/DeclHelpers.h"
 
 namespace cg {
@@ -14,6 +17,14 @@ void addSequenceParams(NodeDecl& d)
                  "first frame to write, from which 'every' counts; -1 = the graph's start", -1));
     d.params.push_back(boolParam("skipEmpty", true,
                                  "write no file for an empty frame (e.g. before the cloud forms)"));
+    // The frames writesSequenceFrame schedules (skipEmpty aside: any may hold something).
+    d.framesWritten = [](const ParamSet& p, int start, int end) {
+        const std::int64_t every = p.getInt("every");
+        std::int64_t first = p.getInt("firstFrame") < 0 ? start : p.getInt("firstFrame");
+        if (first < start) first += (start - first + every - 1) / every * every;
+        if (first > end) return 0;
+        return 1 + static_cast<int>(std::min<std::int64_t>(1, (end - first) / every));
+    };
 }
 
 bool writesSequenceFrame(CookContext& ctx, bool empty)

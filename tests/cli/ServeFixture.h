@@ -32,7 +32,7 @@ inline const char* kServeGraph = R"({
     "render": {"type": "Renderer", "inputs": {"volume": "cloud.volume"},
                "params": {"width": 64, "height": 48, "cameraPosition": [400, -3800, 700]}},
     "write": {"type": "WriteImage", "inputs": {"image": "render.image"},
-              "params": {"file": "still.png"}}
+              "params": {"file": "still.####.png"}}
   }
 })";
 

@@ -296,6 +296,35 @@ TEST(Cli, FailedRunWritesNoPartialFiles)
     EXPECT_FALSE(std::filesystem::exists(dir / "out" / "sum.txt"));
 }
 
+TEST(Cli, AFileNameWithoutFrameNumberWrittenOnSeveralFramesIsRefusedAtLoad)
+{
+    TempDir dir;
+    const auto graphWith = [&](const std::string& writer) {
+        test::writeFile(dir / "g.json", R"({"cloudgraph": 1, "frames": {"start": 0, "end": 9},
+            "nodes": {"a": {"type": "RandomField", "params": {"width": 3, "height": 1}},
+                      "w": {"type": "WriteArray", "inputs": {"values": "a.values"},
+                            "params": )" + writer +
+                                            "}}}");
+        return (dir / "g.json").string();
+    };
+    // Every frame into one name: each would overwrite the last.
+    const auto r = runCli({"validate", graphWith(R"({"file": "sum.txt"})")});
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.errors.find("g.json:/nodes/w/params/file"), std::string::npos) << r.errors;
+    EXPECT_NE(r.errors.find("no #### frame number"), std::string::npos) << r.errors;
+    EXPECT_NE(r.errors.find("(node 'w')"), std::string::npos) << r.errors;
+    // The same through --set, and a run is refused before it writes anything.
+    const std::string numbered = graphWith(R"({"file": "sum.####.txt"})");
+    EXPECT_EQ(runCli({"validate", numbered}).exitCode, 0);
+    const auto set =
+        runCli({"run", numbered, "--out", (dir / "out").string(), "--set", "w.file=sum.txt"});
+    EXPECT_EQ(set.exitCode, 2) << set.errors;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+    // Written on one frame only (every 10 over 0..9): one name is right.
+    EXPECT_EQ(runCli({"validate", graphWith(R"({"file": "sum.txt", "every": 10})")}).exitCode, 0);
+    EXPECT_EQ(runCli({"validate", graphWith(R"({"file": "sum.txt", "every": 9})")}).exitCode, 2);
+}
+
 TEST(Cli, PluginNodeCooksAndABadPluginIsRefused)
 {
     TempDir dir;

@@ -231,7 +231,7 @@ TEST_F(ServeTest, WritesNothingButTheGraphAndUnderOut)
         if (e.is_regular_file() && e.path().string().rfind((dir / "cache").string(), 0) != 0)
             files.push_back(std::filesystem::relative(e.path(), dir.path()).string());
     std::sort(files.begin(), files.end());
-    EXPECT_EQ(files, (std::vector<std::string>{"graph.json", "out/still.png"}));
+    EXPECT_EQ(files, (std::vector<std::string>{"graph.json", "out/still.0001.png"}));
 }
 
 TEST_F(ServeTest, WritesTheFramesOfTheWritersBelowWhenAsked)
@@ -248,10 +248,10 @@ TEST_F(ServeTest, WritesTheFramesOfTheWritersBelowWhenAsked)
     const auto first = post("/api/cook", cook);
     ASSERT_TRUE(first);
     ASSERT_EQ(first->status, 200) << first->body;
-    ASSERT_TRUE(std::filesystem::exists(dir / "out" / "still.png"));
+    ASSERT_TRUE(std::filesystem::exists(dir / "out" / "still.0001.png"));
     test::writeFile(dir / "preview.png", client().Get("/api/preview?node=render")->body);
     EXPECT_EQ(formats::readPngRgb8((dir / "preview.png").string()).rgb,
-              formats::readPngRgb8((dir / "out" / "still.png").string()).rgb);
+              formats::readPngRgb8((dir / "out" / "still.0001.png").string()).rgb);
     std::filesystem::remove(dir / "preview.png");
     // Again: the writer's file still verifies, so it is skipped with the render only it
     // read; the preview is still the Renderer's (from the cache).

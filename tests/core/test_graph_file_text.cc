@@ -114,7 +114,7 @@ TEST_F(GraphFileTextTest, NewNodesAndKeysFollowTheFilesAndReadTypeFirst)
       "nodes": {"render": {"type": "Renderer", "inputs": {"volume": "cloud.volume"}},
                 "cloud": {"type": "SyntheticCumulus"},
                 "write": {"type": "WriteImage", "inputs": {"image": "render.image"},
-                          "params": {"file": "a.png"}}}})";
+                          "params": {"file": "a.####.png"}}}})";
     Graph withNode = parse(withWriter);
     const OrderedJson saved = OrderedJson::parse(graphFileText(withNode, kGraph));
     std::vector<std::string> nodes;
