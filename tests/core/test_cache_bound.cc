@@ -1,7 +1,5 @@
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -12,33 +10,13 @@
 #include "core/DiskCache.h"
 #include "core/Error.h"
 #include "core/Registry.h"
+#include "support/TestUtil.h"
 
 namespace cg {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-class CacheDir {
-public:
-    CacheDir()
-        : mPath(fs::temp_directory_path() /
-                ("cg-cache-bound-" +
-                 std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-                 "-" + std::to_string(::getpid())))
-    {
-        fs::remove_all(mPath);
-    }
-    ~CacheDir()
-    {
-        std::error_code ec;
-        fs::remove_all(mPath, ec);
-    }
-    const fs::path& path() const { return mPath; }
-
-private:
-    fs::path mPath;
-};
 
 Key keyOf(std::uint64_t i) { return Key{0xC0FFEE00ull + i, i * 0x9E3779B97F4A7C15ull + 1}; }
 
@@ -61,7 +39,7 @@ std::uint64_t entryBytes(const DiskCache& cache, std::uint64_t i)
 
 TEST(CacheBound, UsageCountsEveryEntryAndNothingElse)
 {
-    CacheDir dir;
+    test::TempDir dir;
     EXPECT_EQ(cacheUsage(dir.path()).entries, 0u);  // no cache yet: nothing, no error
     DiskCache cache(dir.path());
     for (std::uint64_t i = 0; i < 5; ++i) storeAged(cache, i, 100 * (i + 1), 1);
@@ -75,7 +53,7 @@ TEST(CacheBound, UsageCountsEveryEntryAndNothingElse)
 
 TEST(CacheBound, PruningRemovesTheLeastRecentlyUsedUntilTheRestFits)
 {
-    CacheDir dir;
+    test::TempDir dir;
     DiskCache cache(dir.path());
     // Entry i was last used 10 - i hours ago: entry 0 is the oldest.
     for (std::uint64_t i = 0; i < 6; ++i) storeAged(cache, i, 1000, 10 - static_cast<int>(i));
@@ -93,7 +71,7 @@ TEST(CacheBound, PruningRemovesTheLeastRecentlyUsedUntilTheRestFits)
 
 TEST(CacheBound, ALoadMakesAnEntryRecentlyUsedSoPruningKeepsIt)
 {
-    CacheDir dir;
+    test::TempDir dir;
     DiskCache cache(dir.path());
     Registry registry;
     registerCoreDataTypes(registry);
@@ -111,7 +89,7 @@ TEST(CacheBound, ALoadMakesAnEntryRecentlyUsedSoPruningKeepsIt)
 
 TEST(CacheBound, PruningLeavesRecordsAndForeignFilesAlone)
 {
-    CacheDir dir;
+    test::TempDir dir;
     DiskCache cache(dir.path());
     storeAged(cache, 1, 100, 5);
     cache.storeRecord("writer", nlohmann::json{{"files", 1}});
