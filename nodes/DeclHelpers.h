@@ -1,13 +1,13 @@
 #pragma once
 /// Short constructors for parameter and port declarations, so a node file reads as a table.
 
-#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/NodeDecl.h"
+#include "nodes/io/WriterSupport.h"
 
 namespace cg {
 
@@ -133,9 +133,7 @@ inline NodeDecl writerDecl(std::string type, std::string doc, PortDecl input,
         intParam("every", 1, "frames",
                  "write frames start, start + every, start + 2 every, ...; skip the rest", 1)};
     d.framesWritten = [](const ParamSet& p, int start, int end) {
-        return end < start ? 0
-                           : 1 + static_cast<int>(
-                                     std::min<std::int64_t>(1, (end - start) / p.getInt("every")));
+        return scheduledFrames(start, p.getInt("every"), start, end);
     };
     return d;
 }

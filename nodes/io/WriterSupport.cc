@@ -7,6 +7,13 @@
 
 namespace cg {
 
+int scheduledFrames(std::int64_t first, std::int64_t every, std::int64_t start, std::int64_t end)
+{
+    if (first < start) first += (start - first + every - 1) / every * every;
+    if (first > end) return 0;
+    return 1 + static_cast<int>(std::min<std::int64_t>(1, (end - first) / every));
+}
+
 void addSequenceParams(NodeDecl& d)
 {
     for (auto& p : d.params)
@@ -19,11 +26,8 @@ void addSequenceParams(NodeDecl& d)
                                  "write no file for an empty frame (e.g. before the cloud forms)"));
     // The frames writesSequenceFrame schedules (skipEmpty aside: any may hold something).
     d.framesWritten = [](const ParamSet& p, int start, int end) {
-        const std::int64_t every = p.getInt("every");
-        std::int64_t first = p.getInt("firstFrame") < 0 ? start : p.getInt("firstFrame");
-        if (first < start) first += (start - first + every - 1) / every * every;
-        if (first > end) return 0;
-        return 1 + static_cast<int>(std::min<std::int64_t>(1, (end - first) / every));
+        const std::int64_t first = p.getInt("firstFrame");
+        return scheduledFrames(first < 0 ? start : first, p.getInt("every"), start, end);
     };
 }
 
@@ -31,8 +35,8 @@ bool writesSequenceFrame(CookContext& ctx, bool empty)
 {
     const auto& p = ctx.params();
     const auto first = p.getInt("firstFrame") < 0 ? ctx.startFrame() : p.getInt("firstFrame");
-    const bool scheduled = ctx.frame() >= first && (ctx.frame() - first) % p.getInt("every") == 0;
-    if (scheduled && !(empty && p.getBool("skipEmpty"))) return true;
+    if (scheduledFrame(first, p.getInt("every"), ctx.frame()) && !(empty && p.getBool("skipEmpty")))
+        return true;
     ctx.setOutput("files", std::make_shared<TextData>(""));
     return false;
 }

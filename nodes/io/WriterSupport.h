@@ -1,18 +1,29 @@
 #pragma once
 /// What every writer node shares.
 
+#include <cstdint>
+
 #include "core/CoreData.h"
 #include "core/Node.h"
 #include "core/NodeDecl.h"
 
 namespace cg {
 
+/// Whether a writer scheduled on frames first, first + every, ... writes on `frame`.
+inline bool scheduledFrame(std::int64_t first, std::int64_t every, std::int64_t frame)
+{
+    return frame >= first && (frame - first) % every == 0;
+}
+
+/// How many of the frames start..end that schedule holds, counted to 2 (NodeDecl's
+/// framesWritten: "several" is all a load-time check needs).
+int scheduledFrames(std::int64_t first, std::int64_t every, std::int64_t start, std::int64_t end);
+
 /// True on the frames a writer declared with writerDecl writes: start, start + every, ...
 /// On other frames the writer sets an empty "files" output and writes nothing.
 inline bool writesThisFrame(CookContext& ctx)
 {
-    const auto every = ctx.params().getInt("every");
-    if ((ctx.frame() - ctx.startFrame()) % every == 0) return true;
+    if (scheduledFrame(ctx.startFrame(), ctx.params().getInt("every"), ctx.frame())) return true;
     ctx.setOutput("files", std::make_shared<TextData>(""));
     return false;
 }
