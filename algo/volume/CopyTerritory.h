@@ -38,6 +38,10 @@ public:
     std::int64_t owner(const double x[3]) const;
     /// The owners of the cells that meet the box [lo, hi], each once, in increasing order.
     std::vector<std::uint32_t> ownersIn(const double lo[3], const double hi[3]) const;
+    /// The copy owning cell (i, j, k), the cell [i, i + 1) x cellSize along x and so on; -1
+    /// where no particle is.
+    std::int64_t ownerOfCell(int i, int j, int k) const;
+    double cellSize() const { return mCellSize; }
     /// Copy j's origin, metres.
     void origin(std::uint32_t j, double out[3]) const;
 
@@ -45,7 +49,6 @@ public:
 
 private:
     struct Accumulator;
-    std::int64_t ownerOfCell(int i, int j, int k) const;
 
     double mCellSize;
     std::unique_ptr<Accumulator> mAccumulator;

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "algo/volume/DomainWarp.h"
 #include "algo/volume/FloretDetail.h"
 #include "algo/volume/GaussianSplat.h"
 #include "algo/volume/SurfaceDetail.h"
@@ -25,12 +26,14 @@ namespace cg {
 
 namespace {
 
-/// The detail grown and eroded on the splats, both riding with the copies.
+/// The detail warped, grown and eroded on the splats, all riding with the copies.
 struct DetailSettings {
+    algo::DomainWarpSettings warp;
     algo::FloretSettings florets;
     algo::SurfaceDetailSettings erosion;
     bool eroding() const { return erosion.amplitude > 0.0; }
-    bool growing() const { return florets.radius > 0.0; }
+    /// The warp and the florets read the copies' territories.
+    bool growing() const { return florets.radius > 0.0 || warp.amplitude > 0.0; }
 };
 
 /// A voxelized frame, how many particles went into it, and where its copies are: their
@@ -101,12 +104,13 @@ Voxelized splatArrays(const CloudParticlesData& particles, const algo::VoxelizeS
     return out;
 }
 
-/// Florets grown on the envelope, then its soft edge eroded, both in the copies' own
-/// coordinates, or in world coordinates where the particles have no copies.
+/// The envelope warped, florets grown on it, then its soft edge eroded, all in the copies'
+/// own coordinates, or in world coordinates where the particles have no copies.
 void addDetail(Voxelized& v, const DetailSettings& detail, CookContext& ctx)
 {
     const auto cancelled = [&] { ctx.checkCancelled(); };
     const bool territories = v.territory && !v.territory->empty();
+    algo::warpVolume(*v.grid, territories ? &*v.territory : nullptr, detail.warp, cancelled);
     algo::growFlorets(*v.grid, detail.florets, territories ? &*v.territory : nullptr, cancelled);
     const bool copies = v.origins && v.origins->cellCount() > 0;
     algo::erodeSurface(*v.grid, copies ? &*v.origins : nullptr, detail.erosion, cancelled);
@@ -190,6 +194,10 @@ DetailSettings detailFrom(const ParamSet& p, double radius)
     d.erosion.amplitude = p.getFloat("detailAmplitude");
     d.erosion.frequency = p.getFloat("detailFrequency") / radius;
     d.erosion.octaves = static_cast<int>(p.getInt("detailOctaves"));
+    d.warp.amplitude = p.getFloat("warpAmplitude");
+    d.warp.wavelength = p.getFloat("warpWavelength");
+    d.warp.octaves = static_cast<int>(p.getInt("warpOctaves"));
+    d.warp.roughness = p.getFloat("warpRoughness");
     d.florets.radius = p.getFloat("floretRadius");
     d.florets.levels = static_cast<int>(p.getInt("floretLevels"));
     d.florets.children = static_cast<int>(p.getInt("floretChildren"));
@@ -259,7 +267,10 @@ void registerVoxelizerNode(Registry& registry)
         "trilinear weights to the 8 voxels around it and blurring with separable passes, so a "
         "particle costs the same at any radius (at 4 voxels 19 times less than 'smooth'; the "
         "paper gives no kernel). Sums are clamped to [0, 1] unless clamp is off, then optionally "
-        "filtered on the active voxels. Florets (ours): with floretRadius > 0 the surface "
+        "filtered on the active voxels. Domain warp (ours): with warpAmplitude > 0 the density "
+        "is resampled at x + w(x), w a vector fractal of gradient noise in the coordinates of "
+        "the copy owning each territory cell, folding the envelope into lobes and overhangs. "
+        "Florets (ours): with floretRadius > 0 the surface "
         "v = 0.5 becomes a distance field, sinks by floretRadius (not on faces that look "
         "down), and round lumps of that radius grow back out of it, each carrying "
         "floretChildren lumps of half its radius, floretLevels generations deep, with a "
@@ -310,6 +321,19 @@ void registerVoxelizerNode(Registry& registry)
                    16.0),
         intParam("detailOctaves", 2, "",
                  "octaves of the detail noise, each twice as fine (value ours)", 1, 8),
+        floatParam("warpAmplitude", 0.0, "m",
+                   "largest displacement of the warp's first octave: the envelope is resampled "
+                   "at points moved by a vector fractal noise in the copies' coordinates, "
+                   "bending it into lobes and overhangs (ours); 0: none",
+                   0.0, 10000.0),
+        floatParam("warpWavelength", 1200.0, "m",
+                   "wavelength of the warp's first octave (value ours)", 1.0, 1e6),
+        intParam("warpOctaves", 4, "", "octaves of the warp, each half the wavelength (value ours)",
+                 1, 8),
+        floatParam("warpRoughness", 0.6, "",
+                   "amplitude ratio between successive octaves of the warp: the outline's "
+                   "dimension is about 2 - log2(1 / roughness) (value ours)",
+                   0.05, 1.0),
         floatParam("floretRadius", 0.0, "m",
                    "radius of the largest cauliflower lumps grown on the envelope (ours); 0: "
                    "none",
@@ -351,6 +375,12 @@ void registerVoxelizerNode(Registry& registry)
     d.validate = [](const ParamSet& p, const ParamChecker& check) {
         if (p.getFloat("radius") > 32.0 * p.getFloat("voxelSize"))
             check.fail("radius", "radius must be at most 32 voxel sizes");
+        // The warp grows the active voxels by its reach: bounded before anything is allocated.
+        if (algo::domainWarpReach(detailFrom(p, p.getFloat("radius")).warp) >
+            64.0 * p.getFloat("voxelSize"))
+            check.fail("warpAmplitude",
+                       "the warp's reach (warpAmplitude x the octaves' weights) must be at most "
+                       "64 voxel sizes");
     };
     d.create = [] { return std::make_unique<VoxelizerNode>(); };
     registry.addNode(std::move(d));

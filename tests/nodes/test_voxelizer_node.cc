@@ -137,6 +137,25 @@ TEST_F(VoxelizerNodeTest, RadiusBeyond32VoxelsIsRefusedAtLoad)
                  InputError);
 }
 
+TEST_F(VoxelizerNodeTest, AWarpReachingBeyond64VoxelsIsRefusedAtLoadNamingIt)
+{
+    // 4 octaves at roughness 0.6: reach 2.176 x amplitude; 64 voxels of 1 m hold 29 m, not 30.
+    const auto graph = [](double amplitude) {
+        return R"({"cloudgraph": 1, "nodes": {
+            "cloud": {"type": "TestCloudSource"},
+            "vox": {"type": "Voxelizer", "inputs": {"particles": "cloud.particles"},
+                    "params": {"voxelSize": 1, "radius": 4.0, "warpAmplitude": )" +
+               std::to_string(amplitude) + "}}}}";
+    };
+    EXPECT_NO_THROW(parse(graph(29.0)));
+    try {
+        parse(graph(30.0));
+        ADD_FAILURE() << "a warp reaching 65 voxels was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("warpAmplitude"), std::string::npos) << e.what();
+    }
+}
+
 TEST_F(VoxelizerNodeTest, WaterAndFlatBasesWithoutTheirInputsAreRefusedNamingTheInput)
 {
     for (const char* params : {R"("optics": "water")", R"("flatBase": true)"}) {
