@@ -27,6 +27,7 @@ private:
 struct EvalContext {
     int frame = 0;
     int startFrame = 0;      ///< simulations start here (the graph's first frame)
+    int endFrame = 0;        ///< the graph's last frame
     double timeStep = 1.0;   ///< seconds per frame
     std::uint64_t seed = 0;  ///< the graph's global seed
     /// Output paths may leave the output directory (--allow-outside-out): then they are not

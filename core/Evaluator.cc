@@ -110,6 +110,8 @@ public:
         if (decl.hashExtra) decl.hashExtra(node.params, h);
         if (decl.readsTimeStep) h.str("timeStep").f64(mGraph.timeStep);
         if (decl.readsSeed) h.str("seed").u64(mGraph.seed);
+        if (decl.readsFrameRange)
+            h.str("frameRange").i64(mGraph.frames.start).i64(mGraph.frames.end);
         for (const PortDecl& port : decl.inputs) {
             h.str(port.name);
             auto it = node.inputs.find(port.name);
@@ -311,6 +313,7 @@ private:
         EvalContext eval;
         eval.frame = frame;
         eval.startFrame = mGraph.frames.start;
+        eval.endFrame = mGraph.frames.end;
         eval.timeStep = mGraph.timeStep;
         eval.seed = mGraph.seed;
         eval.allowOutsideOut = mGraph.limits.allowPathsOutsideOut;
@@ -380,6 +383,8 @@ private:
         nlohmann::json context = nlohmann::json::object();
         if (node.decl->readsTimeStep) context["timeStep"] = mGraph.timeStep;
         if (node.decl->readsSeed) context["seed"] = mGraph.seed;
+        if (node.decl->readsFrameRange)
+            context["frameRange"] = {mGraph.frames.start, mGraph.frames.end};
         return {{"type", node.decl->type},
                 {"version", node.decl->version},
                 {"params", params},

@@ -38,6 +38,8 @@ public:
     const ParamSet& params() const { return mParams; }
     int frame() const { return mEval.frame; }
     int startFrame() const { return mEval.startFrame; }
+    /// The graph's last frame; a node that reads it declares readsFrameRange.
+    int endFrame() const { return mEval.endFrame; }
     double timeStep() const { return mEval.timeStep; }
     std::uint64_t seed() const { return mEval.seed; }
     void checkCancelled() const { mEval.cancel->throwIfCancelled(); }

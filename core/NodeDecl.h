@@ -62,6 +62,8 @@ struct NodeDecl {
     /// The node reads the evaluation context's time step or seed (hashed into its key).
     bool readsTimeStep = false;
     bool readsSeed = false;
+    /// The node reads the graph's first and last frame (hashed into its key).
+    bool readsFrameRange = false;
 
     std::function<std::unique_ptr<Node>()> create;
     /// Extra checks across parameters (e.g. allocation sizes); throw through ParamChecker.

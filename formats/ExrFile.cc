@@ -9,6 +9,7 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStandardAttributes.h>
 
 namespace cg::formats {
 
@@ -46,10 +47,38 @@ void checkedSize(const Imf::Header& header, int& width, int& height)
         throw std::runtime_error("unsupported data window");
 }
 
+Imath::M44f toImath(const ExrMatrix& m)
+{
+    Imath::M44f out;
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) out[r][c] = m[r][c];
+    return out;
+}
+
+ExrMatrix fromImath(const Imath::M44f& m)
+{
+    ExrMatrix out{};
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) out[r][c] = m[r][c];
+    return out;
+}
+
 }  // namespace
 
+std::optional<ExrCamera> readExrCamera(const std::string& path)
+{
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imf::Header& h = file.header();
+        if (!Imf::hasWorldToCamera(h) || !Imf::hasWorldToNDC(h)) return std::nullopt;
+        return ExrCamera{fromImath(Imf::worldToCamera(h)), fromImath(Imf::worldToNDC(h))};
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path + ": cannot read OpenEXR: " + e.what());
+    }
+}
+
 void writeExrFloat32(const std::string& path, int width, int height,
-                     const std::vector<ExrPixels>& parts)
+                     const std::vector<ExrPixels>& parts, const std::optional<ExrCamera>& camera)
 {
     const std::size_t pixels =
         width > 0 && height > 0 ? static_cast<std::size_t>(width) * static_cast<std::size_t>(height)
@@ -67,6 +96,10 @@ void writeExrFloat32(const std::string& path, int width, int height,
     try {
         Imf::Header header(width, height);
         header.compression() = Imf::ZIP_COMPRESSION;
+        if (camera) {
+            Imf::addWorldToCamera(header, toImath(camera->worldToCamera));
+            Imf::addWorldToNDC(header, toImath(camera->worldToNDC));
+        }
         for (const std::string& name : names)
             header.channels().insert(name, Imf::Channel(Imf::FLOAT));
         Imf::OutputFile file(path.c_str(), header);

@@ -1,6 +1,8 @@
 #pragma once
 /// Linear OpenEXR images: what compositors (Nuke, Houdini COPs, Blender) take from a renderer.
 
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,13 +23,28 @@ struct ExrPixels {
     const std::vector<float>& values;
 };
 
+/// A 4 x 4 matrix as OpenEXR stores it (Imath's M44f, row-major, for row vectors p' = p M).
+using ExrMatrix = std::array<std::array<float, 4>, 4>;
+
+/// The standard attributes of a rendered image's camera (OpenEXR's worldToCamera and
+/// worldToNDC), which Nuke and other compositors read to rebuild it.
+struct ExrCamera {
+    ExrMatrix worldToCamera{};
+    ExrMatrix worldToNDC{};
+};
+
 /// Writes every channel of every `parts` entry as 32-bit float into one scanline OpenEXR file
-/// with ZIP compression, exactly to `path`, values unchanged. {{{"R", "G", "B", "A"}, rgba}}
-/// is writeExrRgba32's file. Throws std::invalid_argument if a part's values do not hold
-/// channels.size() floats per pixel, if a part has no channel or a name repeats;
-/// std::runtime_error naming the file on failure.
+/// with ZIP compression, exactly to `path`, values unchanged, with the camera's attributes
+/// when given. {{{"R", "G", "B", "A"}, rgba}} is writeExrRgba32's file. Throws
+/// std::invalid_argument if a part's values do not hold channels.size() floats per pixel, if
+/// a part has no channel or a name repeats; std::runtime_error naming the file on failure.
 void writeExrFloat32(const std::string& path, int width, int height,
-                     const std::vector<ExrPixels>& parts);
+                     const std::vector<ExrPixels>& parts,
+                     const std::optional<ExrCamera>& camera = std::nullopt);
+
+/// The file's worldToCamera and worldToNDC attributes, if it has both. Throws
+/// std::runtime_error naming the file.
+std::optional<ExrCamera> readExrCamera(const std::string& path);
 
 struct ExrRgbaImage {
     int width = 0;

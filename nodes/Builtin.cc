@@ -62,6 +62,7 @@ void registerBuiltinNodes(Registry& registry)
     registerSyntheticCumulusNode(registry);
     registerRendererNode(registry);
     registerWriteImageNode(registry);
+    registerWriteCameraNode(registry);
 }
 
 }  // namespace cg

@@ -1,6 +1,7 @@
 #include "nodes/data/DataTypes.h"
 
 #include "nodes/data/AtmosphereData.h"
+#include "nodes/data/CameraPath.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/data/CloudSources.h"
 #include "nodes/data/FogVolume.h"
@@ -14,6 +15,7 @@ namespace cg {
 void registerNodeDataTypes(Registry& registry)
 {
     registerAtmosphereType(registry);
+    registerCameraPathType(registry);
     registerCloudParticlesType(registry);
     registerCloudSourcesType(registry);
     registerFogVolumeType(registry);

@@ -1,10 +1,13 @@
-/// Image's stored form, version 2, in ByteWriter's primitives (u64 little-endian; a float
-/// vector is a u64 count and the floats' bytes):
+/// Image's stored form, version 3, in ByteWriter's primitives (u64 little-endian; a float
+/// vector is a u64 count and the floats' bytes; f64 a double's bytes):
 ///
-///   8 bytes  tag "CGIMAGE2" (version 1, untagged, began with the width: refused)
+///   8 bytes  tag "CGIMAGE3" (versions 1 and 2, without the camera: refused)
 ///   u64      width, u64 height, each 1 to 2^20
 ///   floats   rgba: 4 per pixel, top row first, finite
 ///   floats   background: none, or 3 per pixel, top row first, finite
+///   u64      1 when a camera follows, else 0
+///   f64 x 10 camera: position, look-at, up (x, y, z each), vertical field of view in
+///            degrees; finite, the field of view in (0, 180), not looking at itself
 
 #include "nodes/data/Image.h"
 
@@ -20,7 +23,7 @@ namespace cg {
 namespace {
 
 constexpr const char* kType = "Image";
-constexpr char kTag[8] = {'C', 'G', 'I', 'M', 'A', 'G', 'E', '2'};
+constexpr char kTag[8] = {'C', 'G', 'I', 'M', 'A', 'G', 'E', '3'};
 constexpr std::uint64_t kMaxSide = std::uint64_t{1} << 20;
 
 /// Every value finite: the renderer makes finite radiance, and the writers' tone map,
@@ -34,12 +37,40 @@ void requireFinite(const std::vector<float>& values, std::size_t channels, const
                                       " is not finite");
 }
 
+algo::RenderVec3 readVector(ByteReader& in)
+{
+    const double x = in.f64(), y = in.f64(), z = in.f64();
+    return {x, y, z};
+}
+
+/// The camera that follows the pixels, if any, checked as the renderer would use it.
+std::optional<algo::RenderCamera> readCamera(ByteReader& in, std::uint64_t w, std::uint64_t h)
+{
+    const std::uint64_t present = in.u64();
+    if (present == 0) return std::nullopt;
+    if (present != 1) checks::refuse(kType, "camera flag " + std::to_string(present));
+    algo::RenderCamera c;
+    c.position = readVector(in);
+    c.lookAt = readVector(in);
+    c.up = readVector(in);
+    c.fovDegrees = in.f64();
+    c.width = static_cast<int>(w);
+    c.height = static_cast<int>(h);
+    for (const algo::RenderVec3& v : {c.position, c.lookAt, c.up})
+        if (!std::isfinite(v.x()) || !std::isfinite(v.y()) || !std::isfinite(v.z()))
+            checks::refuse(kType, "a camera vector is not finite");
+    if (!(c.fovDegrees > 0.0 && c.fovDegrees < 180.0))
+        checks::refuse(kType, "the camera's field of view is not in (0, 180)");
+    if (c.position == c.lookAt) checks::refuse(kType, "the camera looks at its own position");
+    return c;
+}
+
 DataPtr readImage(ByteReader& in)
 {
     char tag[8];
     in.bytes(tag, 8);
     if (std::memcmp(tag, kTag, 8) != 0)
-        checks::refuse(kType, "not a version 2 image (no CGIMAGE2 tag)");
+        checks::refuse(kType, "not a version 3 image (no CGIMAGE3 tag)");
     const std::uint64_t w = in.u64();
     const std::uint64_t h = in.u64();
     auto rgba = in.podVector<float>();
@@ -55,15 +86,20 @@ DataPtr readImage(ByteReader& in)
                                   std::to_string(w) + " x " + std::to_string(h) + " RGB pixels");
     requireFinite(rgba, 4, "");
     requireFinite(background, 3, "background ");
+    std::optional<algo::RenderCamera> camera = readCamera(in, w, h);
     return std::make_shared<ImageData>(static_cast<int>(w), static_cast<int>(h), std::move(rgba),
-                                       std::move(background));
+                                       std::move(background), camera);
 }
 
 }  // namespace
 
 ImageData::ImageData(int width_, int height_, std::vector<float> rgba_,
-                     std::vector<float> background_)
-    : width(width_), height(height_), rgba(std::move(rgba_)), background(std::move(background_))
+                     std::vector<float> background_, std::optional<algo::RenderCamera> camera_)
+    : width(width_),
+      height(height_),
+      rgba(std::move(rgba_)),
+      background(std::move(background_)),
+      camera(camera_)
 {
     const std::size_t pixels =
         width > 0 && height > 0 ? static_cast<std::size_t>(width) * static_cast<std::size_t>(height)
@@ -81,6 +117,12 @@ bool ImageData::serialize(ByteWriter& out) const
     out.u64(static_cast<std::uint64_t>(height));
     out.podVector(rgba);
     out.podVector(background);
+    out.u64(camera ? 1 : 0);
+    if (camera) {
+        for (const algo::RenderVec3& v : {camera->position, camera->lookAt, camera->up})
+            for (int a = 0; a < 3; ++a) out.f64(v[a]);
+        out.f64(camera->fovDegrees);
+    }
     return true;
 }
 

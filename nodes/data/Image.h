@@ -2,8 +2,10 @@
 /// A rendered image: float RGBA, row-major from the top row down. The renderer documents
 /// whether its output is linear radiance or already tone-mapped.
 
+#include <optional>
 #include <vector>
 
+#include "algo/render/RenderSettings.h"
 #include "core/Data.h"
 
 namespace cg {
@@ -14,7 +16,8 @@ class ImageData final : public Data {
 public:
     /// `background` is empty, or 3 floats per pixel. Throws std::invalid_argument if a size
     /// does not match width x height.
-    ImageData(int width, int height, std::vector<float> rgba, std::vector<float> background = {});
+    ImageData(int width, int height, std::vector<float> rgba, std::vector<float> background = {},
+              std::optional<algo::RenderCamera> camera = std::nullopt);
 
     const int width;
     const int height;
@@ -23,6 +26,10 @@ public:
     /// behind the volume, so rgba = cloud + (1 - alpha) background
     /// (algo/render/image/CloudLayer.h). Empty for images that have none.
     const std::vector<float> background;
+
+    /// Optional, a renderer's: the camera the image was rendered with (its width and height
+    /// are the image's), for the writers' camera metadata.
+    const std::optional<algo::RenderCamera> camera;
 
     bool hasBackground() const { return !background.empty(); }
     std::string typeName() const override { return "Image"; }

@@ -1,9 +1,11 @@
 #include "nodes/render/ImageFile.h"
 
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
+#include "algo/render/CameraMatrices.h"
 #include "algo/render/image/CloudLayer.h"
 #include "formats/ExrFile.h"
 #include "formats/PngFile.h"
@@ -19,20 +21,39 @@ bool endsWith(const std::string& s, const std::string& tail)
     return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
+formats::ExrMatrix toExr(const algo::Matrix44& m)
+{
+    formats::ExrMatrix out{};
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) out[r][c] = static_cast<float>(m[r][c]);
+    return out;
+}
+
+/// OpenEXR's worldToCamera and worldToNDC of the camera the image was rendered with.
+std::optional<formats::ExrCamera> exrCamera(const ImageData& image)
+{
+    if (!image.camera) return std::nullopt;
+    return formats::ExrCamera{toExr(algo::worldToCamera(*image.camera)),
+                              toExr(algo::worldToNdc(*image.camera))};
+}
+
 /// The beauty as R, G, B, A (what a reader of the default layer sees) and, where the image has
-/// a background, the layers "cloud" (premultiplied, background excluded) and "background".
+/// a background, the layers "cloud" (premultiplied, background excluded) and "background";
+/// the camera's matrices where the image has one.
 void writeExr(const std::string& path, const ImageData& image)
 {
+    const std::vector<std::string> rgba = {"R", "G", "B", "A"};
     if (!image.hasBackground()) {
-        formats::writeExrRgba32(path, image.width, image.height, image.rgba);
+        formats::writeExrFloat32(path, image.width, image.height, {{rgba, image.rgba}},
+                                 exrCamera(image));
         return;
     }
     const std::vector<float> cloud = algo::cloudLayer(image.rgba, image.background);
-    formats::writeExrFloat32(
-        path, image.width, image.height,
-        {{{"R", "G", "B", "A"}, image.rgba},
-         {{"cloud.R", "cloud.G", "cloud.B", "cloud.A"}, cloud},
-         {{"background.R", "background.G", "background.B"}, image.background}});
+    formats::writeExrFloat32(path, image.width, image.height,
+                             {{rgba, image.rgba},
+                              {{"cloud.R", "cloud.G", "cloud.B", "cloud.A"}, cloud},
+                              {{"background.R", "background.G", "background.B"}, image.background}},
+                             exrCamera(image));
 }
 
 }  // namespace

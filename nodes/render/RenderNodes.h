@@ -7,6 +7,7 @@ class Registry;
 
 void registerRendererNode(Registry& registry);          // Renderer
 void registerWriteImageNode(Registry& registry);        // WriteImage
+void registerWriteCameraNode(Registry& registry);       // WriteCamera
 void registerSyntheticCumulusNode(Registry& registry);  // SyntheticCumulus
 
 }  // namespace cg

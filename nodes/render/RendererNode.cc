@@ -12,8 +12,10 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
+#include "nodes/data/CameraPath.h"
 #include "nodes/data/FogVolume.h"
 #include "nodes/data/Image.h"
+#include "nodes/render/CameraParams.h"
 #include "nodes/render/RenderNodes.h"
 
 namespace cg {
@@ -96,6 +98,9 @@ public:
     {
         const auto volume = ctx.input<FogVolumeData>("volume");
         algo::RenderSettings settings = settingsFrom(ctx.params());
+        const auto path = std::make_shared<CameraPathData>(
+            cameraKeysFrom(ctx.params()), settings.camera.width, settings.camera.height);
+        settings.camera = path->at(ctx.frame());
         if (ctx.params().getBool("volumeOptics"))
             takeVolumeOptics(*volume->grid, settings.medium, ctx);
         const bool pathTrace = ctx.params().getString("mode") == "pathtrace";
@@ -106,7 +111,8 @@ public:
         ctx.checkCancelled();
         ctx.setOutput("image",
                       std::make_shared<ImageData>(img.width, img.height, std::move(img.rgba),
-                                                  std::move(img.background)));
+                                                  std::move(img.background), settings.camera));
+        ctx.setOutput("camera", path);
     }
 };
 
@@ -118,9 +124,10 @@ void registerRendererNode(Registry& registry)
     const auto v3 = [](const algo::RenderVec3& v) { return Vec3{v.x(), v.y(), v.z()}; };
     NodeDecl d;
     d.type = "Renderer";
-    d.version = 19;  // each version's change: CHANGES.md, "Node versions"
+    d.version = 20;  // each version's change: CHANGES.md, "Node versions"
     d.category = "render";
     d.framesInAnyOrder = true;
+    d.frameDependent = true;  // the camera may move
     d.doc =
         "Ray-marches a fog volume (sigma_t = extinction x density, sigma_s = albedo x sigma_t) "
         "with empty-space skipping over 8^3-voxel blocks, and over 2^3-voxel bricks where no "
@@ -142,7 +149,10 @@ void registerRendererNode(Registry& registry)
         "of the thread count. See docs/rendering.md.";
     d.inputs = {port("volume", "FogVolume", "the cloud density (fog volume, metres)")};
     d.outputs = {port("image", "Image",
-                      "linear radiance RGBA, alpha = volume opacity, with the background")};
+                      "linear radiance RGBA, alpha = volume opacity, with the background and "
+                      "the frame's camera"),
+                 port("camera", "CameraPath",
+                      "the camera over the whole shot, for WriteCamera (the same every frame)")};
     d.params = {
         stringParam("mode", "fast",
                     "fast = the ray marcher with light maps and the multiple-scattering model; "
@@ -156,6 +166,17 @@ void registerRendererNode(Registry& registry)
         vec3Param("cameraLookAt", v3(def.camera.lookAt), "m", "point at the image centre"),
         vec3Param("cameraUp", v3(def.camera.up), "",
                   "up direction (any length, not along the view)"),
+        floatListParam(
+            "cameraKeys", {}, "",
+            "camera moves (ours): keys of 8 numbers each, frame, position x y z, look-at x y z, "
+            "vertical field of view (cameraUp for all); a cubic Hermite path with Catmull-Rom "
+            "tangents through them, held before the first and after the last; a key's frame "
+            "renders exactly as the static camera set to it. Empty: the static camera"),
+        inputFileParam("cameraFile", "",
+                       "a Nuke .chan camera (frame, translate, rotate ZXY in degrees, vertical "
+                       "field of view; y up, as Nuke, Houdini, Maya and Blender's add-on write "
+                       "it): each line is a key; replaces the camera parameters. A relative "
+                       "path is found beside the graph file"),
         vec3Param("sunDirection", v3(def.sun.direction), "",
                   "direction toward the sun (normalised; z > 0 above the horizon)"),
         vec3Param("sunColour", v3(def.sun.colour), "", "sun colour, linear RGB", 0, 100),
@@ -241,7 +262,9 @@ void registerRendererNode(Registry& registry)
                  "hundreds; Russian roulette ends most paths long before)",
                  1, 1 << 20),
     };
+    d.hashExtra = hashCameraFile;
     d.validate = [](const ParamSet& p, const ParamChecker& check) {
+        checkCameraParams(p, check);
         // RGBA and the background: 7 floats a pixel.
         check.checkAllocation("width", {p.getInt("width"), p.getInt("height")}, 7 * sizeof(float));
         const Vec3 a = p.getVec3("cameraPosition"), b = p.getVec3("cameraLookAt");

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <nlohmann/json.hpp>
 
 #include "core/Evaluator.h"
@@ -53,9 +55,20 @@ std::string graphFor(const NodeDecl& decl)
     return nlohmann::json{{"cloudgraph", 1}, {"nodes", nodes}}.dump();
 }
 
+/// Lists whose items come in groups, where one number would be refused: a valid value each.
+const std::map<std::string, nlohmann::json>& groupedListExamples()
+{
+    static const std::map<std::string, nlohmann::json> examples = {
+        {"cameraKeys", {0, 0, -4000, 800, 0, 0, 1200, 40}},  // Renderer: 8 numbers a key
+    };
+    return examples;
+}
+
 /// A valid value different from `p`'s default.
 nlohmann::json otherValue(const ParamDecl& p)
 {
+    if (const auto it = groupedListExamples().find(p.name); it != groupedListExamples().end())
+        return it->second;
     // A step inside [min, max]: `step` up or down if it fits, else halfway to a bound.
     auto nudge = [&](double v, double step) {
         if (!p.max || v + step <= *p.max) return v + step;

@@ -68,6 +68,13 @@ done
 rm -rf "$corpus/sounding_reader" && mkdir -p "$corpus/sounding_reader"
 cp "$root"/tests/data/soundings/* "$corpus/sounding_reader/"
 
+# chan_reader: a written camera and one with comments and seven columns.
+rm -rf "$corpus/chan_reader" && mkdir -p "$corpus/chan_reader"
+printf '0 3200 2000 6500 -8.5 0 0 45\n1 3201.5 2000 6499 -8.4 0.1 0 44.5\n' \
+    >"$corpus/chan_reader/written.chan"
+printf '# from Nuke\n\n1\t0 1 2\t10 20 30\r\n2 0 1 2 10 20 30 39.5\n' \
+    >"$corpus/chan_reader/comments.chan"
+
 # vdb_reader: a one-leaf fog volume written by WriteVDB as full floats (blosc) and half floats
 # (zip), an empty grid, a level set sphere (vdb_tool, from libopenvdb-tools) and an empty file.
 rm -rf "$corpus/vdb_reader" && mkdir -p "$corpus/vdb_reader"

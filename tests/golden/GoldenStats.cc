@@ -9,6 +9,7 @@
 
 #include "core/CoreData.h"
 #include "nodes/data/AtmosphereData.h"
+#include "nodes/data/CameraPath.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/data/CloudSources.h"
 #include "nodes/data/FogVolume.h"
@@ -89,6 +90,20 @@ void image(Stats& s, const ImageData& d)
     for (int c = 0; c < 4; ++c)
         mean(s, std::string("mean_") + channels[c], sums[c] / static_cast<double>(pixels));
     for (int b = 0; b < 8; ++b) count(s, "luma_hist_" + std::to_string(b), histogram[b]);
+}
+
+void cameraPath(Stats& s, const CameraPathData& d)
+{
+    count(s, "keys", static_cast<std::int64_t>(d.keys.size()));
+    count(s, "width", d.width);
+    count(s, "height", d.height);
+    const algo::CameraKey& k = d.keys.front();
+    const char* axes[] = {"x", "y", "z"};
+    for (int a = 0; a < 3; ++a) {
+        mean(s, std::string("first_position_") + axes[a], k.position[a]);
+        mean(s, std::string("first_look_at_") + axes[a], k.lookAt[a]);
+    }
+    mean(s, "first_fov", k.fovDegrees);
 }
 
 void map2D(Stats& s, const Map2DData& d)
@@ -243,10 +258,10 @@ Stats statsOf(const Data& v)
     const bool known =
         as<CloudParticlesData>(v, s, cloudParticles) || as<FogVolumeData>(v, s, fogVolume) ||
         as<ImageData>(v, s, image) || as<Map2DData>(v, s, map2D) ||
-        as<VapourParticlesData>(v, s, vapour) || as<CondensationData>(v, s, condensation) ||
-        as<PrimitiveSetData>(v, s, primitive) || as<CloudSourcesData>(v, s, sources) ||
-        as<AtmosphereData>(v, s, atmosphere) || as<FloatArrayData>(v, s, floatArray) ||
-        as<TextData>(v, s, text) ||
+        as<CameraPathData>(v, s, cameraPath) || as<VapourParticlesData>(v, s, vapour) ||
+        as<CondensationData>(v, s, condensation) || as<PrimitiveSetData>(v, s, primitive) ||
+        as<CloudSourcesData>(v, s, sources) || as<AtmosphereData>(v, s, atmosphere) ||
+        as<FloatArrayData>(v, s, floatArray) || as<TextData>(v, s, text) ||
         as<IntData>(v, s, [](Stats& o, const IntData& d) { count(o, "value", d.value); }) ||
         as<FloatData>(v, s, [](Stats& o, const FloatData& d) { mean(o, "value", d.value); });
     if (!known)

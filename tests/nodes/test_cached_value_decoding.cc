@@ -253,14 +253,16 @@ TEST(CachedValueDecoding, Map2DRoundTripsAndRefusesBadSizesCellsAndDensities)
 // ---- Image ---------------------------------------------------------------------------------
 
 Bytes imageBytes(std::uint64_t w, std::uint64_t h, const std::vector<float>& rgba,
-                 const std::vector<float>& background = {})
+                 const std::vector<float>& background = {}, const std::vector<double>& camera = {})
 {
     ByteWriter out;
-    out.bytes("CGIMAGE2", 8);
+    out.bytes("CGIMAGE3", 8);
     out.u64(w);
     out.u64(h);
     out.podVector(rgba);
     out.podVector(background);
+    out.u64(camera.empty() ? 0 : 1);
+    for (double v : camera) out.f64(v);
     return out.buffer();
 }
 
@@ -308,7 +310,36 @@ TEST(CachedValueDecoding, ImageWithABackgroundRoundTripsAndRefusesAWrongBackgrou
     v1.u64(2);
     v1.u64(3);
     v1.podVector(rgba);
-    expectRefused("Image", v1.buffer(), "not a version 2 image");
+    expectRefused("Image", v1.buffer(), "not a version 3 image");
+}
+
+TEST(CachedValueDecoding, ImageCameraRoundTripsAndRefusesAnUnusableCamera)
+{
+    const std::vector<float> rgba(2 * 3 * 4, 0.25f);
+    algo::RenderCamera camera;
+    camera.position = {1.5, -2000.25, 300.0};
+    camera.lookAt = {10.0, 20.0, 1000.0};
+    camera.up = {0.1, 0.0, 1.0};
+    camera.fovDegrees = 37.5;
+    const auto back = roundTrip(ImageData(2, 3, rgba, {}, camera));
+    ASSERT_TRUE(back->camera.has_value());
+    EXPECT_EQ(back->camera->position, camera.position);
+    EXPECT_EQ(back->camera->lookAt, camera.lookAt);
+    EXPECT_EQ(back->camera->up, camera.up);
+    EXPECT_EQ(back->camera->fovDegrees, camera.fovDegrees);
+    EXPECT_EQ(back->camera->width, 2);
+    EXPECT_EQ(back->camera->height, 3);
+
+    const std::vector<double> good = {0, 0, 0, 0, 1, 0, 0, 0, 1, 40};
+    auto bad = good;
+    bad[10 - 1] = 180.0;
+    expectRefused("Image", imageBytes(2, 3, rgba, {}, bad), "field of view");
+    bad = good;
+    bad[4] = kNaN;
+    expectRefused("Image", imageBytes(2, 3, rgba, {}, bad), "not finite");
+    bad = good;
+    bad[3] = 0, bad[4] = 0, bad[5] = 0;
+    expectRefused("Image", imageBytes(2, 3, rgba, {}, bad), "looks at its own position");
 }
 
 // ---- PrimitiveSet --------------------------------------------------------------------------

@@ -11,6 +11,7 @@
 #include "core/Node.h"
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
+#include "nodes/data/CameraPath.h"
 #include "nodes/data/CloudParticles.h"
 #include "nodes/data/FogVolume.h"
 #include "nodes/data/Image.h"
@@ -233,6 +234,22 @@ void registerFixtureNodes(Registry& registry)
         ctx.setOutput("image", std::make_shared<ImageData>(w, h, std::move(rgba)));
     });
     registry.addNode(image);
+
+    NodeDecl camera = decl("TestCameraSource", "a camera that dollies in over frames 0-10");
+    camera.outputs = {port("camera", "CameraPath", "the camera path")};
+    camera.params = {floatParam("fov", 40.0, "deg", "vertical field of view", 1, 170)};
+    camera.create = counted([](CookContext& ctx) {
+        algo::CameraKey a, b;
+        a.position = {0.0, -4000.0, 800.0};
+        a.lookAt = {0.0, 0.0, 1200.0};
+        a.fovDegrees = ctx.params().getFloat("fov");
+        b = a;
+        b.frame = 10.0;
+        b.position = {0.0, -3000.0, 900.0};
+        ctx.setOutput("camera",
+                      std::make_shared<CameraPathData>(std::vector<algo::CameraKey>{a, b}, 64, 48));
+    });
+    registry.addNode(camera);
 }
 
 std::size_t cookCount(const std::string& nodeId)
@@ -272,6 +289,7 @@ std::string sourceNodeFor(const std::string& dataType, std::string& outputPort)
         {"CloudSources", {"PrimitiveMapper", "sources"}},
         {"FogVolume", {"TestFogSource", "volume"}},
         {"Image", {"TestImageSource", "image"}},
+        {"CameraPath", {"TestCameraSource", "camera"}},
     };
     auto it = sources.find(dataType);
     if (it == sources.end()) return "";

@@ -1,0 +1,181 @@
+// Camera moves through the Renderer (cameraKeys, cameraFile) and out of it (WriteCamera's .chan,
+// the EXR's camera attributes): keys render as the static camera, bit for bit; a .chan written
+// and read back gives the same camera on every frame; the EXR's worldToNDC puts a point on the
+// pixel the Renderer's ray went through; bad keys and files are refused naming them.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "algo/render/CameraMatrices.h"
+#include "algo/render/RenderRays.h"
+#include "core/Error.h"
+#include "core/Evaluator.h"
+#include "core/Graph.h"
+#include "core/Registry.h"
+#include "formats/ChanFile.h"
+#include "formats/ExrFile.h"
+#include "nodes/data/DataTypes.h"
+#include "nodes/data/Image.h"
+#include "nodes/render/RenderNodes.h"
+#include "support/FixtureNodes.h"
+#include "support/TestUtil.h"
+
+namespace cg {
+
+namespace {
+
+// Three keys: a dolly in and a crane up with a zoom.
+const char* kKeys = R"([0, 0, -5000, 900, 0, 0, 1300, 40,
+                        5, 600, -4200, 1100, 100, 0, 1400, 34,
+                        9, 900, -3000, 1500, 0, 50, 1300, 47])";
+
+class CameraMovesTest : public ::testing::Test {
+protected:
+    void SetUp() override
+    {
+        registerCoreDataTypes(registry);
+        registerNodeDataTypes(registry);
+        registerFixtureNodes(registry);
+        registerSyntheticCumulusNode(registry);
+        registerRendererNode(registry);
+        registerWriteImageNode(registry);
+        registerWriteCameraNode(registry);
+    }
+
+    /// A small cumulus seen by a Renderer with `renderParams`, frames 0-9, and `extra` nodes.
+    Graph scene(const std::string& renderParams, const std::string& extra = "")
+    {
+        return parseGraph(R"({"cloudgraph": 1, "frames": {"start": 0, "end": 9}, "nodes": {
+            "cloud": {"type": "SyntheticCumulus", "params": {"voxelSize": 40, "levels": 3}},
+            "render": {"type": "Renderer", "inputs": {"volume": "cloud.volume"},
+                       "params": {"width": 40, "height": 24, )" +
+                              renderParams + "}}" + extra + "}}",
+                          (out / "shot.json").string(), registry);
+    }
+
+    std::shared_ptr<const ImageData> image(const Graph& g, int frame)
+    {
+        EvaluatorOptions options;
+        options.outDir = out.path();
+        Evaluator ev(registry, options);
+        return std::dynamic_pointer_cast<const ImageData>(ev.pull(g, "render", frame)->at("image"));
+    }
+
+    test::TempDir out;
+    Registry registry;
+};
+
+/// The static camera params of key `i` of kKeys.
+std::string staticCamera(const std::vector<double>& k)
+{
+    const auto v = [](double a, double b, double c) {
+        return "[" + std::to_string(a) + ", " + std::to_string(b) + ", " + std::to_string(c) + "]";
+    };
+    return R"("cameraPosition": )" + v(k[1], k[2], k[3]) + R"(, "cameraLookAt": )" +
+           v(k[4], k[5], k[6]) + R"(, "fov": )" + std::to_string(k[7]);
+}
+
+}  // namespace
+
+TEST_F(CameraMovesTest, EachKeyRendersAsTheStaticCameraSetToItBitForBit)
+{
+    const Graph moving = scene(std::string(R"("cameraKeys": )") + kKeys);
+    const std::vector<std::vector<double>> keys = {{0, 0, -5000, 900, 0, 0, 1300, 40},
+                                                   {5, 600, -4200, 1100, 100, 0, 1400, 34},
+                                                   {9, 900, -3000, 1500, 0, 50, 1300, 47}};
+    for (const auto& k : keys) {
+        const int frame = static_cast<int>(k[0]);
+        const auto keyed = image(moving, frame);
+        const auto still = image(scene(staticCamera(k)), frame);
+        EXPECT_EQ(keyed->rgba, still->rgba) << "frame " << frame;
+        ASSERT_TRUE(keyed->camera);
+        EXPECT_EQ(keyed->camera->fovDegrees, k[7]);
+    }
+    // Between keys the camera is elsewhere: the picture differs from both neighbours.
+    const auto between = image(moving, 3);
+    EXPECT_NE(between->rgba, image(moving, 0)->rgba);
+    EXPECT_NE(between->rgba, image(moving, 5)->rgba);
+    EXPECT_GT(between->camera->position.x(), 0.0);
+    EXPECT_LT(between->camera->position.x(), 600.0);
+}
+
+TEST_F(CameraMovesTest, AChanWrittenAndReadBackGivesTheSameCameraOnEveryFrame)
+{
+    const Graph writing = scene(std::string(R"("cameraKeys": )") + kKeys,
+                                R"(, "chan": {"type": "WriteCamera", "inputs": {"camera":
+                                   "render.camera"}, "params": {"file": "cam/shot.chan"}})");
+    EvaluatorOptions options;
+    options.outDir = out.path();
+    Evaluator ev(registry, options);
+    ev.cookFrames(writing, 4, 4);  // any one frame writes the whole shot
+    const std::filesystem::path chan = out / "cam/shot.chan";
+    const std::vector<formats::ChanLine> lines = formats::readChan(chan);
+    ASSERT_EQ(lines.size(), 10u);
+    EXPECT_EQ(lines.front().frame, 0);
+    EXPECT_EQ(lines.back().frame, 9);
+
+    const Graph reading = scene(R"("cameraFile": ")" + chan.string() + R"(")");
+    for (int frame = 0; frame <= 9; ++frame) {
+        const algo::RenderCamera a = *image(writing, frame)->camera;
+        const algo::RenderCamera b = *image(reading, frame)->camera;
+        EXPECT_LT((a.position - b.position).length(), 1e-6) << frame;
+        const algo::CameraRays ra(a), rb(b);
+        for (int px : {0, 39})
+            for (int py : {0, 23})
+                EXPECT_LT((ra.direction(px, py) - rb.direction(px, py)).length(), 1e-9) << frame;
+        EXPECT_NEAR(a.fovDegrees, b.fovDegrees, 1e-12);
+    }
+}
+
+TEST_F(CameraMovesTest, TheExrsCameraPutsAPointOnThePixelTheRendererShotItThrough)
+{
+    const Graph g = scene(std::string(R"("cameraKeys": )") + kKeys,
+                          R"(, "exr": {"type": "WriteImage", "inputs": {"image": "render.image"},
+                                "params": {"file": "img/frame.####.exr"}})");
+    EvaluatorOptions options;
+    options.outDir = out.path();
+    Evaluator ev(registry, options);
+    ev.cookFrames(g, 3, 3);
+    const auto camera = formats::readExrCamera((out / "img/frame.0003.exr").string());
+    ASSERT_TRUE(camera);
+    algo::Matrix44 ndc{};
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) ndc[r][c] = camera->worldToNDC[r][c];
+    const algo::RenderCamera used = *image(g, 3)->camera;
+    const algo::CameraRays rays(used);
+    for (int px : {0, 13, 39})
+        for (int py : {0, 11, 23}) {
+            double at[2];
+            algo::projectToNdc(ndc, used.position + rays.direction(px, py) * 4000.0, at);
+            EXPECT_NEAR(at[0] * used.width - 0.5, px, 0.05);  // float matrices
+            EXPECT_NEAR(at[1] * used.height - 0.5, py, 0.05);
+        }
+}
+
+TEST_F(CameraMovesTest, BadKeysAndCameraFilesAreRefusedAtLoadNamingThem)
+{
+    const auto refusal = [&](const std::string& params) -> std::string {
+        try {
+            scene(params);
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "";
+    };
+    EXPECT_NE(refusal(R"("cameraKeys": [0, 0, -5000, 900, 0, 0, 1300])").find("cameraKeys"),
+              std::string::npos);
+    EXPECT_NE(refusal(R"("cameraKeys": [0, 0, -5000, 900, 0, 0, 1300, 40,
+                                         0, 0, -4000, 900, 0, 0, 1300, 40])")
+                  .find("camera key 1"),
+              std::string::npos);
+    std::ofstream(out / "bad.chan") << "1 0 0 0 0 0 0 40\n2 0 0 0 0 0\n";
+    const std::string bad = refusal(R"("cameraFile": ")" + (out / "bad.chan").string() + "\"");
+    EXPECT_NE(bad.find("cameraFile"), std::string::npos) << bad;
+    EXPECT_NE(bad.find("bad.chan:2"), std::string::npos) << bad;
+}
+
+}  // namespace cg
