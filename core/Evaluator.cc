@@ -112,6 +112,7 @@ public:
         if (decl.readsSeed) h.str("seed").u64(mGraph.seed);
         if (decl.readsFrameRange)
             h.str("frameRange").i64(mGraph.frames.start).i64(mGraph.frames.end);
+        if (node.bypass) h.str("bypass");
         for (const PortDecl& port : decl.inputs) {
             h.str(port.name);
             auto it = node.inputs.find(port.name);
@@ -301,6 +302,22 @@ private:
         return nullptr;
     }
 
+    /// A bypassed node's outputs (Graph::checkBypass allowed them): a writer's empty file
+    /// list; any other node's first input, as each of its outputs.
+    OutputMap bypassedOutputs(const NodeDecl& decl, const GraphNode& node,
+                              const FrameOutputs& results) const
+    {
+        OutputMap out;
+        if (decl.writesFiles) {
+            for (const PortDecl& p : decl.outputs) out[p.name] = std::make_shared<TextData>("");
+            return out;
+        }
+        const Connection& conn = node.inputs.at(decl.inputs.front().name);
+        const OutputsPtr& up = results[mGraph.indexOf(conn.node)];
+        for (const PortDecl& p : decl.outputs) out[p.name] = up->at(conn.port);
+        return out;
+    }
+
     OutputsPtr cook(std::size_t idx, int frame, const Key& key, const FrameOutputs& results,
                     std::string& reason)
     {
@@ -343,9 +360,13 @@ private:
 
         OutputMap out;
         try {
-            std::unique_ptr<Node> instance = decl.create();
-            instance->cook(ctx);
-            out = ctx.takeOutputs();
+            if (node.bypass) {
+                out = bypassedOutputs(decl, node, results);
+            } else {
+                std::unique_ptr<Node> instance = decl.create();
+                instance->cook(ctx);
+                out = ctx.takeOutputs();
+            }
             for (const PortDecl& p : decl.outputs)
                 if (!out.count(p.name))
                     throw std::logic_error("did not set output '" + p.name + "'");

@@ -124,6 +124,7 @@ void Graph::addNode(GraphNode node)
 
 void Graph::validateNode(const GraphNode& node) const
 {
+    checkBypass(node);
     checkFramesNumbered(node);
     if (!node.decl->validate) return;
     const ParamChecker checker{locate(node.pointer), limits.allocationLimitBytes};
@@ -135,9 +136,62 @@ void Graph::validateNode(const GraphNode& node) const
     }
 }
 
+void Graph::checkBypass(const GraphNode& node) const
+{
+    if (!node.bypass) return;
+    const NodeDecl& d = *node.decl;
+    const std::string where = locate(node.pointer + "/bypass");
+    const std::string what = "'" + node.id + "' (" + d.type + ")";
+    if (d.writesFiles) {
+        for (const PortDecl& out : d.outputs)
+            if (out.type != "Text")
+                throw InputError(where, what + " cannot be bypassed: its output '" + out.name +
+                                            "' is " + out.type + ", not a file list");
+        return;
+    }
+    if (d.inputs.empty())
+        throw InputError(where, what +
+                                    " has no input to pass through: bypass is for writers and "
+                                    "for nodes whose outputs are of their first input's type");
+    const PortDecl& first = d.inputs.front();
+    for (const PortDecl& out : d.outputs)
+        if (out.type != first.type)
+            throw InputError(where, what + " makes " + out.type + " ('" + out.name + "') from " +
+                                        first.type + " ('" + first.name +
+                                        "'): a bypassed node passes its first input through, so "
+                                        "it cannot stand in for '" +
+                                        out.name +
+                                        "'; bypass a writer or a node whose outputs "
+                                        "are of its first input's type");
+    if (!node.inputs.count(first.name))
+        throw InputError(where, what + ": its input '" + first.name +
+                                    "' is not connected, so there is nothing to pass through");
+}
+
+void Graph::setBypass(const std::string& nodeId, bool bypass, const std::string& where)
+{
+    const GraphNode* found = find(nodeId);
+    if (!found) {
+        std::vector<std::string> ids;
+        for (const GraphNode& n : mNodes) ids.push_back(n.id);
+        throw InputError(where.empty() ? locate("/nodes") : where,
+                         "unknown node '" + nodeId + "'" + didYouMean(nodeId, ids));
+    }
+    GraphNode& node = mNodes[static_cast<std::size_t>(found - mNodes.data())];
+    GraphNode trial = node;
+    trial.bypass = bypass;
+    try {
+        validateNode(trial);
+    } catch (const InputError& e) {
+        if (where.empty()) throw;
+        throw InputError(where, e.message());
+    }
+    node.bypass = bypass;
+}
+
 void Graph::checkFramesNumbered(const GraphNode& node) const
 {
-    if (!node.decl->framesWritten) return;
+    if (!node.decl->framesWritten || node.bypass) return;
     for (std::size_t i = 0; i < node.decl->params.size(); ++i) {
         const ParamDecl& decl = node.decl->params[i];
         if (decl.role != ParamRole::OutputPath) continue;

@@ -31,6 +31,9 @@ struct GraphNode {
     std::map<std::string, Connection> inputs;  ///< by input port name
     std::string pointer;                       ///< JSON pointer of the node, "/nodes/<id>"
     std::string comment;                       ///< free text from the file, kept on save
+    /// "bypass": true. A writer writes nothing (its file list is empty); any other node passes
+    /// its first input through as each of its outputs, which must be of that input's type.
+    bool bypass = false;
 };
 
 struct FrameRange {
@@ -89,6 +92,10 @@ public:
     void setParam(const std::string& nodeId, const std::string& param, const nlohmann::json& value,
                   const std::string& where = "");
 
+    /// Bypasses a node or stops bypassing it (`--set node.bypass=true`), checked as loading
+    /// checks "bypass". Throws InputError naming `where`.
+    void setBypass(const std::string& nodeId, bool bypass, const std::string& where = "");
+
     // Used by the loader.
     void addNode(GraphNode node);
     /// Checks wiring (ports exist, types match, required inputs present), rejects cycles,
@@ -96,6 +103,8 @@ public:
     void finalize();
     /// Runs every node's NodeDecl::validate. Throws InputError.
     void validateNode(const GraphNode& node) const;
+    /// Refuses a bypass the node cannot do (see GraphNode::bypass).
+    void checkBypass(const GraphNode& node) const;
     /// Refuses an output file name without #### that the node writes on several frames.
     void checkFramesNumbered(const GraphNode& node) const;
 

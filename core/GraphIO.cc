@@ -15,7 +15,9 @@
 //         "type": "NodeType",             required; a registered node type
 //         "params": {"name": value},      optional; unlisted parameters keep their defaults
 //         "inputs": {"port": "up.out"},   optional; input port <- output `out` of node `up`
-//         "comment": "..."                optional string, kept when the graph is saved
+//         "comment": "...",               optional string, kept when the graph is saved
+//         "bypass": true                  optional; a writer writes nothing, another node
+//                                         passes its first input through (Graph::checkBypass)
 //       }
 //     }
 //   }
@@ -162,7 +164,7 @@ GraphNode readNode(const std::string& id, const Json& j, const Reader& r, const 
                "invalid node id '" + printableText(id) +
                    "': ids match [A-Za-z_][A-Za-z0-9_-]* and have at most 128 characters");
     r.object(j, ptr, "a node");
-    r.onlyKeys(j, ptr, {"type", "params", "inputs", "comment"});
+    r.onlyKeys(j, ptr, {"type", "params", "inputs", "comment", "bypass"});
 
     auto type = j.find("type");
     if (type == j.end()) r.fail(ptr + "/type", "missing \"type\"");
@@ -181,6 +183,10 @@ GraphNode readNode(const std::string& id, const Json& j, const Reader& r, const 
     node.params = ParamSet(&decl->params);
     node.pointer = ptr;
 
+    if (auto b = j.find("bypass"); b != j.end()) {
+        if (!b->is_boolean()) r.fail(ptr + "/bypass", "\"bypass\" must be true or false");
+        node.bypass = b->get<bool>();
+    }
     if (auto c = j.find("comment"); c != j.end()) {
         if (!c->is_string()) r.fail(ptr + "/comment", "\"comment\" must be a string");
         node.comment = c->get<std::string>();
@@ -313,6 +319,12 @@ void applySetOverride(Graph& graph, const std::string& assignment)
     // to the graph file as the graph's own values are.
     const GraphNode* node = graph.find(lhs.substr(0, dot));
     const ParamDecl* decl = node ? node->decl->findParam(lhs.substr(dot + 1)) : nullptr;
+    // "bypass" is the node's own switch, unless its type has a parameter of that name.
+    if (!decl && lhs.substr(dot + 1) == "bypass") {
+        if (!value.is_boolean()) throw InputError(where, "bypass must be true or false");
+        graph.setBypass(lhs.substr(0, dot), value.get<bool>(), where);
+        return;
+    }
     if (decl && decl->role == ParamRole::InputFile && value.is_string() &&
         !value.get<std::string>().empty())
         value = std::filesystem::absolute(value.get<std::string>()).lexically_normal().string();
@@ -346,6 +358,7 @@ Json graphToJson(const Graph& graph)
         for (const auto& [port, conn] : node.inputs) inputs[port] = conn.node + "." + conn.port;
         if (!inputs.empty()) n["inputs"] = std::move(inputs);
         if (!node.comment.empty()) n["comment"] = node.comment;
+        if (node.bypass) n["bypass"] = true;
         nodes[node.id] = std::move(n);
     }
     out["nodes"] = std::move(nodes);

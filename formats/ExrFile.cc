@@ -65,6 +65,45 @@ ExrMatrix fromImath(const Imath::M44f& m)
 
 }  // namespace
 
+ExrChannelImage readExrLuminance(const std::string& path, std::uint64_t maxPixels)
+{
+    try {
+        Imf::InputFile file(path.c_str());
+        ExrChannelImage out;
+        checkedSize(file.header(), out.width, out.height);
+        const std::uint64_t pixels =
+            static_cast<std::uint64_t>(out.width) * static_cast<std::uint64_t>(out.height);
+        if (pixels > maxPixels)
+            throw std::runtime_error(std::to_string(out.width) + " x " +
+                                     std::to_string(out.height) + " pixels are more than " +
+                                     std::to_string(maxPixels));
+        const Imf::ChannelList& list = file.header().channels();
+        const bool hasY = list.findChannel("Y") != nullptr;
+        if (!hasY && !list.findChannel("R") && !list.findChannel("G") && !list.findChannel("B"))
+            throw std::runtime_error("no Y, R, G or B channel");
+        // A channel the file lacks reads as the slice's fill, 0.
+        const std::vector<std::string> read =
+            hasY ? std::vector<std::string>{"Y"} : std::vector<std::string>{"R", "G", "B"};
+        std::vector<float> values(read.size() * static_cast<std::size_t>(pixels));
+        Imf::FrameBuffer fb;
+        insertSlices(fb, values.data(), out.width, read, [](const std::string&) { return 0.0; });
+        file.setFrameBuffer(fb);
+        file.readPixels(0, out.height - 1);
+        out.channels = {"Y"};
+        if (hasY) {
+            out.values = std::move(values);
+            return out;
+        }
+        out.values.resize(static_cast<std::size_t>(pixels));
+        for (std::size_t i = 0; i < out.values.size(); ++i)
+            out.values[i] =
+                0.2126f * values[3 * i] + 0.7152f * values[3 * i + 1] + 0.0722f * values[3 * i + 2];
+        return out;
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path + ": cannot read OpenEXR: " + e.what());
+    }
+}
+
 std::optional<ExrCamera> readExrCamera(const std::string& path)
 {
     try {

@@ -2,6 +2,7 @@
 /// Linear OpenEXR images: what compositors (Nuke, Houdini COPs, Blender) take from a renderer.
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -68,6 +69,12 @@ struct ExrChannelImage {
 /// interleaved in the order asked. Throws std::runtime_error naming the file and the channel
 /// if one is missing, or naming the file on any other failure.
 ExrChannelImage readExrChannels(const std::string& path, const std::vector<std::string>& channels);
+
+/// A single-channel image of an OpenEXR file: its "Y" channel if it has one, else the Rec. 709
+/// luminance of R, G and B (a missing one reads as 0), rows top first. Refuses a file with
+/// more than `maxPixels` pixels before reading them, and one with none of Y, R, G, B. Throws
+/// std::runtime_error naming the file.
+ExrChannelImage readExrLuminance(const std::string& path, std::uint64_t maxPixels);
 
 /// The names of every channel in an OpenEXR file, in the file's (alphabetical) order.
 /// Throws std::runtime_error naming the file.

@@ -155,7 +155,8 @@ void writePng(const std::string& path, int width, int height, int channels, int 
 
 PngPixels readPng(const std::string& path, int channels, int bitDepth, std::uint32_t maxSide)
 {
-    if ((channels != 1 && channels != 3) || (bitDepth != 8 && bitDepth != 16))
+    if ((channels != 0 && channels != 1 && channels != 3) ||
+        (bitDepth != 0 && bitDepth != 8 && bitDepth != 16))
         throw std::invalid_argument("readPng: bad format");
     File file;
     file.f = std::fopen(path.c_str(), "rb");
@@ -184,8 +185,21 @@ PngPixels readPng(const std::string& path, int channels, int bitDepth, std::uint
         throw std::runtime_error(path + ": PNG read failed: " + err.message);
     // Checked before the pixels are read, so a wrong format is reported as such even when
     // the data would also be bad.
-    if (hdr.bitDepth != bitDepth || hdr.colorType != colorType(channels))
-        throw std::runtime_error(path + ": not " + formatName(channels, bitDepth) + " PNG");
+    const int storedChannels = hdr.colorType == PNG_COLOR_TYPE_GRAY  ? 1
+                               : hdr.colorType == PNG_COLOR_TYPE_RGB ? 3
+                                                                     : 0;
+    const bool depthOk =
+        bitDepth == 0 ? hdr.bitDepth == 8 || hdr.bitDepth == 16 : hdr.bitDepth == bitDepth;
+    const bool typeOk = channels == 0 ? storedChannels != 0 : hdr.colorType == colorType(channels);
+    if (!depthOk || !typeOk)
+        throw std::runtime_error(
+            path + ": not " +
+            (channels == 0 || bitDepth == 0
+                 ? std::string("a greyscale or RGB PNG of 8 or 16 bits (flatten an alpha "
+                               "channel, convert a palette)")
+                 : formatName(channels, bitDepth) + " PNG"));
+    channels = storedChannels;
+    bitDepth = hdr.bitDepth;
 
     PngPixels px;
     px.width = static_cast<int>(hdr.width);

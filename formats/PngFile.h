@@ -32,7 +32,8 @@ struct PngPixels {
 /// a PNG ("not a PNG file"), is stored in another format ("not a 16-bit greyscale PNG",
 /// "not an 8-bit RGB PNG", ...; checked before any pixel is read) or is malformed, truncated
 /// or too large ("PNG read failed: <libpng's reason>"); std::invalid_argument if `channels`
-/// or `bitDepth` is not one of the values above.
+/// or `bitDepth` is not one of the values above. `channels` 0 takes grey or RGB and
+/// `bitDepth` 0 takes 8 or 16 bits, as stored (the result says which).
 PngPixels readPng(const std::string& path, int channels, int bitDepth, std::uint32_t maxSide);
 
 /// Writes an 8-bit RGB PNG (top row first) tagged sRGB, exactly to `path`. Throws

@@ -28,6 +28,7 @@ void registerBuiltinNodes(Registry& registry)
     // atmosphere/
     registerAtmosphereNode(registry);
     registerNoiseMapNode(registry);
+    registerMapMathNode(registry);
     registerVapourEmitterNode(registry);
     registerThermalIntegratorNode(registry);
     registerCondensationNode(registry);
@@ -42,6 +43,7 @@ void registerBuiltinNodes(Registry& registry)
 
     // io/
     registerWriteMapNode(registry);
+    registerReadMapNode(registry);
     registerWriteParticlesNode(registry);
     registerEncodeVideoNode(registry);
 

@@ -6,6 +6,7 @@ namespace cg {
 class Registry;
 
 void registerWriteMapNode(Registry& registry);        // WriteMap: PFM + 16-bit PNG preview
+void registerReadMapNode(Registry& registry);         // ReadMap: PNG, PFM or EXR -> Map2D
 void registerWriteParticlesNode(Registry& registry);  // WriteParticles: binary PLY
 void registerEncodeVideoNode(Registry& registry);     // EncodeVideo: PNG frames -> MP4 (ffmpeg)
 

@@ -75,6 +75,15 @@ printf '0 3200 2000 6500 -8.5 0 0 45\n1 3201.5 2000 6499 -8.4 0.1 0 44.5\n' \
 printf '# from Nuke\n\n1\t0 1 2\t10 20 30\r\n2 0 1 2 10 20 30 39.5\n' \
     >"$corpus/chan_reader/comments.chan"
 
+# map_reader: a WriteMap PFM and its 16-bit PNG preview.
+rm -rf "$corpus/map_reader" && mkdir -p "$corpus/map_reader"
+cat >"$work/map.json" <<'JSON'
+{"cloudgraph": 1, "nodes": {"noise": {"type": "NoiseMap", "params": {"width": 6, "height": 4}},
+ "write": {"type": "WriteMap", "inputs": {"map": "noise.map"}, "params": {"file": "m.pfm"}}}}
+JSON
+"$cli" run "$work/map.json" --out "$work/map" -q
+cp "$work/map/m.pfm" "$work/map/m.png" "$corpus/map_reader/"
+
 # vdb_reader: a one-leaf fog volume written by WriteVDB as full floats (blosc) and half floats
 # (zip), an empty grid, a level set sphere (vdb_tool, from libopenvdb-tools) and an empty file.
 rm -rf "$corpus/vdb_reader" && mkdir -p "$corpus/vdb_reader"
