@@ -168,7 +168,7 @@ void Graph::checkBypass(const GraphNode& node) const
                                     "' is not connected, so there is nothing to pass through");
 }
 
-void Graph::setBypass(const std::string& nodeId, bool bypass, const std::string& where)
+GraphNode& Graph::nodeToEdit(const std::string& nodeId, const std::string& where)
 {
     const GraphNode* found = find(nodeId);
     if (!found) {
@@ -177,7 +177,12 @@ void Graph::setBypass(const std::string& nodeId, bool bypass, const std::string&
         throw InputError(where.empty() ? locate("/nodes") : where,
                          "unknown node '" + nodeId + "'" + didYouMean(nodeId, ids));
     }
-    GraphNode& node = mNodes[static_cast<std::size_t>(found - mNodes.data())];
+    return mNodes[static_cast<std::size_t>(found - mNodes.data())];
+}
+
+void Graph::setBypass(const std::string& nodeId, bool bypass, const std::string& where)
+{
+    GraphNode& node = nodeToEdit(nodeId, where);
     GraphNode trial = node;
     trial.bypass = bypass;
     try {
@@ -211,14 +216,7 @@ void Graph::checkFramesNumbered(const GraphNode& node) const
 void Graph::setParam(const std::string& nodeId, const std::string& param,
                      const nlohmann::json& value, const std::string& where)
 {
-    const GraphNode* found = find(nodeId);
-    if (!found) {
-        std::vector<std::string> ids;
-        for (const GraphNode& n : mNodes) ids.push_back(n.id);
-        throw InputError(where.empty() ? locate("/nodes") : where,
-                         "unknown node '" + nodeId + "'" + didYouMean(nodeId, ids));
-    }
-    GraphNode& node = mNodes[static_cast<std::size_t>(found - mNodes.data())];
+    GraphNode& node = nodeToEdit(nodeId, where);
     const std::string place =
         where.empty() ? locate(node.pointer + "/params/" + jsonPointerToken(param)) : where;
     const std::string inNode = " (node '" + nodeId + "')";

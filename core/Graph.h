@@ -112,6 +112,9 @@ public:
     std::string locate(const std::string& pointer) const;
 
 private:
+    /// The node `nodeId`, to edit; InputError naming `where` (or /nodes) with the ids there are.
+    GraphNode& nodeToEdit(const std::string& nodeId, const std::string& where);
+
     std::string mSourceName;
     std::vector<GraphNode> mNodes;  ///< sorted by id after finalize()
     bool mSorted = true;            ///< mNodes is sorted by id (binary search works)

@@ -139,9 +139,13 @@ std::string chanText(const std::vector<ChanLine>& lines)
     for (const ChanLine& l : lines) {
         out += std::to_string(l.frame);
         for (double v : {l.translate[0], l.translate[1], l.translate[2], l.rotateDegrees[0],
-                         l.rotateDegrees[1], l.rotateDegrees[2], l.verticalFovDegrees}) {
+                         l.rotateDegrees[1], l.rotateDegrees[2]}) {
             out += ' ';
             appendNumber(out, v);
+        }
+        if (l.verticalFovDegrees != 0.0) {  // 0: the line had none
+            out += ' ';
+            appendNumber(out, l.verticalFovDegrees);
         }
         out += '\n';
     }

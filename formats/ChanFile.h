@@ -38,8 +38,9 @@ std::vector<ChanLine> parseChan(std::string_view text, const std::string& name);
 /// Reads a regular file of at most kMaxChanBytes and parses it. Throws FormatError.
 std::vector<ChanLine> readChan(const std::filesystem::path& path);
 
-/// The text of `lines`, each with its field of view, every value in the shortest form that
-/// reads back as the same double, so parseChan(chanText(lines)) == lines.
+/// The text of `lines`, each with its field of view where it has one (not 0), every value in
+/// the shortest form that reads back as the same double, so parseChan(chanText(lines)) ==
+/// lines.
 std::string chanText(const std::vector<ChanLine>& lines);
 
 }  // namespace cg::formats

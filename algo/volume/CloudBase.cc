@@ -7,6 +7,8 @@
 #include <openvdb/tools/Prune.h>
 #include <openvdb/tree/LeafManager.h>
 
+#include "algo/volume/LeafStore.h"
+
 namespace cg::algo {
 
 namespace {
@@ -119,13 +121,7 @@ void shapeCloudWater(openvdb::FloatGrid& grid, const CloudBaseField& base,
                 const double lwc = s.adiabaticFraction * v * s.water->at(h);
                 v = std::cbrt(lwc * lwc);  // (LWC / 1 g m^-3)^(2/3)
             }
-            const auto value = static_cast<float>(v);
-            if (value > 0.0f) {
-                values[n] = value;
-            } else {
-                values[n] = 0.0f;
-                leaf.setValueOff(n);
-            }
+            storeOrSwitchOff(leaf, values, n, static_cast<float>(v));
         }
     });
     openvdb::tools::pruneInactive(grid.tree());

@@ -12,6 +12,7 @@
 #include <openvdb/tree/LeafManager.h>
 
 #include "algo/noise/GradientNoise.h"
+#include "algo/volume/LeafStore.h"
 
 namespace cg::algo {
 
@@ -266,12 +267,7 @@ void warpVolume(openvdb::FloatGrid& grid, const CopyTerritory* territory,
                                     ijk.z() + w[2] / voxel);
             float v = 0.0f;
             openvdb::tools::BoxSampler::sample(accessor, at, v);
-            if (v > 0.0f) {
-                values[n] = v;
-            } else {
-                values[n] = 0.0f;
-                leaf.setValueOff(n);
-            }
+            storeOrSwitchOff(leaf, values, n, v);
         }
     });
     openvdb::tools::pruneInactive(grid.tree());

@@ -9,6 +9,7 @@
 #include <openvdb/tree/LeafManager.h>
 
 #include "algo/CounterRandom.h"
+#include "algo/volume/LeafStore.h"
 #include "algo/volume/NearbyDepth.h"
 
 namespace cg::algo {
@@ -204,13 +205,8 @@ void growFlorets(openvdb::FloatGrid& grid, const FloretSettings& s, const CopyTe
             const double inside =
                 body >= whole ? body : std::max(body, floretDepth(world, s, roots, -whole, whole));
             const double coverage = smoothstep(-whole, whole, inside);
-            const auto value = static_cast<float>(std::max(values[n], kSurfaceValue) * coverage);
-            if (value > 0.0f) {
-                values[n] = value;
-            } else {
-                values[n] = 0.0f;
-                leaf.setValueOff(n);  // the background, inactive: only sparser
-            }
+            storeOrSwitchOff(leaf, values, n,
+                             static_cast<float>(std::max(values[n], kSurfaceValue) * coverage));
         }
     });
     openvdb::tools::pruneInactive(grid.tree());

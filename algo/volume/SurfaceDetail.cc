@@ -11,6 +11,7 @@
 #include "algo/noise/PerlinWorley.h"
 #include "algo/volume/CopyOriginField.h"
 #include "algo/volume/LeafCopyCoordinates.h"
+#include "algo/volume/LeafStore.h"
 
 namespace cg::algo {
 
@@ -89,13 +90,7 @@ void erodeSurface(openvdb::FloatGrid& grid, const CopyOriginField* field,
             double x[3];
             coordinates.at(n, x);
             const float e = amplitude * (1.0f - perlinWorleyFbm(x, s.frequency, s.octaves));
-            const float eroded = erode(v, e);
-            if (eroded > 0.0f) {
-                values[n] = eroded;
-            } else {
-                values[n] = 0.0f;
-                leaf.setValueOff(n);  // the background, inactive: only sparser
-            }
+            storeOrSwitchOff(leaf, values, n, erode(v, e));
         }
     });
     openvdb::tools::pruneInactive(grid.tree());  // leaves eroded away entirely

@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "algo/atmosphere/Convective.h"
+#include "algo/atmosphere/HeroClouds.h"
 #include "algo/atmosphere/Parcel.h"
 #include "algo/atmosphere/Thermodynamics.h"
 #include "algo/atmosphere/VapourEmission.h"
@@ -126,12 +127,40 @@ void startFromProfile(CookContext& ctx, VapourStatics& statics, std::vector<floa
             thermal.cinJPerKg, std::isnan(thermal.lfcM) ? ", no LFC at all" : "");
 }
 
+/// When each particle leaves its start: over emissionDuration (ours), and not before its hero
+/// cloud's start when its cell is a hero's. No release times when all leave at t0.
+void setReleaseTimes(VapourStatics& statics, double duration, std::uint64_t seed,
+                     const std::vector<algo::HeroCloud>& heroes,
+                     const std::vector<std::int32_t>& heroOf)
+{
+    bool late = duration > 0.0;
+    for (const algo::HeroCloud& h : heroes) late = late || h.start > 0.0;
+    if (!late) return;
+    statics.releaseTime.resize(statics.size());
+    for (std::size_t i = 0; i < statics.size(); ++i) {
+        const float spread =
+            duration > 0.0 ? algo::releaseTime(seed, statics.id[i], duration) : 0.0f;
+        const std::int32_t hero = heroOf[statics.homeCell[i]];
+        statics.releaseTime[i] =
+            hero < 0 ? spread
+                     : static_cast<float>(heroes[static_cast<std::size_t>(hero)].start) + spread;
+    }
+}
+
 class VapourEmitterNode final : public Node {
 public:
     void cook(CookContext& ctx) override
     {
-        const auto map = ctx.input<Map2DData>("map");
+        const auto input = ctx.input<Map2DData>("map");
         const algo::VapourEmissionSettings s = settingsFrom(ctx.params());
+        // The map the vapour rises from: the input raised by the hero clouds.
+        std::vector<float> values = input->values;
+        const std::vector<algo::HeroCloud> heroes =
+            algo::heroCloudsFromList(ctx.params().getFloatList("heroClouds"));
+        const std::vector<std::int32_t> heroOf =
+            algo::stampHeroClouds(input->nx, input->ny, input->cellSize, values, heroes);
+        const auto map =
+            std::make_shared<Map2DData>(input->nx, input->ny, input->cellSize, std::move(values));
 
         // Refuse before allocating: the count depends on the map, so load time cannot know it.
         const std::uint64_t count = algo::emissionCount(map->values, s);
@@ -158,11 +187,8 @@ public:
         statics->x = std::move(e.x);
         statics->y = std::move(e.y);
         statics->startZ = e.z;
-        if (const double duration = ctx.params().getFloat("emissionDuration"); duration > 0.0) {
-            statics->releaseTime.resize(statics->size());
-            for (std::size_t i = 0; i < statics->size(); ++i)
-                statics->releaseTime[i] = algo::releaseTime(s.seed, statics->id[i], duration);
-        }
+        setReleaseTimes(*statics, ctx.params().getFloat("emissionDuration"), s.seed, heroes,
+                        heroOf);
         if (const auto moisture = ctx.input<Map2DData>("moisture")) {
             const double amplitude = ctx.params().getFloat("moistureAmplitude");
             if (amplitude > 0.0)
@@ -173,6 +199,7 @@ public:
         ctx.setOutput("particles", std::make_shared<VapourParticlesData>(
                                        std::move(statics), std::move(e.z), std::move(e.vz),
                                        std::move(e.temperature)));
+        ctx.setOutput("map", map);
     }
 };
 
@@ -182,7 +209,7 @@ void registerVapourEmitterNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "VapourEmitter";
-    d.version = 3;
+    d.version = 4;
     d.category = "atmosphere";
     d.doc =
         "Initial water vapour particles of the stochastic simulation (Sec. 5.1) at time t0. "
@@ -222,7 +249,10 @@ void registerVapourEmitterNode(Registry& registry)
              "ours, for start 'excess' and 'convective': the profile the vapour starts against",
              true)};
     d.outputs = {port("particles", "VapourParticles",
-                      "the vapour particles at t0: position, U_vz = 0 and T_v")};
+                      "the vapour particles at t0: position, U_vz = 0 and T_v"),
+                 port("map", "Map2D",
+                      "the map the vapour rose from: the input raised by the hero clouds (wire "
+                      "it to PrimitiveMapper's map, so a hero's copies get Eq. 16's full scale)")};
     d.params = {
         floatParam("minParticlesPerCell", 0.0, "particles",
                    "W_p_min of Eq. 3: particles of a cell with density 0 (value ours)", 0.0, 1e6),
@@ -244,6 +274,11 @@ void registerVapourEmitterNode(Registry& registry)
                    "ours: the largest dew-point perturbation the moisture map gives (0: the "
                    "paper's flat base)",
                    0.0, 20.0),
+        floatListParam("heroClouds", {}, "",
+                       "ours: thermals placed by the layout, 4 numbers each: x, y, radius (m) "
+                       "and start (s after the first frame); a hero's cells take density 1 "
+                       "within half its radius, smoothly 0 at its radius, above the map's own, "
+                       "and their vapour waits until the start"),
         floatParam("emissionDuration", 0.0, "s",
                    "ours: particles leave their start at random times over this long (0: all "
                    "at t0, the paper's)",
@@ -263,6 +298,11 @@ void registerVapourEmitterNode(Registry& registry)
                    "excess and convective: how much higher its dew point starts (value ours)",
                    -20.0, 20.0)};
     d.validate = [](const ParamSet& p, const ParamChecker& check) {
+        try {
+            algo::heroCloudsFromList(p.getFloatList("heroClouds"));
+        } catch (const std::invalid_argument& e) {
+            check.fail("heroClouds", e.what());
+        }
         // Each pair must be an ordered range, or Eq. 3-5 run backwards.
         if (p.getFloat("maxParticlesPerCell") < p.getFloat("minParticlesPerCell"))
             check.fail("maxParticlesPerCell",

@@ -60,6 +60,7 @@ const std::map<std::string, nlohmann::json>& groupedListExamples()
 {
     static const std::map<std::string, nlohmann::json> examples = {
         {"cameraKeys", {0, 0, -4000, 800, 0, 0, 1200, 40}},  // Renderer: 8 numbers a key
+        {"heroClouds", {400, 400, 200, 10}},                 // VapourEmitter: 4 a hero
     };
     return examples;
 }

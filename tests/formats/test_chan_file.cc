@@ -60,6 +60,9 @@ TEST(ChanFile, CommentsBlankLinesTabsAndSevenColumnsAreRead)
     EXPECT_EQ(lines[0].rotateDegrees[2], 30.0);
     EXPECT_EQ(lines[0].verticalFovDegrees, 0.0);  // none given
     EXPECT_EQ(lines[1].verticalFovDegrees, 39.5);
+    // A line without a field of view is written back without one (the fuzzer found 0).
+    EXPECT_EQ(chanText(lines), "1 0 1 2 10 20 30\n2 0 1 2 10 20 30 39.5\n");
+    EXPECT_EQ(parseChan(chanText(lines), "again").size(), 2u);
 }
 
 TEST(ChanFile, BadLinesAreRefusedNamingTheFileAndTheLine)

@@ -53,6 +53,22 @@ protected:
                    "read");
     }
 
+    /// `mapNodes`, then vapour emitted from `map` (with `emitParams`), risen and condensed
+    /// over frames 0-20 of 2 s.
+    Graph field(const std::string& mapNodes, const std::string& map,
+                const std::string& emitParams = "")
+    {
+        return parse(mapNodes + R"(,
+            "atmosphere": {"type": "Atmosphere"},
+            "emit": {"type": "VapourEmitter", "inputs": {"map": ")" +
+                         map + R"("}, "params": {)" + emitParams + R"(}},
+            "rise": {"type": "ThermalIntegrator", "inputs": {"particles": "emit.particles",
+                     "atmosphere": "atmosphere.atmosphere"}},
+            "condense": {"type": "Condensation", "inputs": {"particles": "rise.particles",
+                         "atmosphere": "atmosphere.atmosphere"}})",
+                     R"("frames": {"start": 0, "end": 20}, "timeStep": 2.0, )");
+    }
+
     /// An 8-bit PNG of `channels` samples a pixel, rows top first.
     void png8(const std::filesystem::path& file, int w, int h, int channels,
               const std::vector<unsigned char>& samples)
@@ -200,17 +216,9 @@ TEST_F(MapNodesTest, APaintedRingMakesCloudOverTheRing)
             if (d >= 8 && d <= 12) ring[static_cast<std::size_t>(r * n + x)] = 255;
         }
     png8(dir / "ring.png", n, n, 1, ring);
-    const Graph g = parse(R"(
-        "paint": {"type": "ReadMap", "params": {"file": ")" +
-                              (dir / "ring.png").string() +
-                              R"(", "cellSize": 50}},
-        "atmosphere": {"type": "Atmosphere"},
-        "emit": {"type": "VapourEmitter", "inputs": {"map": "paint.map"}},
-        "rise": {"type": "ThermalIntegrator", "inputs": {"particles": "emit.particles",
-                                                         "atmosphere": "atmosphere.atmosphere"}},
-        "condense": {"type": "Condensation", "inputs": {"particles": "rise.particles",
-                                                        "atmosphere": "atmosphere.atmosphere"}})",
-                          R"("frames": {"start": 0, "end": 20}, "timeStep": 2.0, )");
+    const Graph g = field(R"("paint": {"type": "ReadMap", "params": {"file": ")" +
+                              (dir / "ring.png").string() + R"(", "cellSize": 50}})",
+                          "paint.map");
     EvaluatorOptions options;
     options.outDir = dir.path();
     Evaluator ev(registry, options);
@@ -226,6 +234,36 @@ TEST_F(MapNodesTest, APaintedRingMakesCloudOverTheRing)
     }
     EXPECT_GT(condensed, 100u);
     EXPECT_GE(overRing, condensed * 9 / 10) << overRing << " of " << condensed;
+}
+
+TEST_F(MapNodesTest, AHeroCloudGrowsWhereItIsPlacedAndWhenItIsTold)
+{
+    // A map with no vapour anywhere (the noise remapped to 0) and one hero at (600, 900) m,
+    // radius 250 m, starting 10 s in: the vapour rises there alone, and only after 10 s.
+    const Graph g = field(R"("noise": {"type": "NoiseMap", "params": {"width": 32, "height": 32}},
+        "none": {"type": "MapMath", "inputs": {"a": "noise.map"},
+                 "params": {"op": "remap", "low": 5, "high": 6}})",
+                          "none.map", R"("heroClouds": [600, 900, 250, 10])");
+    EvaluatorOptions options;
+    options.outDir = dir.path();
+    Evaluator ev(registry, options);
+    const auto start = std::dynamic_pointer_cast<const VapourParticlesData>(
+        ev.pull(g, "emit", 0)->at("particles"));
+    ASSERT_GT(start->size(), 50u);
+    for (std::size_t i = 0; i < start->size(); ++i)
+        ASSERT_LE(std::hypot(start->xs()[i] - 600.0, start->ys()[i] - 900.0), 250.0 + 50.0);
+    // Frame 4 is 8 s in: nothing has left its start yet.
+    const auto early = std::dynamic_pointer_cast<const VapourParticlesData>(
+        ev.pull(g, "rise", 4)->at("particles"));
+    for (std::size_t i = 0; i < early->size(); ++i) ASSERT_EQ(early->z[i], start->z[i]) << i;
+    const auto c = std::dynamic_pointer_cast<const CondensationData>(
+        ev.pull(g, "condense", 20)->at("condensation"));
+    EXPECT_GT(c->condensedCount(), 50u);
+    EXPECT_GT(c->firstFrame, 5);
+    // The emitter's map output is the hero: 1 at its centre, 0 beyond its radius.
+    const auto m = std::dynamic_pointer_cast<const Map2DData>(ev.pull(g, "emit", 0)->at("map"));
+    EXPECT_EQ(m->values[static_cast<std::size_t>(m->cellAt(600, 900))], 1.0f);
+    EXPECT_EQ(m->values[static_cast<std::size_t>(m->cellAt(600, 1200))], 0.0f);
 }
 
 }  // namespace cg
