@@ -41,6 +41,8 @@ std::string flags(const NodeDecl& d)
     std::string s;
     if (d.simulation)
         s += " simulation (steps from its previous frame);";
+    else if (d.frameDependentIf)
+        s += " frame-dependent as its parameters say;";
     else if (d.frameDependent)
         s += " frame-dependent;";
     else

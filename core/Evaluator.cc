@@ -67,7 +67,8 @@ public:
         for (std::size_t i = 0; i < order.size(); ++i) {
             const std::size_t idx = order[i];
             mOrderIndex[idx] = i;
-            bool varying = nodes[idx].decl->frameDependent || nodes[idx].decl->simulation;
+            bool varying =
+                dependsOnFrame(*nodes[idx].decl, nodes[idx].params) || nodes[idx].decl->simulation;
             for (std::size_t up : graph.upstream()[idx]) varying = varying || mTimeVarying[up];
             mTimeVarying[idx] = varying;
         }
@@ -122,7 +123,7 @@ public:
                 h.str(it->second.port).key(keyOf(mGraph.indexOf(it->second.node), frame));
             }
         }
-        if (decl.frameDependent) h.str("frame").i64(frame);
+        if (dependsOnFrame(decl, node.params)) h.str("frame").i64(frame);
         if (decl.simulation) {
             h.str("start").i64(mGraph.frames.start);
             if (frame > mGraph.frames.start) h.key(previous);

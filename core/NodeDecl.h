@@ -37,6 +37,9 @@ struct NodeDecl {
 
     /// The output changes with the frame even when the inputs do not.
     bool frameDependent = false;
+    /// When set, whether it does depends on the parameters (the Renderer's camera moves only
+    /// with keys): frameDependent is then ignored. See dependsOnFrame().
+    std::function<bool(const ParamSet&)> frameDependentIf;
     /// Frame N is stepped from this node's own output at frame N-1 (see CookContext::previous).
     /// Implies frameDependent.
     bool simulation = false;
@@ -86,6 +89,14 @@ struct NodeDecl {
 };
 
 /// Passed to NodeDecl::validate: names the failing parameter with its JSON pointer.
+/// Whether a node of `decl` with `params` makes a different output on each frame, whatever its
+/// inputs: its frameDependentIf, else frameDependent. (A simulation is stepped on every frame
+/// too; callers test that apart.)
+inline bool dependsOnFrame(const NodeDecl& decl, const ParamSet& params)
+{
+    return decl.frameDependentIf ? decl.frameDependentIf(params) : decl.frameDependent;
+}
+
 struct ParamChecker {
     std::string nodePointer;             ///< e.g. /nodes/noise
     std::uint64_t allocationLimitBytes;  ///< the most one node may allocate

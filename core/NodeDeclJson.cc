@@ -37,7 +37,7 @@ nlohmann::json nodeDeclToJson(const NodeDecl& d)
             {"inputs", ports(d.inputs)},
             {"outputs", ports(d.outputs)},
             {"params", params},
-            {"frame_dependent", d.frameDependent || d.simulation},
+            {"frame_dependent", d.frameDependent || d.simulation || bool(d.frameDependentIf)},
             {"simulation", d.simulation},
             {"writes_files", d.writesFiles}};
 }

@@ -127,7 +127,10 @@ void registerRendererNode(Registry& registry)
     d.version = 20;  // each version's change: CHANGES.md, "Node versions"
     d.category = "render";
     d.framesInAnyOrder = true;
-    d.frameDependent = true;  // the camera may move
+    // A moving camera makes each frame differ; a still one renders a still volume once.
+    d.frameDependentIf = [](const ParamSet& p) {
+        return !p.getString("cameraFile").empty() || !p.getFloatList("cameraKeys").empty();
+    };
     d.doc =
         "Ray-marches a fog volume (sigma_t = extinction x density, sigma_s = albedo x sigma_t) "
         "with empty-space skipping over 8^3-voxel blocks, and over 2^3-voxel bricks where no "

@@ -103,6 +103,17 @@ TEST_F(CameraMovesTest, EachKeyRendersAsTheStaticCameraSetToItBitForBit)
     EXPECT_LT(between->camera->position.x(), 600.0);
 }
 
+TEST_F(CameraMovesTest, OnlyAMovingCameraMakesAStillCloudRenderOnEveryFrame)
+{
+    // The synthetic cumulus does not change with the frame: a still camera's render is one
+    // cache entry for the whole shot, a moving camera's one a frame.
+    Evaluator ev(registry, {});
+    const Graph still = scene(R"("cameraPosition": [0, -5000, 900])");
+    EXPECT_EQ(ev.key(still, "render", 0), ev.key(still, "render", 7));
+    const Graph moving = scene(std::string(R"("cameraKeys": )") + kKeys);
+    EXPECT_NE(ev.key(moving, "render", 0), ev.key(moving, "render", 7));
+}
+
 TEST_F(CameraMovesTest, AChanWrittenAndReadBackGivesTheSameCameraOnEveryFrame)
 {
     const Graph writing = scene(std::string(R"("cameraKeys": )") + kKeys,
