@@ -76,7 +76,6 @@ void checkCameraKeys(const std::vector<CameraKey>& keys)
 RenderCamera cameraOnPath(const std::vector<CameraKey>& keys, double frame,
                           const RenderCamera& base)
 {
-    checkCameraKeys(keys);
     RenderCamera camera = base;
     const auto take = [&camera](const CameraKey& k) {
         camera.position = k.position;
@@ -87,8 +86,10 @@ RenderCamera cameraOnPath(const std::vector<CameraKey>& keys, double frame,
     };
     if (!(frame > keys.front().frame)) return take(keys.front());
     if (!(frame < keys.back().frame)) return take(keys.back());
-    std::size_t i = 0;
-    while (keys[i + 1].frame <= frame) ++i;
+    // The last key at or before the frame; the checks above keep it below the last key.
+    const auto after = std::upper_bound(keys.begin(), keys.end(), frame,
+                                        [](double f, const CameraKey& k) { return f < k.frame; });
+    const auto i = static_cast<std::size_t>(after - keys.begin()) - 1;
     if (keys[i].frame == frame) return take(keys[i]);
     camera.position =
         interpolate<RenderVec3>(keys, i, frame, [](const CameraKey& k) { return k.position; });

@@ -26,7 +26,8 @@ struct CameraKey {
 /// its up, or a value that is not finite. No keys is refused too.
 void checkCameraKeys(const std::vector<CameraKey>& keys);
 
-/// The camera at `frame` on the path through `keys` (checked), with `base`'s image size.
+/// The camera at `frame` on the path through `keys`, which checkCameraKeys has accepted (not
+/// checked again: a writer asks for every frame of a shot), with `base`'s image size.
 RenderCamera cameraOnPath(const std::vector<CameraKey>& keys, double frame,
                           const RenderCamera& base);
 
