@@ -46,6 +46,7 @@ void registerBuiltinNodes(Registry& registry)
     registerReadMapNode(registry);
     registerWriteParticlesNode(registry);
     registerEncodeVideoNode(registry);
+    registerRetimeNode(registry);
 
     // volume/
     registerVoxelizerNode(registry);

@@ -47,6 +47,13 @@ public:
         s.program = encoderProgram(p.getString("ffmpeg"));
         s.firstFrame = first < 0 ? ctx.startFrame() : first;
         s.lastFrame = last;
+        // A Retime's files are numbered apart from the frames that write them.
+        if (const auto image = static_cast<int>(p.getInt("firstImage")); image >= 0) {
+            s.lastFrame = image + (s.lastFrame - s.firstFrame);
+            s.firstFrame = image;
+        }
+        if (const auto image = static_cast<int>(p.getInt("lastImage")); image >= 0)
+            s.lastFrame = image;
         s.fps = p.getFloat("fps");
         s.crf = static_cast<int>(p.getInt("crf"));
         const std::string images = p.getString("images");
@@ -86,8 +93,10 @@ void registerEncodeVideoNode(Registry& registry)
         "Encodes the PNG frames written by a WriteImage node into an MP4 video (H.264 by "
         "libx264, yuv420p, playable everywhere; odd sizes padded by one pixel) by running the "
         "ffmpeg program. Cooks on every frame after its input but encodes only on 'lastFrame', "
-        "reading frames firstFrame..lastFrame (all must exist); on other frames 'files' is "
-        "empty. The video is written beside the target and renamed. Without ffmpeg the cook "
+        "reading frames firstFrame..lastFrame (all must exist), or image files "
+        "firstImage..lastImage when they are numbered apart (a Retime's); on other frames "
+        "'files' is empty. The video is written beside the target and renamed. Without ffmpeg the "
+        "cook "
         "fails with a message saying how to install it. A chunked run (run --chunk) leaves it "
         "out: a farm encodes in its last job, after every chunk is written.";
     d.writesFiles = true;
@@ -106,6 +115,13 @@ void registerEncodeVideoNode(Registry& registry)
         intParam("lastFrame", 0, "frame",
                  "last frame of the video: the encoder runs when this frame cooks (set it to "
                  "the run's last frame)"),
+        intParam("firstImage", -1, "frame",
+                 "number of the first image file read, when the files are numbered apart from "
+                 "the frames (a Retime's); -1 = firstFrame",
+                 -1, 100000000),
+        intParam("lastImage", -1, "frame",
+                 "number of the last image file read; -1 = firstImage + lastFrame - firstFrame", -1,
+                 100000000),
         floatParam("fps", 24.0, "1/s", "frames per second of the video", 1, 240),
         intParam("crf", 18, "",
                  "x264 constant rate factor: 0 lossless, 18 visually lossless, 23 default, 51 "
