@@ -127,13 +127,34 @@ void startFromProfile(CookContext& ctx, VapourStatics& statics, std::vector<floa
             thermal.cinJPerKg, std::isnan(thermal.lfcM) ? ", no LFC at all" : "");
 }
 
-/// When each particle leaves its start: over emissionDuration (ours), and not before its hero
-/// cloud's start when its cell is a hero's. No release times when all leave at t0.
+/// Ours: each particle's start delay, startDelayMax times the startDelay map's value at its
+/// x, y (a cloud starts when its ground says); empty without the map or with no delay.
+std::vector<float> startDelays(const CookContext& ctx, const VapourStatics& s)
+{
+    const auto delayMap = ctx.input<Map2DData>("startDelay");
+    const double most = ctx.params().getFloat("startDelayMax");
+    if (!delayMap || !(most > 0.0)) return {};
+    std::vector<float> delays(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        const float m =
+            delayMap->values[static_cast<std::size_t>(delayMap->cellAt(s.x[i], s.y[i]))];
+        if (!(m >= 0.0f && m <= 1.0f))
+            throw InputError(
+                ctx.nodeId() + "/inputs/startDelay",
+                "the start delay map's values must be in [0, 1], got " + std::to_string(m));
+        delays[i] = static_cast<float>(most * m);
+    }
+    return delays;
+}
+
+/// When each particle leaves its start: over emissionDuration after its delay (ours), its hero
+/// cloud's start standing for the delay when its cell is a hero's. No release times when all
+/// leave at t0.
 void setReleaseTimes(VapourStatics& statics, double duration, std::uint64_t seed,
                      const std::vector<algo::HeroCloud>& heroes,
-                     const std::vector<std::int32_t>& heroOf)
+                     const std::vector<std::int32_t>& heroOf, const std::vector<float>& delays)
 {
-    bool late = duration > 0.0;
+    bool late = duration > 0.0 || !delays.empty();
     for (const algo::HeroCloud& h : heroes) late = late || h.start > 0.0;
     if (!late) return;
     statics.releaseTime.resize(statics.size());
@@ -141,9 +162,11 @@ void setReleaseTimes(VapourStatics& statics, double duration, std::uint64_t seed
         const float spread =
             duration > 0.0 ? algo::releaseTime(seed, statics.id[i], duration) : 0.0f;
         const std::int32_t hero = heroOf[statics.homeCell[i]];
-        statics.releaseTime[i] =
-            hero < 0 ? spread
-                     : static_cast<float>(heroes[static_cast<std::size_t>(hero)].start) + spread;
+        const float delay = hero >= 0
+                                ? static_cast<float>(heroes[static_cast<std::size_t>(hero)].start)
+                            : delays.empty() ? 0.0f
+                                             : delays[i];
+        statics.releaseTime[i] = delay + spread;
     }
 }
 
@@ -187,8 +210,8 @@ public:
         statics->x = std::move(e.x);
         statics->y = std::move(e.y);
         statics->startZ = e.z;
-        setReleaseTimes(*statics, ctx.params().getFloat("emissionDuration"), s.seed, heroes,
-                        heroOf);
+        setReleaseTimes(*statics, ctx.params().getFloat("emissionDuration"), s.seed, heroes, heroOf,
+                        startDelays(ctx, *statics));
         if (const auto moisture = ctx.input<Map2DData>("moisture")) {
             const double amplitude = ctx.params().getFloat("moistureAmplitude");
             if (amplitude > 0.0)
@@ -233,7 +256,9 @@ void registerVapourEmitterNode(Registry& registry)
         "particle waits at its start "
         "until a release time drawn uniformly from [0, emissionDuration) s keyed by (seed, "
         "id), so a source keeps feeding its tower, as a real updraft does, instead of "
-        "rising as one bubble. Also ours: start 'excess' or 'convective' (with the "
+        "rising as one bubble; a startDelay map delays that window by startDelayMax times "
+        "its value under the particle, so clouds start at different times where it says "
+        "(a hero cloud's start replaces it). Also ours: start 'excess' or 'convective' (with the "
         "atmosphere input's profile) replaces Eq. 5: each particle starts temperatureExcess "
         "warmer than the air at its height, or than surface air heated to the sounding's "
         "convective temperature T_c and risen dry (its mixing ratio kept), so any afternoon "
@@ -244,6 +269,10 @@ void registerVapourEmitterNode(Registry& registry)
         port("moisture", "Map2D",
              "ours, optional: a second map in [0, 1] that perturbs each particle's dew point "
              "(irregular cloud bases)",
+             true),
+        port("startDelay", "Map2D",
+             "ours, optional: a map in [0, 1] that delays each particle's release by "
+             "startDelayMax times its value there (clouds that start at different times)",
              true),
         port("atmosphere", "Atmosphere",
              "ours, for start 'excess' and 'convective': the profile the vapour starts against",
@@ -283,6 +312,8 @@ void registerVapourEmitterNode(Registry& registry)
                    "ours: particles leave their start at random times over this long (0: all "
                    "at t0, the paper's)",
                    0.0, 1e6),
+        floatParam("startDelayMax", 0.0, "s",
+                   "ours: the release delay where the startDelay map is 1 (0: no delay)", 0.0, 1e6),
         stringParam("start", "paper",
                     "how vapour starts: paper = Eq. 5's temperatures; excess (ours) = the "
                     "profile's air at the start height plus temperatureExcess, its dew point "

@@ -55,13 +55,14 @@ protected:
 
     /// `mapNodes`, then vapour emitted from `map` (with `emitParams`), risen and condensed
     /// over frames 0-20 of 2 s.
+    /// `emitInputs`: more of the emitter's inputs, each `, "port": "node.output"`.
     Graph field(const std::string& mapNodes, const std::string& map,
-                const std::string& emitParams = "")
+                const std::string& emitParams = "", const std::string& emitInputs = "")
     {
         return parse(mapNodes + R"(,
             "atmosphere": {"type": "Atmosphere"},
             "emit": {"type": "VapourEmitter", "inputs": {"map": ")" +
-                         map + R"("}, "params": {)" + emitParams + R"(}},
+                         map + "\"" + emitInputs + R"(}, "params": {)" + emitParams + R"(}},
             "rise": {"type": "ThermalIntegrator", "inputs": {"particles": "emit.particles",
                      "atmosphere": "atmosphere.atmosphere"}},
             "condense": {"type": "Condensation", "inputs": {"particles": "rise.particles",
@@ -264,6 +265,38 @@ TEST_F(MapNodesTest, AHeroCloudGrowsWhereItIsPlacedAndWhenItIsTold)
     const auto m = std::dynamic_pointer_cast<const Map2DData>(ev.pull(g, "emit", 0)->at("map"));
     EXPECT_EQ(m->values[static_cast<std::size_t>(m->cellAt(600, 900))], 1.0f);
     EXPECT_EQ(m->values[static_cast<std::size_t>(m->cellAt(600, 1200))], 0.0f);
+}
+
+TEST_F(MapNodesTest, AStartDelayMapStartsCloudsWhereAndWhenItSays)
+{
+    // The noise's east half (x >= 800 m) painted white, delayed 12 s: at frame 5 (10 s) its
+    // vapour still waits at its start while the west half's has risen; by frame 20 both have.
+    png8(dir / "late.png", 2, 1, 1, {0, 255});
+    const Graph g = field(R"("noise": {"type": "NoiseMap", "params": {"width": 32, "height": 32}},
+        "late": {"type": "ReadMap", "params": {"file": ")" +
+                              (dir / "late.png").string() + R"(", "cellSize": 800}})",
+                          "noise.map", R"("startDelayMax": 12)", R"(, "startDelay": "late.map")");
+    EvaluatorOptions options;
+    options.outDir = dir.path();
+    Evaluator ev(registry, options);
+    const auto at = [&](int frame) {
+        return std::dynamic_pointer_cast<const VapourParticlesData>(
+            ev.pull(g, "rise", frame)->at("particles"));
+    };
+    const auto start = at(0), early = at(5), late = at(20);
+    std::size_t east = 0, westRisen = 0, eastRisenLate = 0;
+    for (std::size_t i = 0; i < start->size(); ++i) {
+        if (start->xs()[i] >= 800.0f) {
+            ++east;
+            ASSERT_EQ(early->z[i], start->z[i]) << i;
+            eastRisenLate += late->z[i] > start->z[i];
+        } else {
+            westRisen += early->z[i] > start->z[i];
+        }
+    }
+    ASSERT_GT(east, 100u);
+    EXPECT_GT(westRisen, 100u);
+    EXPECT_EQ(eastRisenLate, east);
 }
 
 }  // namespace cg
