@@ -116,6 +116,19 @@ std::optional<ExrCamera> readExrCamera(const std::string& path)
     }
 }
 
+std::optional<ExrChromaticities> readExrChromaticities(const std::string& path)
+{
+    try {
+        Imf::InputFile file(path.c_str());
+        if (!Imf::hasChromaticities(file.header())) return std::nullopt;
+        const Imf::Chromaticities c = Imf::chromaticities(file.header());
+        return ExrChromaticities{c.red.x,  c.red.y,  c.green.x, c.green.y,
+                                 c.blue.x, c.blue.y, c.white.x, c.white.y};
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path + ": cannot read OpenEXR: " + e.what());
+    }
+}
+
 void writeExrFloat32(const std::string& path, int width, int height,
                      const std::vector<ExrPixels>& parts, const std::optional<ExrCamera>& camera)
 {
@@ -135,6 +148,9 @@ void writeExrFloat32(const std::string& path, int width, int height,
     try {
         Imf::Header header(width, height);
         header.compression() = Imf::ZIP_COMPRESSION;
+        // The renderer works in linear Rec.709 / sRGB primaries, D65 white: OpenEXR's default
+        // chromaticities, written out so that a colour-managed reader need not assume them.
+        Imf::addChromaticities(header, Imf::Chromaticities());
         if (camera) {
             Imf::addWorldToCamera(header, toImath(camera->worldToCamera));
             Imf::addWorldToNDC(header, toImath(camera->worldToNDC));

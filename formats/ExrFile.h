@@ -36,9 +36,10 @@ struct ExrCamera {
 
 /// Writes every channel of every `parts` entry as 32-bit float into one scanline OpenEXR file
 /// with ZIP compression, exactly to `path`, values unchanged, with the camera's attributes
-/// when given. {{{"R", "G", "B", "A"}, rgba}} is writeExrRgba32's file. Throws
-/// std::invalid_argument if a part's values do not hold channels.size() floats per pixel, if
-/// a part has no channel or a name repeats; std::runtime_error naming the file on failure.
+/// when given and the chromaticities of linear Rec.709 (sRGB primaries, D65 white). {{{"R", "G",
+/// "B", "A"}, rgba}} is writeExrRgba32's file. Throws std::invalid_argument if a part's values do
+/// not hold channels.size() floats per pixel, if a part has no channel or a name repeats;
+/// std::runtime_error naming the file on failure.
 void writeExrFloat32(const std::string& path, int width, int height,
                      const std::vector<ExrPixels>& parts,
                      const std::optional<ExrCamera>& camera = std::nullopt);
@@ -46,6 +47,13 @@ void writeExrFloat32(const std::string& path, int width, int height,
 /// The file's worldToCamera and worldToNDC attributes, if it has both. Throws
 /// std::runtime_error naming the file.
 std::optional<ExrCamera> readExrCamera(const std::string& path);
+
+/// CIE xy of the red, green and blue primaries and of the white point, in that order.
+using ExrChromaticities = std::array<float, 8>;
+
+/// The file's chromaticities attribute, if it has one. Throws std::runtime_error naming the
+/// file.
+std::optional<ExrChromaticities> readExrChromaticities(const std::string& path);
 
 struct ExrRgbaImage {
     int width = 0;

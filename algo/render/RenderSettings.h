@@ -109,6 +109,9 @@ struct RenderSettings {
     RenderMultiScatter multiScatter;
     RenderMarch march;
     RenderPathTrace pathTrace;
+    /// The fast renderer also returns RenderedImage's AOVs (sun and sky parts of the cloud's
+    /// light, depth, ground shadow matte).
+    bool aovs = false;
 };
 
 }  // namespace cg::algo

@@ -39,21 +39,25 @@ std::optional<formats::ExrCamera> exrCamera(const ImageData& image)
 
 /// The beauty as R, G, B, A (what a reader of the default layer sees) and, where the image has
 /// a background, the layers "cloud" (premultiplied, background excluded) and "background";
-/// the camera's matrices where the image has one.
+/// where it has AOVs, "sun" and "sky" (the cloud's light by where it comes from: their sum is
+/// the cloud layer's RGB), "depth" (Z) and "shadow" (A, the ground's shadow matte); the
+/// camera's matrices where the image has one.
 void writeExr(const std::string& path, const ImageData& image)
 {
-    const std::vector<std::string> rgba = {"R", "G", "B", "A"};
-    if (!image.hasBackground()) {
-        formats::writeExrFloat32(path, image.width, image.height, {{rgba, image.rgba}},
-                                 exrCamera(image));
-        return;
+    std::vector<formats::ExrPixels> parts = {{{"R", "G", "B", "A"}, image.rgba}};
+    std::vector<float> cloud;
+    if (image.hasBackground()) {
+        cloud = algo::cloudLayer(image.rgba, image.background);
+        parts.push_back({{"cloud.R", "cloud.G", "cloud.B", "cloud.A"}, cloud});
+        parts.push_back({{"background.R", "background.G", "background.B"}, image.background});
     }
-    const std::vector<float> cloud = algo::cloudLayer(image.rgba, image.background);
-    formats::writeExrFloat32(path, image.width, image.height,
-                             {{rgba, image.rgba},
-                              {{"cloud.R", "cloud.G", "cloud.B", "cloud.A"}, cloud},
-                              {{"background.R", "background.G", "background.B"}, image.background}},
-                             exrCamera(image));
+    if (!image.aovs.empty()) {
+        parts.push_back({{"sun.R", "sun.G", "sun.B"}, image.aovs.sun});
+        parts.push_back({{"sky.R", "sky.G", "sky.B"}, image.aovs.sky});
+        parts.push_back({{"depth.Z"}, image.aovs.depth});
+        parts.push_back({{"shadow.A"}, image.aovs.shadow});
+    }
+    formats::writeExrFloat32(path, image.width, image.height, parts, exrCamera(image));
 }
 
 }  // namespace

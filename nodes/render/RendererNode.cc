@@ -70,6 +70,7 @@ algo::RenderSettings settingsFrom(const ParamSet& p)
     s.march.seed = static_cast<std::uint64_t>(p.getInt("jitterSeed"));
     s.pathTrace.samples = static_cast<int>(p.getInt("samples"));
     s.pathTrace.maxBounces = static_cast<int>(p.getInt("maxBounces"));
+    s.aovs = p.getBool("aovs");
     return s;
 }
 
@@ -109,9 +110,11 @@ public:
                                       ? algo::renderPathTraced(*volume->grid, settings, cancelled)
                                       : algo::renderFogVolume(*volume->grid, settings, cancelled);
         ctx.checkCancelled();
-        ctx.setOutput("image",
-                      std::make_shared<ImageData>(img.width, img.height, std::move(img.rgba),
-                                                  std::move(img.background), settings.camera));
+        ImageAovs aovs{std::move(img.sun), std::move(img.sky), std::move(img.depth),
+                       std::move(img.shadow)};
+        ctx.setOutput("image", std::make_shared<ImageData>(
+                                   img.width, img.height, std::move(img.rgba),
+                                   std::move(img.background), settings.camera, std::move(aovs)));
         ctx.setOutput("camera", path);
     }
 };
@@ -124,7 +127,7 @@ void registerRendererNode(Registry& registry)
     const auto v3 = [](const algo::RenderVec3& v) { return Vec3{v.x(), v.y(), v.z()}; };
     NodeDecl d;
     d.type = "Renderer";
-    d.version = 20;  // each version's change: CHANGES.md, "Node versions"
+    d.version = 21;  // each version's change: CHANGES.md, "Node versions"
     d.category = "render";
     d.framesInAnyOrder = true;
     // A moving camera makes each frame differ; a still one renders a still volume once.
@@ -264,12 +267,24 @@ void registerRendererNode(Registry& registry)
                  "pathtrace: events a path may have before it is cut (thick cumulus needs "
                  "hundreds; Russian roulette ends most paths long before)",
                  1, 1 << 20),
+        boolParam("aovs", false,
+                  "fast mode (ours): also the cloud's light from the sun and from the sky "
+                  "(their sum is the cloud layer), its depth (camera-space, m, the opacity-"
+                  "weighted mean of its samples' depths; the ground's where no cloud, 1e10 on "
+                  "the sky) and the ground's shadow matte (the fraction of the direct sun the "
+                  "cloud takes), for WriteImage's EXR layers; costs one more light lookup a "
+                  "sample"),
     };
     d.hashExtra = hashCameraFile;
     d.validate = [](const ParamSet& p, const ParamChecker& check) {
         checkCameraParams(p, check);
-        // RGBA and the background: 7 floats a pixel.
-        check.checkAllocation("width", {p.getInt("width"), p.getInt("height")}, 7 * sizeof(float));
+        // RGBA and the background: 7 floats a pixel; the AOVs 8 more.
+        const bool aovs = p.getBool("aovs");
+        check.checkAllocation("width", {p.getInt("width"), p.getInt("height")},
+                              (aovs ? 15 : 7) * sizeof(float));
+        if (aovs && p.getString("mode") != "fast")
+            check.fail("aovs",
+                       "only the fast mode makes AOVs (mode is '" + p.getString("mode") + "')");
         const Vec3 a = p.getVec3("cameraPosition"), b = p.getVec3("cameraLookAt");
         if (a == b) check.fail("cameraLookAt", "equals cameraPosition");
         const Vec3 s = p.getVec3("sunDirection");

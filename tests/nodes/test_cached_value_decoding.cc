@@ -23,6 +23,7 @@
 
 #include "algo/atmosphere/VapourEmission.h"
 #include "algo/mapping/Mapping.h"
+#include "algo/render/integrators/RenderVolume.h"
 #include "algo/volume/Voxelize.h"
 #include "core/CoreData.h"
 #include "core/Registry.h"
@@ -253,17 +254,43 @@ TEST(CachedValueDecoding, Map2DRoundTripsAndRefusesBadSizesCellsAndDensities)
 // ---- Image ---------------------------------------------------------------------------------
 
 Bytes imageBytes(std::uint64_t w, std::uint64_t h, const std::vector<float>& rgba,
-                 const std::vector<float>& background = {}, const std::vector<double>& camera = {})
+                 const std::vector<float>& background = {}, const std::vector<double>& camera = {},
+                 const std::vector<std::vector<float>>& aovs = {{}, {}, {}, {}})
 {
     ByteWriter out;
-    out.bytes("CGIMAGE3", 8);
+    out.bytes("CGIMAGE4", 8);
     out.u64(w);
     out.u64(h);
     out.podVector(rgba);
     out.podVector(background);
     out.u64(camera.empty() ? 0 : 1);
     for (double v : camera) out.f64(v);
+    for (const std::vector<float>& a : aovs) out.podVector(a);
     return out.buffer();
+}
+
+TEST(CachedValueDecoding, ImageAovsRoundTripAndBadOnesAreRefused)
+{
+    const std::vector<float> rgba(2 * 3 * 4, 0.5f);
+    ImageAovs aovs;
+    for (int i = 0; i < 18; ++i) aovs.sun.push_back(0.01f * static_cast<float>(i));
+    aovs.sky.assign(18, 0.25f);
+    aovs.depth = {100, 200, 300, 400, 500, algo::kNoDepth};
+    aovs.shadow = {0, 0.5f, 1, 0, 0, 0};
+    const auto back = roundTrip(ImageData(2, 3, rgba, {}, std::nullopt, aovs));
+    EXPECT_EQ(back->aovs.sun, aovs.sun);
+    EXPECT_EQ(back->aovs.sky, aovs.sky);
+    EXPECT_EQ(back->aovs.depth, aovs.depth);
+    EXPECT_EQ(back->aovs.shadow, aovs.shadow);
+
+    // One AOV short, or a NaN in one: refused, naming it.
+    expectRefused("Image",
+                  imageBytes(2, 3, rgba, {}, {}, {aovs.sun, aovs.sky, {1, 2}, aovs.shadow}),
+                  "AOVs' sizes");
+    std::vector<float> nan = aovs.shadow;
+    nan[4] = std::nanf("");
+    expectRefused("Image", imageBytes(2, 3, rgba, {}, {}, {aovs.sun, aovs.sky, aovs.depth, nan}),
+                  "shadow channel 0 of pixel 4");
 }
 
 TEST(CachedValueDecoding, ImageRoundTripsAndRefusesBadSizesAndNonFinitePixels)
@@ -310,7 +337,7 @@ TEST(CachedValueDecoding, ImageWithABackgroundRoundTripsAndRefusesAWrongBackgrou
     v1.u64(2);
     v1.u64(3);
     v1.podVector(rgba);
-    expectRefused("Image", v1.buffer(), "not a version 3 image");
+    expectRefused("Image", v1.buffer(), "not a version 4 image");
 }
 
 TEST(CachedValueDecoding, ImageCameraRoundTripsAndRefusesAnUnusableCamera)

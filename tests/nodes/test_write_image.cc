@@ -290,4 +290,65 @@ TEST(ExrFile, NamedChannelsRoundTripAndAMissingOneIsNamed)
                  std::invalid_argument);
 }
 
+TEST_F(WriteImageTest, ExrOfARenderWithAovsHoldsSunSkyDepthShadowAndChromaticities)
+{
+    std::string scene = kRenderedScene;
+    scene.replace(scene.find(R"("jitter": true)"), 14, R"("jitter": true, "aovs": true)");
+    const Graph g = parseGraph(scene, "test.json", registry);
+    EvaluatorOptions options;
+    options.outDir = out.path();
+    Evaluator ev(registry, options);
+    ev.cookFrames(g, 42, 42);
+    const auto image =
+        std::dynamic_pointer_cast<const ImageData>(ev.pull(g, "render", 42)->at("image"));
+    ASSERT_FALSE(image->aovs.empty());
+    const std::string file = (out / "cloud.0042.exr").string();
+    const std::vector<std::string> names = formats::exrChannelNames(file);
+    for (const char* name : {"sun.R", "sun.G", "sun.B", "sky.R", "sky.G", "sky.B", "depth.Z",
+                             "shadow.A", "cloud.R", "background.R", "R"})
+        EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+    const formats::ExrChannelImage exr = formats::readExrChannels(
+        file, {"cloud.R", "cloud.G", "cloud.B", "sun.R", "sun.G", "sun.B", "sky.R", "sky.G",
+               "sky.B", "depth.Z", "shadow.A", "cloud.A"});
+    // sun + sky = the cloud layer, pixel by pixel, to float rounding; cloud pixels have a
+    // depth between the camera's distance to the cloud's near and far sides.
+    const auto pixels = static_cast<std::size_t>(exr.width) * static_cast<std::size_t>(exr.height);
+    std::size_t cloudy = 0, shadowed = 0;
+    for (std::size_t i = 0; i < pixels; ++i) {
+        const float* px = &exr.values[12 * i];
+        for (int c = 0; c < 3; ++c)
+            ASSERT_NEAR(px[3 + c] + px[6 + c], px[c], 1e-5f * std::max(1.0f, px[c])) << i;
+        if (px[11] > 0.01f) {
+            ++cloudy;
+            EXPECT_GT(px[9], 3000.0f) << i;  // the cloud stands about 5 km away
+            EXPECT_LT(px[9], 7000.0f) << i;
+        }
+        EXPECT_GE(px[10], 0.0f);
+        EXPECT_LE(px[10], 1.0f);
+        shadowed += px[10] > 0.1f;
+    }
+    EXPECT_GT(cloudy, 10u);
+    EXPECT_GT(shadowed, 0u);  // the cloud's shadow on the ground in view
+    // Linear Rec.709 primaries, D65 white, in the header.
+    const auto chroma = formats::readExrChromaticities(file);
+    ASSERT_TRUE(chroma.has_value());
+    const formats::ExrChromaticities rec709 = {0.64f, 0.33f, 0.30f,   0.60f,
+                                               0.15f, 0.06f, 0.3127f, 0.3290f};
+    for (int k = 0; k < 8; ++k) EXPECT_NEAR((*chroma)[k], rec709[k], 1e-4f) << k;
+}
+
+TEST_F(WriteImageTest, AovsFromThePathTracerAreRefusedAtLoadNamingTheParameter)
+{
+    std::string scene = kRenderedScene;
+    scene.replace(scene.find(R"("jitter": true)"), 14,
+                  R"("jitter": true, "aovs": true, "mode": "pathtrace")");
+    try {
+        parseGraph(scene, "test.json", registry);
+        FAIL() << "AOVs from the path tracer were accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("/nodes/render/params/aovs"), std::string::npos)
+            << e.what();
+    }
+}
+
 }  // namespace cg

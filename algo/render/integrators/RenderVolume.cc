@@ -71,6 +71,22 @@ void marchRay(const RenderOccupancy& occ, TrilinearDensity& sampler, const Index
     }
 }
 
+/// Where shade() puts a pixel's AOVs (RenderedImage), or nullptr without them.
+struct PixelAovs {
+    float* sun = nullptr;     ///< 3 floats
+    float* sky = nullptr;     ///< 3 floats
+    float* depth = nullptr;   ///< 1 float
+    float* shadow = nullptr;  ///< 1 float
+};
+
+/// The lights the diffusion solves for, split by where their light comes from: the sun
+/// (directly, or off the sun-lit ground) or the sky.
+bool fromSun(int light)
+{
+    return light == RenderDiffusion::Sun || light == RenderDiffusion::LitGround ||
+           light == RenderDiffusion::SunGlowGround;
+}
+
 /// Everything constant over a frame.
 struct Frame {
     const RenderSettings& s;
@@ -79,6 +95,8 @@ struct Frame {
     RenderLightMap sunMap;
     RenderLightMap skyMap;
     DiffuseLight diffuse;  ///< with MultiScatterModel::Diffusion
+    /// With AOVs: the diffuse light of the sun's lights alone (the sky's is the rest).
+    DiffuseLight diffuseSun;
     bool useDiffusion = false;
     PhaseFunction phase;
     std::optional<PhaseTwice> phaseTwice;  ///< with the diffusion model
@@ -89,6 +107,8 @@ struct Frame {
     RenderVec3 sunIrradiance;  ///< colour × intensity
     RenderVec3 skyUp;          ///< ambient × mean radiance of the upper sky hemisphere
     RenderVec3 below;          ///< ambient × radiance from below (ground bounce or horizon)
+    RenderVec3 belowSun;       ///< the part of `below` the sun lights (the sun-lit ground)
+    RenderVec3 forward;        ///< the camera's unit view axis (depth AOV)
     RenderVec3 groundSky;      ///< ground radiance from sky light alone
     double groundSun = 0.0;    ///< cos of the sun's zenith angle, clamped at 0
     CameraRays rays;
@@ -131,6 +151,7 @@ struct Frame {
             const RenderVec3 groundLit =
                 s.ground.albedo * sunIrradiance * (groundSun / kPi) + groundSky;
             below = groundLit;
+            belowSun = groundLit - groundSky;
         } else {
             below = h * s.sky.ambient;
         }
@@ -156,25 +177,50 @@ struct Frame {
                 litGround ? s.ground.albedo * sunIrradiance * (groundSun / kPi) : RenderVec3(0.0),
                 s.ground.albedo * sunIrradiance,
                 s.ground.albedo * skyUp};
-            diffuse = RenderDiffusion(g, sunMap, s.medium, s.multiScatter.cellVoxels,
-                                      {s.ground.enabled, litGround}, cancelled)
-                          .coloured(radiance);
+            const RenderDiffusion solved(g, sunMap, s.medium, s.multiScatter.cellVoxels,
+                                         {s.ground.enabled, litGround}, cancelled);
+            diffuse = solved.coloured(radiance);
+            if (s.aovs) {
+                RenderVec3 sunOnly[RenderDiffusion::kLights];
+                for (int l = 0; l < RenderDiffusion::kLights; ++l)
+                    sunOnly[l] = fromSun(l) ? radiance[l] : RenderVec3(0.0);
+                diffuseSun = solved.coloured(sunOnly);
+            }
         }
+        forward = (s.camera.lookAt - s.camera.position).unitSafe();
         if (needSky)
             skyMap = RenderLightMap(g, occupancy, RenderVec3(0, 0, 1), s.medium.extinction,
                                     s.march.lightTexel * 4.0, s.march.lightStep * 2.0,
                                     std::size_t(4) << 20, cancelled);
     }
 
-    /// Radiance behind the volume: the lit, shadowed, hazed ground, or the sky.
-    RenderVec3 background(const RenderVec3& dir, double tGround) const
+    /// The sun's share of the diffuse light `all` scatters toward the camera in channel c. The
+    /// fields add (the sky's is all's less the sun's), but the radiance a field scatters is
+    /// not linear in it (DiffuseLight.h: a lobe of mean cosine |F| / φ), so each light's own
+    /// lobe is scattered and the total shared in their proportion: the parts add up to the
+    /// cloud's light exactly.
+    double sunShare(const DiffuseLight::Sample& sun, const DiffuseLight::Sample& all, int c,
+                    const RenderVec3& dir) const
     {
+        const double bySun = diffuseScattered(sun.phi[c], sun.flux[c], -dir, split);
+        const double bySky =
+            diffuseScattered(all.phi[c] - sun.phi[c], all.flux[c] - sun.flux[c], -dir, split);
+        return bySun + bySky > 0.0 ? bySun / (bySun + bySky) : 0.0;
+    }
+
+    /// Radiance behind the volume: the lit, shadowed, hazed ground, or the sky; `matte` (if not
+    /// null) the fraction of the direct sun the cloud's shadow takes from that ground.
+    RenderVec3 background(const RenderVec3& dir, double tGround, float* matte = nullptr) const
+    {
+        if (matte != nullptr) *matte = 0.0f;
         if (!std::isfinite(tGround)) return skyRadiance(s.sky, dir);
         const RenderVec3 p = s.camera.position + dir * tGround;
         // The sun light scattered into the phase function's forward peak on the way reaches
         // the ground as if unscattered (δ-Eddington): a cloud's shadow is lighter at its thin
         // edges than its optical depth alone says.
         const double sunT = std::exp(-peakless * sunMap.opticalDepth(p));
+        if (matte != nullptr && groundSun > 0.0 && !sunMap.empty())
+            *matte = static_cast<float>(1.0 - sunT);
         return hazedGround(s,
                            s.ground.albedo * sunIrradiance * (groundSun * sunT / kPi) +
                                diffuse.groundAmbient(p, groundSky),
@@ -182,8 +228,9 @@ struct Frame {
     }
 
     void shade(int px, int py, TrilinearDensity& sampler, std::vector<Span>& spans, float* out,
-               float* behind) const
+               float* behind, const PixelAovs& aov) const
     {
+        const bool aovs = aov.sun != nullptr;
         const RenderVec3 dir = rays.direction(px, py);
         const RenderVec3& origin = s.camera.position;
         const double tGround = groundDistance(s.ground, origin, dir);
@@ -218,6 +265,14 @@ struct Frame {
         const bool skyOcclusion = !skyMap.empty();
         double T = 1.0;
         RenderVec3 L(0.0);
+        // AOVs: the sun's part of L, and the opacity-weighted sum of the samples' depths.
+        RenderVec3 Lsun(0.0);
+        double depthSum = 0.0;
+        const auto addAovs = [&](double t, double segT, const RenderVec3& sunSource) {
+            const double weight = T * (1.0 - segT);
+            Lsun += sunSource * (weight * albedo);
+            depthSum += weight * t * dir.dot(forward);
+        };
         marchRay(
             occupancy, sampler, toIndexRay(grid.transform(), origin, dir), tGround, dt, offset,
             spans, [&](double t, double density, double width) {
@@ -233,8 +288,15 @@ struct Frame {
                     const double peaked = std::exp(-peakless * tauSun) - sunT;
                     RenderVec3 source = sunIrradiance * (sunPhase[0] * sunT + peakPhase * peaked);
                     const DiffuseLight::Sample field = diffuse.at(p);
-                    for (int c = 0; c < 3; ++c)
-                        source[c] += diffuseScattered(field.phi[c], field.flux[c], -dir, split);
+                    RenderVec3 sunSource = source;
+                    for (int c = 0; c < 3; ++c) {
+                        const double scattered =
+                            diffuseScattered(field.phi[c], field.flux[c], -dir, split);
+                        if (aovs)
+                            sunSource[c] += sunShare(diffuseSun.at(p), field, c, dir) * scattered;
+                        source[c] += scattered;
+                    }
+                    if (aovs) addAovs(t, segT, sunSource);
                     L += source * (T * albedo * (1.0 - segT));
                     T *= segT;
                     return next(T);
@@ -252,12 +314,26 @@ struct Frame {
                     downT = std::exp(-s.sky.occlusion * down);
                 }
                 const RenderVec3 source = sunIrradiance * sun + (skyUp * upT + below * downT) * 0.5;
+                if (aovs) addAovs(t, segT, sunIrradiance * sun + belowSun * (downT * 0.5));
                 // Source constant over the step: ∫ T σ_s S ds = T albedo S (1 − segT).
                 L += source * (T * albedo * (1.0 - segT));
                 T *= segT;
                 return next(T);
             });
-        const RenderVec3 bg = background(dir, tGround);
+        const RenderVec3 bg = background(dir, tGround, aov.shadow);
+        if (aovs) {
+            // The sky's part is what is left of the cloud's light: its own sum would only
+            // differ by rounding (the lights' split is linear).
+            const RenderVec3 Lsky = L - Lsun;
+            for (int c = 0; c < 3; ++c) {
+                aov.sun[c] = static_cast<float>(Lsun[c]);
+                aov.sky[c] = static_cast<float>(Lsky[c]);
+            }
+            const double opacity = 1.0 - T;
+            *aov.depth = opacity > 0.0            ? static_cast<float>(depthSum / opacity)
+                         : std::isfinite(tGround) ? static_cast<float>(tGround * dir.dot(forward))
+                                                  : kNoDepth;
+        }
         L += bg * T;
         behind[0] = static_cast<float>(bg.x());
         behind[1] = static_cast<float>(bg.y());
@@ -281,6 +357,13 @@ RenderedImage renderFogVolume(const openvdb::FloatGrid& grid, const RenderSettin
     const auto w = static_cast<std::size_t>(img.width);
     img.rgba.assign(w * static_cast<std::size_t>(img.height) * 4, 0.0f);
     img.background.assign(w * static_cast<std::size_t>(img.height) * 3, 0.0f);
+    if (settings.aovs) {
+        const std::size_t n = w * static_cast<std::size_t>(img.height);
+        img.sun.assign(3 * n, 0.0f);
+        img.sky.assign(3 * n, 0.0f);
+        img.depth.assign(n, 0.0f);
+        img.shadow.assign(n, 0.0f);
+    }
     tbb::parallel_for(
         tbb::blocked_range<int>(0, img.height, 1), [&](const tbb::blocked_range<int>& rows) {
             TrilinearDensity sampler(grid, frame.occupancy);
@@ -290,8 +373,14 @@ RenderedImage renderFogVolume(const openvdb::FloatGrid& grid, const RenderSettin
                 const auto y = static_cast<std::size_t>(py);
                 float* row = img.rgba.data() + y * w * 4;
                 float* behind = img.background.data() + y * w * 3;
-                for (int px = 0; px < img.width; ++px)
-                    frame.shade(px, py, sampler, spans, row + 4 * px, behind + 3 * px);
+                for (int px = 0; px < img.width; ++px) {
+                    PixelAovs aov;
+                    if (settings.aovs) {
+                        const std::size_t i = y * w + static_cast<std::size_t>(px);
+                        aov = {&img.sun[3 * i], &img.sky[3 * i], &img.depth[i], &img.shadow[i]};
+                    }
+                    frame.shade(px, py, sampler, spans, row + 4 * px, behind + 3 * px, aov);
+                }
             }
         });
     return img;

@@ -34,7 +34,19 @@ struct RenderedImage {
     /// the pixel's ray (the sky, or the ground lit by sun and sky with the cloud's shadow,
     /// hazed), before the volume's transmittance; empty where a renderer has none.
     std::vector<float> background;
+    /// With RenderSettings::aovs (the fast renderer; empty otherwise), per pixel, top row first:
+    /// the cloud's light (premultiplied, background excluded) from the sun (direct and
+    /// bounced, the sun-lit ground's glow included) and from the sky, whose sum is the cloud
+    /// layer, 3 floats each; the depth, 1 float: the camera-space depth (m along the view
+    /// axis) of the cloud's light, the mean of its samples' depths weighted by what each adds
+    /// to the opacity, where no cloud the ground's depth, on the sky kNoDepth; the ground's
+    /// shadow matte, 1 float: the fraction of the direct sun the cloud takes from the ground
+    /// seen through the pixel (0 on the sky and out of the shadow).
+    std::vector<float> sun, sky, depth, shadow;
 };
+
+/// The depth of a pixel that sees only sky (Blender's convention).
+inline constexpr float kNoDepth = 1e10f;
 
 /// Renders `grid` (density in [0, 1], linear transform, metres). Throws std::invalid_argument
 /// for unusable settings (size < 1, field of view outside (0, 180), camera looking at itself
