@@ -28,6 +28,7 @@ void registerBuiltinNodes(Registry& registry)
     // atmosphere/
     registerAtmosphereNode(registry);
     registerNoiseMapNode(registry);
+    registerThermalFieldNode(registry);
     registerMapMathNode(registry);
     registerVapourEmitterNode(registry);
     registerThermalIntegratorNode(registry);

@@ -8,6 +8,7 @@ class Registry;
 
 void registerAtmosphereNode(Registry& registry);          // Atmosphere
 void registerNoiseMapNode(Registry& registry);            // NoiseMap
+void registerThermalFieldNode(Registry& registry);        // ThermalField: power-law thermals
 void registerMapMathNode(Registry& registry);             // MapMath
 void registerVapourEmitterNode(Registry& registry);       // VapourEmitter
 void registerThermalIntegratorNode(Registry& registry);   // ThermalIntegrator
