@@ -43,6 +43,17 @@ protected:
         registerRendererNode(registry);
     }
 
+    /// Renders and writes frame 42 of `scene`; returns the Renderer's image.
+    std::shared_ptr<const ImageData> renderScene(const std::string& scene)
+    {
+        const Graph g = parseGraph(scene, "test.json", registry);
+        EvaluatorOptions options;
+        options.outDir = out.path();
+        Evaluator ev(registry, options);
+        ev.cookFrames(g, 42, 42);
+        return std::dynamic_pointer_cast<const ImageData>(ev.pull(g, "render", 42)->at("image"));
+    }
+
     /// Cooks frame 42 of TestImageSource (a 16 x 8 ramp v = x / 16) into WriteImage.
     formats::Rgb8Image write(const std::string& params)
     {
@@ -158,13 +169,7 @@ const char* kRenderedScene = R"({"cloudgraph": 1, "frames": {"start": 42, "end":
 
 TEST_F(WriteImageTest, ExrOfARenderHoldsBeautyCloudAndBackgroundLayers)
 {
-    const Graph g = parseGraph(kRenderedScene, "test.json", registry);
-    EvaluatorOptions options;
-    options.outDir = out.path();
-    Evaluator ev(registry, options);
-    ev.cookFrames(g, 42, 42);
-    const auto image =
-        std::dynamic_pointer_cast<const ImageData>(ev.pull(g, "render", 42)->at("image"));
+    const auto image = renderScene(kRenderedScene);
     ASSERT_TRUE(image);
     ASSERT_TRUE(image->hasBackground());
     const int w = image->width, h = image->height;
@@ -294,13 +299,7 @@ TEST_F(WriteImageTest, ExrOfARenderWithAovsHoldsSunSkyDepthShadowAndChromaticiti
 {
     std::string scene = kRenderedScene;
     scene.replace(scene.find(R"("jitter": true)"), 14, R"("jitter": true, "aovs": true)");
-    const Graph g = parseGraph(scene, "test.json", registry);
-    EvaluatorOptions options;
-    options.outDir = out.path();
-    Evaluator ev(registry, options);
-    ev.cookFrames(g, 42, 42);
-    const auto image =
-        std::dynamic_pointer_cast<const ImageData>(ev.pull(g, "render", 42)->at("image"));
+    const auto image = renderScene(scene);
     ASSERT_FALSE(image->aovs.empty());
     const std::string file = (out / "cloud.0042.exr").string();
     const std::vector<std::string> names = formats::exrChannelNames(file);
