@@ -10,6 +10,7 @@ list(APPEND CMAKE_MODULE_PATH "/usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/Open
 find_package(OpenVDB REQUIRED)
 
 find_package(PkgConfig REQUIRED)
+pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET OpenColorIO)  # WriteImage's toneMap ocio
 pkg_check_modules(FFTW3 REQUIRED IMPORTED_TARGET fftw3 fftw3f)
 pkg_check_modules(CPP_HTTPLIB REQUIRED IMPORTED_TARGET cpp-httplib)  # the tests' HTTP client
 find_package(PNG REQUIRED)

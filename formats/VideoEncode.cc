@@ -105,9 +105,14 @@ void encodeVideo(const VideoEncodeSettings& s, const fs::path& output,
         s.program, "-nostdin", "-hide_banner", "-loglevel", "error", "-y", "-framerate",
         number(s.fps), "-start_number", std::to_string(s.firstFrame), "-i", ffmpegPattern(s.images),
         "-frames:v", std::to_string(s.lastFrame - s.firstFrame + 1),
-        // yuv420p halves the chroma resolution, so both sizes must be even.
-        "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf",
-        std::to_string(s.crf), "-movflags", "+faststart", "-f", "mp4", output.string()};
+        // yuv420p halves the chroma resolution, so both sizes must be even. The frames are
+        // sRGB: converted to YUV with Rec.709's matrix (ffmpeg's default is Rec.601's) in video
+        // range, and tagged so (primaries and matrix bt709, transfer the sRGB curve), so a
+        // colour-managed player shows the PNGs' colours.
+        "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2,scale=out_color_matrix=bt709:out_range=tv", "-c:v",
+        "libx264", "-pix_fmt", "yuv420p", "-color_primaries", "bt709", "-colorspace", "bt709",
+        "-color_trc", "iec61966-2-1", "-color_range", "tv", "-crf", std::to_string(s.crf),
+        "-movflags", "+faststart", "-f", "mp4", output.string()};
     std::vector<char*> args;
     args.reserve(argv.size() + 1);
     for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));

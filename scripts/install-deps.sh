@@ -9,6 +9,7 @@ packages=(
     libopenvdb-dev libopenvdb-tools libboost-iostreams-dev libtbb-dev
     nlohmann-json3-dev libfftw3-dev libspdlog-dev libxxhash-dev
     libgtest-dev libbenchmark-dev libpng-dev libopenexr-dev
+    libopencolorio-dev  # WriteImage's OpenColorIO display transform
     ccache  # rebuilds and the sanitizer build reuse compiled objects
     ffmpeg  # EncodeVideo runs the ffmpeg program (H.264 via libx264)
     pybind11-dev python3-dev python3-numpy  # the Python module (docs/python.md)

@@ -18,6 +18,9 @@ class ParamSet;
 /// PNG of `frame` (the dither's seed). `cloudgraph serve`'s preview shows the same.
 algo::DisplaySettings writeImageDisplay(const ParamSet& params, int frame);
 
+/// WriteImage's OpenColorIO choice (ocioConfig, ocioInput, ocioDisplay, ocioView).
+algo::OcioChoice writeImageOcio(const ParamSet& params);
+
 /// Whether `file` ends in .png or .exr.
 bool isImageFileName(const std::string& file);
 

@@ -10,6 +10,7 @@
 
 #include "Values.h"
 #include "algo/render/image/Display.h"
+#include "algo/render/image/OcioDisplay.h"
 #include "nodes/data/Image.h"
 #include "nodes/render/ImageFile.h"
 
@@ -31,7 +32,10 @@ void bindImageFiles(py::module_& m)
                 std::static_pointer_cast<const ImageData>(fromPython(image, "Image", "image"));
             algo::DisplaySettings display;
             display.exposure = exposure;
-            display.curve = algo::toneCurveFromName(toneMap);
+            if (toneMap == "ocio")  // $OCIO's config, else the built-in one, its defaults
+                display.ocio = std::make_shared<algo::OcioDisplay>(algo::OcioChoice{});
+            else
+                display.curve = algo::toneCurveFromName(toneMap);
             display.dither = dither;
             display.seed = seed;
             py::gil_scoped_release release;
@@ -40,7 +44,8 @@ void bindImageFiles(py::module_& m)
         py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0, py::arg("tone_map") = "aces",
         py::arg("dither") = true, py::arg("seed") = 0,
         "Writes an image array (height, width, 3 or 4) of linear radiance as WriteImage does: "
-        ".png through exposure, tone map (aces, hable, clamp), sRGB and dither (seeded by "
+        ".png through exposure, tone map (aces, hable, clamp, or ocio: OpenColorIO's display "
+        "transform of $OCIO's config or the built-in one), sRGB and dither (seeded by "
         "`seed`, WriteImage's frame), .exr as linear float; atomically.");
 }
 

@@ -114,11 +114,12 @@ TEST_F(EncodeVideoTest, EncodesTheWrittenFramesIntoAnMp4)
 
     const std::string ffprobe = test::findOnPath("ffprobe");
     if (ffprobe.empty()) return;
-    const test::ProgramResult run =
-        test::runProgram({ffprobe, "-v", "error", "-select_streams", "v:0", "-count_frames",
-                          "-show_entries", "stream=codec_name,pix_fmt,width,height,nb_read_frames",
-                          "-of", "default=noprint_wrappers=1", mp4.string()},
-                         out / "ffprobe.log", /*alsoStderr=*/false);
+    const test::ProgramResult run = test::runProgram(
+        {ffprobe, "-v", "error", "-select_streams", "v:0", "-count_frames", "-show_entries",
+         "stream=codec_name,pix_fmt,width,height,nb_read_frames,color_space,"
+         "color_primaries,color_transfer,color_range",
+         "-of", "default=noprint_wrappers=1", mp4.string()},
+        out / "ffprobe.log", /*alsoStderr=*/false);
     const std::string& probe = run.output;
     ASSERT_EQ(run.status, 0) << probe;
     EXPECT_NE(probe.find("codec_name=h264"), std::string::npos) << probe;
@@ -126,6 +127,11 @@ TEST_F(EncodeVideoTest, EncodesTheWrittenFramesIntoAnMp4)
     EXPECT_NE(probe.find("width=34"), std::string::npos) << probe;  // padded to even
     EXPECT_NE(probe.find("height=18"), std::string::npos) << probe;
     EXPECT_NE(probe.find("nb_read_frames=4"), std::string::npos) << probe;
+    // Tagged as what it holds: Rec.709 primaries and matrix, the sRGB curve, video range.
+    EXPECT_NE(probe.find("color_space=bt709"), std::string::npos) << probe;
+    EXPECT_NE(probe.find("color_primaries=bt709"), std::string::npos) << probe;
+    EXPECT_NE(probe.find("color_transfer=iec61966-2-1"), std::string::npos) << probe;
+    EXPECT_NE(probe.find("color_range=tv"), std::string::npos) << probe;
 }
 
 TEST_F(EncodeVideoTest, OnlyTheLastFrameEncodes)

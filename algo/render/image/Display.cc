@@ -34,6 +34,31 @@ std::uint8_t codeValue(double y, double dither)
     return static_cast<std::uint8_t>(std::lround(x));
 }
 
+/// The triangular dither (on (-1, 1) code values) of channel k, or 0 without dither.
+double dither(const DisplaySettings& s, std::uint64_t k)
+{
+    if (!s.dither) return 0.0;
+    return counterUniform(s.seed, 2 * k, 0x44495448ull) -
+           counterUniform(s.seed, 2 * k + 1, 0x44495448ull);
+}
+
+/// Pixels [first, last) through the OCIO display: the exposed RGB in a buffer, transformed,
+/// then quantised with the same dither.
+void encodeOcio(const std::vector<float>& rgba, double scale, const DisplaySettings& s,
+                std::size_t first, std::size_t last, std::vector<std::uint8_t>& out)
+{
+    std::vector<float> rgb(3 * (last - first));
+    for (std::size_t i = first; i < last; ++i)
+        for (std::size_t c = 0; c < 3; ++c)
+            rgb[3 * (i - first) + c] = static_cast<float>(scale * rgba[i * 4 + c]);
+    s.ocio->apply(rgb.data(), last - first);
+    for (std::size_t i = first; i < last; ++i)
+        for (std::size_t c = 0; c < 3; ++c) {
+            const double v = 255.0 * double(rgb[3 * (i - first) + c]) + dither(s, i * 3 + c);
+            out[i * 3 + c] = static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 255.0)));
+        }
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> displayRgb8(const std::vector<float>& rgba, int width, int height,
@@ -51,18 +76,15 @@ std::vector<std::uint8_t> displayRgb8(const std::vector<float>& rgba, int width,
     // bytes for any thread count.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                          if (s.ocio) {
+                              encodeOcio(rgba, scale, s, r.begin(), r.end(), out);
+                              return;
+                          }
+                          for (std::size_t i = r.begin(); i < r.end(); ++i)
                               for (std::size_t c = 0; c < 3; ++c) {
                                   const double y = toneMap(scale * rgba[i * 4 + c], s.curve);
-                                  double d = 0.0;
-                                  if (s.dither) {  // triangular PDF on (−1, 1) code values
-                                      const std::uint64_t k = i * 3 + c;
-                                      d = counterUniform(s.seed, 2 * k, 0x44495448ull) -
-                                          counterUniform(s.seed, 2 * k + 1, 0x44495448ull);
-                                  }
-                                  out[i * 3 + c] = codeValue(y, d);
+                                  out[i * 3 + c] = codeValue(y, dither(s, i * 3 + c));
                               }
-                          }
                       });
     return out;
 }
