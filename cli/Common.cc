@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <set>
 #include <stdexcept>
 
@@ -255,13 +256,54 @@ LoadOptions graphLoadOptions(const OptionParser& opts)
     return loadOptions;
 }
 
+namespace {
+
+/// The node.param an override sets ("node.param=value"), or the whole text.
+std::string overrideTarget(const std::string& assignment)
+{
+    return assignment.substr(0, assignment.find('='));
+}
+
+/// Applies --set overrides. One that its node's checks across parameters refuse waits until
+/// the others are in, so `--set r.cameraPosition=... --set r.cameraLookAt=...` may move a
+/// camera in either order; what still fails then is refused with its first error. Of several
+/// overrides of one parameter the last wins, as it would in order.
+void applySetOverrides(Graph& graph, const std::vector<std::string>& sets)
+{
+    std::vector<std::string> pending;
+    for (std::size_t i = 0; i < sets.size(); ++i) {
+        const bool overridden =
+            std::any_of(sets.begin() + static_cast<std::ptrdiff_t>(i) + 1, sets.end(),
+                        [&](const std::string& later) {
+                            return overrideTarget(later) == overrideTarget(sets[i]);
+                        });
+        if (!overridden) pending.push_back(sets[i]);
+    }
+    while (!pending.empty()) {
+        std::vector<std::string> refused;
+        std::exception_ptr first;
+        for (const std::string& s : pending) {
+            try {
+                applySetOverride(graph, s);
+            } catch (const InputError&) {
+                refused.push_back(s);
+                if (!first) first = std::current_exception();
+            }
+        }
+        if (refused.size() == pending.size()) std::rethrow_exception(first);
+        pending = std::move(refused);
+    }
+}
+
+}  // namespace
+
 Graph loadGraphFromOptions(const OptionParser& opts, Registry& registry, const char* command)
 {
     if (opts.positionals().size() != 1)
         throw InputError("command line", std::string(command) + " needs exactly one graph file");
     buildRegistry(registry, opts);
     Graph graph = loadGraph(opts.positionals()[0], registry, graphLoadOptions(opts));
-    for (const std::string& s : opts.values("--set")) applySetOverride(graph, s);
+    applySetOverrides(graph, opts.values("--set"));
     return graph;
 }
 

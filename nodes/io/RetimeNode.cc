@@ -79,11 +79,12 @@ public:
         if (const std::string problem = util::retimeProblem(spec); !problem.empty())
             throw InputError(ctx.nodeId() + "/params", problem);
         const std::vector<std::int64_t> shows = util::retimeSchedule(spec);
-        const fs::path source = patternOf(ctx, "source"), file = patternOf(ctx, "file");
+        const fs::path source = patternOf(ctx, "source");
         const std::int64_t number =
             p.getInt("numberFrom") < 0 ? spec.first : p.getInt("numberFrom");
 
-        // Every source is there, and no target is one, before anything is written.
+        // Every source is there, and no target is one, before anything is written (the
+        // target's folder is made only then).
         std::set<fs::path> sources;
         for (std::int64_t f : shows) {
             const fs::path s = util::framePath(source, static_cast<int>(f));
@@ -92,6 +93,7 @@ public:
                                  "frame file '" + s.string() + "' is missing");
             sources.insert(fs::weakly_canonical(s));
         }
+        const fs::path file = patternOf(ctx, "file");
         for (std::size_t k = 0; k < shows.size(); ++k)
             if (sources.count(fs::weakly_canonical(util::framePath(file, target(number, k)))))
                 throw InputError(ctx.nodeId() + "/params/file",

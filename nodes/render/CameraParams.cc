@@ -76,11 +76,20 @@ std::vector<algo::CameraKey> cameraKeysFrom(const ParamSet& p)
 
 void checkCameraParams(const ParamSet& p, const ParamChecker& check)
 {
-    const char* name = !p.getString("cameraFile").empty() ? "cameraFile" : "cameraKeys";
+    const bool file = !p.getString("cameraFile").empty();
+    const bool keys = !p.getFloatList("cameraKeys").empty();
     try {
         cameraKeysFrom(p);
     } catch (const std::invalid_argument& e) {
-        check.fail(name, e.what());
+        if (file || keys) check.fail(file ? "cameraFile" : "cameraKeys", e.what());
+        // A still camera is one key to the path, not one the user wrote.
+        std::string what = e.what();
+        const std::string key0 = "camera key 0: ";
+        if (what.rfind(key0, 0) == 0) what = "the camera: " + what.substr(key0.size());
+        const char* param = what.find("its up") != std::string::npos          ? "cameraUp"
+                            : what.find("field of view") != std::string::npos ? "fov"
+                                                                              : "cameraLookAt";
+        check.fail(param, what);
     }
 }
 

@@ -143,6 +143,33 @@ TEST(Cli, ValidateAcceptsTheShippedGraphs)
     }
 }
 
+TEST(Cli, SetOverridesOfOneNodeAreCheckedTogether)
+{
+    // A camera straight overhead needs a new position, look-at and up: valid together, but
+    // the position with the old up looks along it. Any order is accepted; a camera that still
+    // looks along its up is refused, naming it.
+    const std::string graph =
+        std::string(CLOUDGRAPH_SOURCE_DIR) + "/graphs/figure6_towering_cumulus.json";
+    const std::string position = "render.cameraPosition=[3200,3200,9000]",
+                      lookAt = "render.cameraLookAt=[3200,3200,0]", up = "render.cameraUp=[0,1,0]";
+    for (const auto& order : {std::vector<std::string>{position, lookAt, up},
+                              std::vector<std::string>{up, position, lookAt},
+                              std::vector<std::string>{position, up, lookAt}}) {
+        std::vector<std::string> args = {"validate", graph};
+        for (const std::string& s : order) args.insert(args.end(), {"--set", s});
+        const auto r = runCli(args);
+        EXPECT_EQ(r.exitCode, 0) << r.errors;
+    }
+    const auto alongUp = runCli({"validate", graph, "--set", position, "--set", lookAt});
+    EXPECT_EQ(alongUp.exitCode, 2);
+    EXPECT_NE(alongUp.errors.find("its up is zero or along the view"), std::string::npos)
+        << alongUp.errors;
+    // The last of two overrides of one parameter wins, as in order.
+    const auto twice =
+        runCli({"validate", graph, "--set", "render.width=-3", "--set", "render.width=64"});
+    EXPECT_EQ(twice.exitCode, 0) << twice.errors;
+}
+
 TEST(Cli, RunRefusesBadOptionsBeforeCooking)
 {
     TempDir dir;

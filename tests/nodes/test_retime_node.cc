@@ -169,6 +169,7 @@ TEST_F(RetimeNodeTest, AMissingSourceIsNamedAndNothingIsWritten)
         EXPECT_NE(std::string(e.what()).find("retime"), std::string::npos) << e.what();
     }
     EXPECT_EQ(written(), 0u);
+    EXPECT_FALSE(fs::exists(out / "shot"));  // not even its folder
 }
 
 TEST_F(RetimeNodeTest, PatternsWithoutAFrameNumberOrOverwritingTheSourceAreRefused)
