@@ -70,6 +70,10 @@ std::vector<GoldenSpec> makeSpecs()
         // 0 writes the map; 91 is the last frame before condensation (92); the particles are
         // written every 10 frames, so 150 and 290 but not 91.
         {"atmosphere", {0, 91, 150, 290}, coarserMap, {}},
+        // The art-direction example (user guide section 12): the painted arc, the hero and the
+        // moving camera at frames 150 (the hero alone) and 300 (the arc's clouds, the first
+        // camera key); its Retime and video act on frame 491 only (the video is left out).
+        {"art_direction", {150, 300}, smallFigure, video},
         {"cumulus_still",
          {0},
          [](Graph& g) {
