@@ -29,21 +29,23 @@ struct Hermite {
     }
 };
 
-/// The Catmull-Rom tangent at key i of the values `at(k)` (per frame), one-sided at the ends.
+/// The Catmull-Rom tangent at key i of the values `at(k)` (per frame), one-sided at the ends,
+/// or zero there when the path eases.
 template <typename T, typename At>
-T tangent(const std::vector<CameraKey>& keys, std::size_t i, At at)
+T tangent(const std::vector<CameraKey>& keys, std::size_t i, At at, bool easeEnds)
 {
+    if (easeEnds && (i == 0 || i + 1 == keys.size())) return at(keys[i]) * 0.0;
     const std::size_t lo = i == 0 ? 0 : i - 1;
     const std::size_t hi = i + 1 == keys.size() ? i : i + 1;
     return (at(keys[hi]) - at(keys[lo])) * (1.0 / (keys[hi].frame - keys[lo].frame));
 }
 
 template <typename T, typename At>
-T interpolate(const std::vector<CameraKey>& keys, std::size_t i, double frame, At at)
+T interpolate(const std::vector<CameraKey>& keys, std::size_t i, double frame, At at, bool easeEnds)
 {
     const double span = keys[i + 1].frame - keys[i].frame;
     const Hermite h((frame - keys[i].frame) / span);
-    const T m0 = tangent<T>(keys, i, at), m1 = tangent<T>(keys, i + 1, at);
+    const T m0 = tangent<T>(keys, i, at, easeEnds), m1 = tangent<T>(keys, i + 1, at, easeEnds);
     return at(keys[i]) * h.p0 + m0 * (h.m0 * span) + at(keys[i + 1]) * h.p1 + m1 * (h.m1 * span);
 }
 
@@ -74,7 +76,7 @@ void checkCameraKeys(const std::vector<CameraKey>& keys)
 }
 
 RenderCamera cameraOnPath(const std::vector<CameraKey>& keys, double frame,
-                          const RenderCamera& base)
+                          const RenderCamera& base, bool easeEnds)
 {
     RenderCamera camera = base;
     const auto take = [&camera](const CameraKey& k) {
@@ -91,15 +93,17 @@ RenderCamera cameraOnPath(const std::vector<CameraKey>& keys, double frame,
                                         [](double f, const CameraKey& k) { return f < k.frame; });
     const auto i = static_cast<std::size_t>(after - keys.begin()) - 1;
     if (keys[i].frame == frame) return take(keys[i]);
-    camera.position =
-        interpolate<RenderVec3>(keys, i, frame, [](const CameraKey& k) { return k.position; });
-    camera.lookAt =
-        interpolate<RenderVec3>(keys, i, frame, [](const CameraKey& k) { return k.lookAt; });
-    camera.up = interpolate<RenderVec3>(keys, i, frame, [](const CameraKey& k) { return k.up; });
+    camera.position = interpolate<RenderVec3>(
+        keys, i, frame, [](const CameraKey& k) { return k.position; }, easeEnds);
+    camera.lookAt = interpolate<RenderVec3>(
+        keys, i, frame, [](const CameraKey& k) { return k.lookAt; }, easeEnds);
+    camera.up = interpolate<RenderVec3>(
+        keys, i, frame, [](const CameraKey& k) { return k.up; }, easeEnds);
     // The spline may overshoot between keys; the field of view stays a field of view.
-    camera.fovDegrees = std::clamp(
-        interpolate<double>(keys, i, frame, [](const CameraKey& k) { return k.fovDegrees; }), 1e-3,
-        179.999);
+    camera.fovDegrees =
+        std::clamp(interpolate<double>(
+                       keys, i, frame, [](const CameraKey& k) { return k.fovDegrees; }, easeEnds),
+                   1e-3, 179.999);
     return camera;
 }
 

@@ -27,8 +27,11 @@ struct CameraKey {
 void checkCameraKeys(const std::vector<CameraKey>& keys);
 
 /// The camera at `frame` on the path through `keys`, which checkCameraKeys has accepted (not
-/// checked again: a writer asks for every frame of a shot), with `base`'s image size.
+/// checked again: a writer asks for every frame of a shot), with `base`'s image size. With
+/// `easeEnds` the tangents at the first and last key are zero instead of one-sided, so the
+/// camera starts from rest and comes to rest (an ease in and out, as a layout artist keys a
+/// move from a hold); the inner keys keep their Catmull-Rom tangents.
 RenderCamera cameraOnPath(const std::vector<CameraKey>& keys, double frame,
-                          const RenderCamera& base);
+                          const RenderCamera& base, bool easeEnds = false);
 
 }  // namespace cg::algo

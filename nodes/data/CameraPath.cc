@@ -1,8 +1,9 @@
 /// CameraPath's stored form, in ByteWriter's primitives (u64 little-endian, f64 a double's
 /// bytes):
 ///
-///   8 bytes  tag "CGCAMP01"
+///   8 bytes  tag "CGCAMP02" (version 1, without the ease: refused)
 ///   u64      width, u64 height, each 1 to 2^20
+///   u64      1 when the path eases at its ends, else 0
 ///   u64      key count, 1 to 2^20
 ///   f64 x 14 per key: frame, position, look-at, up (x, y, z each), vertical field of view
 ///            in degrees; checked as algo::checkCameraKeys checks them
@@ -21,7 +22,7 @@ namespace cg {
 namespace {
 
 constexpr const char* kType = "CameraPath";
-constexpr char kTag[8] = {'C', 'G', 'C', 'A', 'M', 'P', '0', '1'};
+constexpr char kTag[8] = {'C', 'G', 'C', 'A', 'M', 'P', '0', '2'};
 constexpr std::uint64_t kMaxSide = std::uint64_t{1} << 20;
 constexpr std::uint64_t kMaxKeys = std::uint64_t{1} << 20;
 
@@ -40,8 +41,9 @@ DataPtr readCameraPath(ByteReader& in)
 {
     char tag[8];
     in.bytes(tag, 8);
-    if (std::memcmp(tag, kTag, 8) != 0) checks::refuse(kType, "no CGCAMP01 tag");
-    const std::uint64_t w = in.u64(), h = in.u64(), n = in.u64();
+    if (std::memcmp(tag, kTag, 8) != 0) checks::refuse(kType, "no CGCAMP02 tag");
+    const std::uint64_t w = in.u64(), h = in.u64(), ease = in.u64(), n = in.u64();
+    if (ease > 1) checks::refuse(kType, "ease flag " + std::to_string(ease));
     if (w == 0 || h == 0 || w > kMaxSide || h > kMaxSide)
         checks::refuse(kType,
                        "size " + std::to_string(w) + " x " + std::to_string(h) + " is absurd");
@@ -60,13 +62,14 @@ DataPtr readCameraPath(ByteReader& in)
         checks::refuse(kType, e.what());
     }
     return std::make_shared<CameraPathData>(std::move(keys), static_cast<int>(w),
-                                            static_cast<int>(h));
+                                            static_cast<int>(h), ease == 1);
 }
 
 }  // namespace
 
-CameraPathData::CameraPathData(std::vector<algo::CameraKey> keys_, int width_, int height_)
-    : keys(std::move(keys_)), width(width_), height(height_)
+CameraPathData::CameraPathData(std::vector<algo::CameraKey> keys_, int width_, int height_,
+                               bool easeEnds_)
+    : keys(std::move(keys_)), width(width_), height(height_), easeEnds(easeEnds_)
 {
     algo::checkCameraKeys(keys);
     if (width < 1 || height < 1) throw std::invalid_argument("CameraPath: image size below 1");
@@ -77,7 +80,7 @@ algo::RenderCamera CameraPathData::at(double frame) const
     algo::RenderCamera base;
     base.width = width;
     base.height = height;
-    return algo::cameraOnPath(keys, frame, base);
+    return algo::cameraOnPath(keys, frame, base, easeEnds);
 }
 
 bool CameraPathData::serialize(ByteWriter& out) const
@@ -85,6 +88,7 @@ bool CameraPathData::serialize(ByteWriter& out) const
     out.bytes(kTag, 8);
     out.u64(static_cast<std::uint64_t>(width));
     out.u64(static_cast<std::uint64_t>(height));
+    out.u64(easeEnds ? 1 : 0);
     out.u64(keys.size());
     for (const algo::CameraKey& k : keys) {
         out.f64(k.frame);

@@ -15,11 +15,12 @@ class Registry;
 class CameraPathData final : public Data {
 public:
     /// Throws std::invalid_argument for unusable keys (algo::checkCameraKeys) or a size < 1.
-    CameraPathData(std::vector<algo::CameraKey> keys, int width, int height);
+    CameraPathData(std::vector<algo::CameraKey> keys, int width, int height, bool easeEnds = false);
 
     const std::vector<algo::CameraKey> keys;
     const int width;
     const int height;
+    const bool easeEnds;  ///< the path starts and ends at rest (algo::cameraOnPath)
 
     /// The camera at `frame`.
     algo::RenderCamera at(double frame) const;

@@ -100,7 +100,8 @@ public:
         const auto volume = ctx.input<FogVolumeData>("volume");
         algo::RenderSettings settings = settingsFrom(ctx.params());
         const auto path = std::make_shared<CameraPathData>(
-            cameraKeysFrom(ctx.params()), settings.camera.width, settings.camera.height);
+            cameraKeysFrom(ctx.params()), settings.camera.width, settings.camera.height,
+            ctx.params().getBool("cameraEase"));
         settings.camera = path->at(ctx.frame());
         if (ctx.params().getBool("volumeOptics"))
             takeVolumeOptics(*volume->grid, settings.medium, ctx);
@@ -127,7 +128,7 @@ void registerRendererNode(Registry& registry)
     const auto v3 = [](const algo::RenderVec3& v) { return Vec3{v.x(), v.y(), v.z()}; };
     NodeDecl d;
     d.type = "Renderer";
-    d.version = 21;  // each version's change: CHANGES.md, "Node versions"
+    d.version = 22;  // each version's change: CHANGES.md, "Node versions"
     d.category = "render";
     d.framesInAnyOrder = true;
     // A moving camera makes each frame differ; a still one renders a still volume once.
@@ -183,6 +184,11 @@ void registerRendererNode(Registry& registry)
                        "field of view; y up, as Nuke, Houdini, Maya and Blender's add-on write "
                        "it): each line is a key; replaces the camera parameters. A relative "
                        "path is found beside the graph file"),
+        boolParam("cameraEase", false,
+                  "camera moves (ours): the path starts from rest at the first key and comes to "
+                  "rest at the last (zero tangents there; the inner keys keep theirs), as a "
+                  "move keyed from a hold; off: the end tangents point at the next key, so the "
+                  "camera starts and stops at speed"),
         vec3Param("sunDirection", v3(def.sun.direction), "",
                   "direction toward the sun (normalised; z > 0 above the horizon)"),
         vec3Param("sunColour", v3(def.sun.colour), "", "sun colour, linear RGB", 0, 100),

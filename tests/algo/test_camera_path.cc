@@ -210,4 +210,26 @@ TEST(CameraMatrices, TheNukePoseProjectsEachPixelsRayOnThatPixel)
     }
 }
 
+TEST(CameraPath, AnEasedPathStartsAndEndsAtRestAndStillPassesThroughItsKeys)
+{
+    const std::vector<CameraKey> keys = {key(300, {7000, -4000, 8000}, {3600, 2900, 2000}, 45),
+                                         key(400, {7000, -3700, 4000}, {4000, 3300, 2600}, 50),
+                                         key(491, {7000, -3500, 900}, {4200, 3600, 3200}, 55)};
+    const double h = 1e-3;
+    const auto at = [&](double f, bool ease) {
+        return cameraOnPath(keys, f, RenderCamera{}, ease).position;
+    };
+    // Eased: the speed leaving the first key and arriving at the last is zero (to the
+    // difference's order, h times the acceleration).
+    EXPECT_LT((at(300 + h, true) - at(300, true)).length() / h, 1.0);
+    EXPECT_LT((at(491, true) - at(491 - h, true)).length() / h, 1.0);
+    // Without: the camera leaves at the one-sided chord's speed, tens of metres a frame.
+    EXPECT_GT((at(300 + h, false) - at(300, false)).length() / h, 30.0);
+    for (const CameraKey& k : keys) EXPECT_EQ(at(k.frame, true), k.position);
+    // The inner key keeps its Catmull-Rom tangent: the same velocity through it either way.
+    const RenderVec3 eased = (at(400 + h, true) - at(400 - h, true)) * (0.5 / h);
+    const RenderVec3 plain = (at(400 + h, false) - at(400 - h, false)) * (0.5 / h);
+    EXPECT_LT((eased - plain).length(), 1e-3 * plain.length());
+}
+
 }  // namespace cg::algo
