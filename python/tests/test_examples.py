@@ -47,6 +47,19 @@ def test_write_image_writes_what_write_image_nodes_write(tmp_path):
     assert not (tmp_path / "x.png").exists() and not (tmp_path / "x.jpg").exists()
 
 
+def test_write_image_through_ocio_writes_what_the_node_writes(tmp_path, monkeypatch):
+    monkeypatch.delenv("OCIO", raising=False)  # the built-in config on both sides
+    g = cloudgraph.Graph.load(SOURCE / "graphs" / "cumulus_still.json")
+    g["render"].params["width"], g["render"].params["height"] = 64, 48
+    g["write"].params["toneMap"] = "ocio"
+    g.cook("write.files", out=tmp_path / "node")
+    cloudgraph.write_image(tmp_path / "py.png", g.cook("render.image"), tone_map="ocio", seed=0)
+    assert (tmp_path / "py.png").read_bytes() == (tmp_path / "node" / "cumulus_still.png").read_bytes()
+    # The ACES view is not the fitted curve: the same image through 'aces' differs.
+    cloudgraph.write_image(tmp_path / "fit.png", g.cook("render.image"), seed=0)
+    assert (tmp_path / "fit.png").read_bytes() != (tmp_path / "py.png").read_bytes()
+
+
 def test_the_contact_sheet_holds_the_nine_renders(tmp_path):
     run_example("contact_sheet.py", tmp_path)
     # The same nine renders, each cooked from scratch, tiled by hand.
