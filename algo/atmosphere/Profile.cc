@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -80,8 +81,12 @@ EnvironmentProfile::EnvironmentProfile(std::vector<ProfileLevel> levels)
                             return l.temperatureC - (last.temperatureC - last.dewpointC);
                         });
     bool anyWind = false;
+    mWindTop = -std::numeric_limits<double>::infinity();
     for (const ProfileLevel& l : mLevels)
-        anyWind = anyWind || (!std::isnan(l.windEastMs) && !std::isnan(l.windNorthMs));
+        if (!std::isnan(l.windEastMs) && !std::isnan(l.windNorthMs)) {
+            anyWind = true;
+            mWindTop = l.heightM;
+        }
     for (ProfileLevel& l : mLevels)
         if (!anyWind || std::isnan(l.windEastMs) || std::isnan(l.windNorthMs))
             l.windEastMs = l.windNorthMs = anyWind ? std::nan("") : 0.0;
@@ -99,6 +104,17 @@ EnvironmentProfile::EnvironmentProfile(std::vector<ProfileLevel> levels)
             }
     }
     fillPressures(mLevels);
+}
+
+EnvironmentProfile::EnvironmentProfile(std::vector<ProfileLevel> levels, double windTopHeight)
+    : EnvironmentProfile(std::move(levels))
+{
+    const bool atALevel = std::any_of(mLevels.begin(), mLevels.end(), [&](const ProfileLevel& l) {
+        return l.heightM == windTopHeight;
+    });
+    if (!(windTopHeight == -std::numeric_limits<double>::infinity() || atALevel))
+        throw std::invalid_argument("the wind's top is not one of the profile's levels");
+    mWindTop = windTopHeight;
 }
 
 std::size_t EnvironmentProfile::segment(double z, double& weight) const

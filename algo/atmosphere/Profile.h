@@ -37,6 +37,9 @@ public:
     /// components between levels that have them (calm when none has). Throws
     /// std::invalid_argument for anything else.
     explicit EnvironmentProfile(std::vector<ProfileLevel> levels);
+    /// A profile as stored: every value filled in, and the height of the highest level whose
+    /// wind was given (windTopHeight()), which must be -infinity or a level's height.
+    EnvironmentProfile(std::vector<ProfileLevel> levels, double windTopHeight);
 
     const std::vector<ProfileLevel>& levels() const { return mLevels; }
     double groundHeight() const { return mLevels.front().heightM; }
@@ -46,12 +49,17 @@ public:
     double dewpoint(double z) const;
     double pressure(double z) const;
     Wind wind(double z) const;
+    /// The highest level whose wind the source gave: above it wind() holds that level's
+    /// wind, which nobody measured (a skew-T draws no barbs there). -infinity when no level
+    /// had a wind (calm everywhere).
+    double windTopHeight() const { return mWindTop; }
 
 private:
     /// The level i below z and the weight of level i + 1 (0 .. 1, clamped outside).
     std::size_t segment(double z, double& weight) const;
 
     std::vector<ProfileLevel> mLevels;
+    double mWindTop = 0.0;
 };
 
 /// The ICAO standard atmosphere from sea level: the temperature falls 6.5 C/km from

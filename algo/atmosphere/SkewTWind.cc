@@ -1,5 +1,6 @@
 // The skew-T's wind barbs (SkewTLayers.h), drawn the way weather maps draw them.
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -57,7 +58,10 @@ void drawWindBarbs(SkewTCanvas& canvas, const SkewTAxes& a, const EnvironmentPro
     canvas.text(title, static_cast<int>(x) - SkewTCanvas::textWidth(title) / 2, a.top() - 11,
                 kSkewTText);
     double lastY = std::numeric_limits<double>::infinity();
-    for (double z = profile.groundHeight(); z <= profile.topHeight(); z += 10.0) {
+    // Barbs only where the sounding measured wind: above its highest wind the profile holds
+    // that wind, which no one observed.
+    const double top = std::min(profile.topHeight(), profile.windTopHeight());
+    for (double z = profile.groundHeight(); z <= top; z += 10.0) {
         const double y = a.y(profile.pressure(z));
         if (y >= a.bottom()) continue;
         if (y < a.top() + 4.0) break;

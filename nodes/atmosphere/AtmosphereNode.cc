@@ -126,7 +126,7 @@ void registerAtmosphereNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "Atmosphere";
-    d.version = 3;
+    d.version = 4;
     d.category = "atmosphere";
     d.doc =
         "The environment of Sec. 5.1: by default the paper's, ground temperature and "

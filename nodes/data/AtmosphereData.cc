@@ -42,8 +42,9 @@ void readProfile(ByteReader& in, Atmosphere& a)
     }
     if (levels.back().heightM - levels.front().heightM > L::kMaxProfileDepth)
         checks::refuse(kType, "a profile deeper than the limit");
+    const double windTop = in.f64();
     try {
-        a.profile = std::make_shared<algo::EnvironmentProfile>(std::move(levels));
+        a.profile = std::make_shared<algo::EnvironmentProfile>(std::move(levels), windTop);
     } catch (const std::invalid_argument& e) {
         checks::refuse(kType, e.what());
     }
@@ -103,7 +104,10 @@ bool AtmosphereData::serialize(ByteWriter& out) const
             profile.insert(profile.end(), {l.heightM, l.temperatureC, l.dewpointC, l.pressureHPa,
                                            l.windEastMs, l.windNorthMs});
     out.podVector(profile);
-    if (atmosphere.profile) out.u64(atmosphere.moistAdiabat ? 1 : 0);
+    if (atmosphere.profile) {
+        out.f64(atmosphere.profile->windTopHeight());
+        out.u64(atmosphere.moistAdiabat ? 1 : 0);
+    }
     std::vector<double> wind;
     for (const algo::WindLevel& l : atmosphere.wind.levels())
         wind.insert(wind.end(), {l.heightM, l.east, l.north});

@@ -238,6 +238,32 @@ TEST(SkewT, WindBarbsAreDrawnOnlyWhereTheProfileHasWind)
     EXPECT_EQ(countColour(calm, a.right() + 1, 0, o.width - 1, o.height - 1, kSkewTBarb), 0);
 }
 
+TEST(SkewT, NoBarbsAboveTheHighestMeasuredWind)
+{
+    // 25 m/s measured up to 6 km, no wind given above: the profile holds it above (that is
+    // what it interpolates with), but the diagram draws nothing nobody measured.
+    std::vector<ProfileLevel> levels;
+    for (double z = 0.0; z <= 16000.0; z += 500.0) {
+        const double t = 30.0 - 6.5e-3 * std::min(z, 12000.0);
+        const double wind = z <= 6000.0 ? 25.0 : std::nan("");
+        levels.push_back({z, t, t - 10.0, std::nan(""), wind, wind == wind ? 0.0 : wind});
+    }
+    levels.front().pressureHPa = 1000.0;
+    const EnvironmentProfile profile(std::move(levels));
+    EXPECT_EQ(profile.windTopHeight(), 6000.0);
+    EXPECT_EQ(profile.wind(9000.0).east, 25.0);  // held, for the physics
+    const SkewTOptions o;
+    const SkewTAxes a(o);
+    const SkewTImage image = drawSkewT(profile, liftParcel(profile, 0.0), o);
+    const int yTop = static_cast<int>(a.y(profile.pressure(6000.0))) - 12;  // a barb's reach
+    EXPECT_EQ(countColour(image, a.right() + 1, a.top(), o.width - 1, yTop, kSkewTBarb), 0);
+    EXPECT_GT(countColour(image, a.right() + 1, yTop, o.width - 1, a.bottom() - 1, kSkewTBarb), 50);
+    // A profile as stored keeps it; a top that is no level is refused.
+    const EnvironmentProfile stored(profile.levels(), profile.windTopHeight());
+    EXPECT_EQ(stored.windTopHeight(), 6000.0);
+    EXPECT_THROW(EnvironmentProfile(profile.levels(), 6100.0), std::invalid_argument);
+}
+
 TEST(SkewT, AWestWindBarbPointsWestWithItsFeathersUp)
 {
     SkewTCanvas canvas(60, 60);

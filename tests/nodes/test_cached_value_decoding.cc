@@ -151,7 +151,10 @@ Bytes atmosphereBytes(std::vector<double> fields, const std::vector<double>& pro
     ByteWriter out;
     for (double v : fields) out.f64(v);
     out.podVector(profile);
-    if (!profile.empty()) out.u64(1);  // the moist adiabat
+    if (!profile.empty()) {
+        out.f64(profile[profile.size() - 6]);  // the wind's top: the last level
+        out.u64(1);                            // the moist adiabat
+    }
     out.podVector(wind);
     return out.buffer();
 }
@@ -191,6 +194,7 @@ TEST(CachedValueDecoding, AtmosphereProfileAndWindRoundTripOrAreRefused)
     EXPECT_EQ(back.profile->temperature(5432.0), a.profile->temperature(5432.0));
     EXPECT_EQ(back.profile->pressure(5432.0), a.profile->pressure(5432.0));
     EXPECT_FALSE(back.moistAdiabat);
+    EXPECT_EQ(back.profile->windTopHeight(), a.profile->windTopHeight());  // no wind: -inf
     EXPECT_EQ(back.wind.at(2500.0).east, a.wind.at(2500.0).east);
 
     const std::vector<double> ok{20.0, 6.4e-3, 16.0, 10e-3, 6e-3, 9.81};
