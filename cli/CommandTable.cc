@@ -37,6 +37,9 @@ std::vector<CommandSpec> makeTable()
              {"--task", "I", "the chunk --chunk cooks, from 0 (default: SLURM_ARRAY_TASK_ID)"},
              {"--simulations-only", "",
               "cook only the simulation nodes, into --cache (a farm's first job)"},
+             {"--only", "NODE",
+              "cook only NODE and what it needs (its writers' files alone, e.g. a one-frame "
+              "look without the video); repeatable"},
              {"--out", "DIR", "where writers put files (default: out)"},
              {"--cache", "DIR", "on-disk cache shared across runs and processes"},
              {"--cache-memory-mb", "N", "in-memory cache budget in MiB (default 4096)"},

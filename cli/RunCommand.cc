@@ -97,6 +97,21 @@ std::vector<std::string> targetsOfOneChunk(const Graph& graph)
     return ids;
 }
 
+/// The nodes --only names (none: the graph's sinks), each checked to be in the graph; --only
+/// does not mix with --chunk or --simulations-only, which choose their own nodes.
+std::vector<std::string> onlyNodes(const OptionParser& opts, const Graph& graph)
+{
+    const std::vector<std::string> ids = opts.values("--only");
+    if (ids.empty()) return {};
+    for (const char* other : {"--chunk", "--simulations-only"})
+        if (opts.has(other))
+            throw InputError("--only", std::string("does not go with ") + other +
+                                           ", which chooses the nodes itself");
+    for (const std::string& id : ids)
+        if (!graph.find(id)) throw InputError("--only " + id, "the graph has no node '" + id + "'");
+    return ids;
+}
+
 /// Refuses, before anything cooks, an --out that is not a directory and a --report that
 /// names one: found after the cook, they would cost the whole run.
 void checkOutputLocations(const OptionParser& opts)
@@ -160,7 +175,7 @@ int runCommand(const Args& args)
         const std::vector<std::string> targets = opts.has("--simulations-only")
                                                      ? simulationNodes(graph)
                                                  : opts.has("--chunk") ? targetsOfOneChunk(graph)
-                                                                       : std::vector<std::string>{};
+                                                                       : onlyNodes(opts, graph);
 
         EvaluatorOptions evalOptions;
         evalOptions.outDir = opts.value("--out").value_or("out");

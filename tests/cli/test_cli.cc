@@ -170,6 +170,29 @@ TEST(Cli, SetOverridesOfOneNodeAreCheckedTogether)
     EXPECT_EQ(twice.exitCode, 0) << twice.errors;
 }
 
+TEST(Cli, OnlyCooksWhatTheNamedNodesNeed)
+{
+    const test::TempDir dir;
+    const std::string graph = std::string(CLOUDGRAPH_SOURCE_DIR) + "/graphs/default.json";
+    const auto out = [&](const char* name) { return (dir / name).string(); };
+    // The statistics alone: cooked, but no writer runs, so nothing is written.
+    auto r = runCli({"run", graph, "--frames", "0:2", "--out", out("a"), "--only", "stats"});
+    ASSERT_EQ(r.exitCode, 0) << r.errors;
+    EXPECT_FALSE(std::filesystem::exists(dir / "a" / "demo"));
+    // The writer: its three files.
+    r = runCli({"run", graph, "--frames", "0:2", "--out", out("b"), "--only", "write"});
+    ASSERT_EQ(r.exitCode, 0) << r.errors;
+    for (const char* f : {"stats.0000.txt", "stats.0001.txt", "stats.0002.txt"})
+        EXPECT_TRUE(std::filesystem::exists(dir / "b" / "demo" / f)) << f;
+    // A node the graph lacks, or --only with --chunk: refused before anything is made.
+    r = runCli({"run", graph, "--out", out("c"), "--only", "writ"});
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.errors.find("no node 'writ'"), std::string::npos) << r.errors;
+    r = runCli({"run", graph, "--out", out("c"), "--only", "write", "--chunk", "10"});
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_FALSE(std::filesystem::exists(dir / "c"));
+}
+
 TEST(Cli, RunRefusesBadOptionsBeforeCooking)
 {
     TempDir dir;
