@@ -152,8 +152,8 @@ Bytes atmosphereBytes(std::vector<double> fields, const std::vector<double>& pro
     for (double v : fields) out.f64(v);
     out.podVector(profile);
     if (!profile.empty()) {
-        out.f64(profile[profile.size() - 6]);  // the wind's top: the last level
-        out.u64(1);                            // the moist adiabat
+        out.f64(profile.front());  // the wind's top: the first level's height
+        out.u64(1);                // the moist adiabat
     }
     out.podVector(wind);
     return out.buffer();
