@@ -288,12 +288,13 @@ struct Frame {
                     const double peaked = std::exp(-peakless * tauSun) - sunT;
                     RenderVec3 source = sunIrradiance * (sunPhase[0] * sunT + peakPhase * peaked);
                     const DiffuseLight::Sample field = diffuse.at(p);
+                    // The sun's field is looked up once a sample, for all three channels.
+                    const DiffuseLight::Sample fromSun = aovs ? diffuseSun.at(p) : field;
                     RenderVec3 sunSource = source;
                     for (int c = 0; c < 3; ++c) {
                         const double scattered =
                             diffuseScattered(field.phi[c], field.flux[c], -dir, split);
-                        if (aovs)
-                            sunSource[c] += sunShare(diffuseSun.at(p), field, c, dir) * scattered;
+                        if (aovs) sunSource[c] += sunShare(fromSun, field, c, dir) * scattered;
                         source[c] += scattered;
                     }
                     if (aovs) addAovs(t, segT, sunSource);
