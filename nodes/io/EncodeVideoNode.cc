@@ -14,6 +14,7 @@
 #include "formats/VideoEncode.h"
 #include "nodes/DeclHelpers.h"
 #include "nodes/io/IoNodes.h"
+#include "nodes/io/WriterSupport.h"
 #include "util/AtomicFile.h"
 
 namespace cg {
@@ -62,8 +63,7 @@ public:
             throw InputError(ctx.nodeId() + "/params/images",
                              "'" + images + "' needs #### (the frame number) in its file name");
         // Resolved under --out as WriteImage resolves its 'file'; #### stays a pattern.
-        s.images =
-            ctx.outputPath("images").parent_path() / std::filesystem::path(images).filename();
+        s.images = framePatternUnderOut(ctx, "images");
 
         const std::filesystem::path path = ctx.outputPath("file");
         util::AtomicOutput out(path);

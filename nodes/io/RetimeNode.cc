@@ -14,6 +14,7 @@
 #include "core/Registry.h"
 #include "nodes/DeclHelpers.h"
 #include "nodes/io/IoNodes.h"
+#include "nodes/io/WriterSupport.h"
 #include "util/AtomicFile.h"
 #include "util/FramePattern.h"
 #include "util/RetimeSchedule.h"
@@ -23,12 +24,6 @@ namespace cg {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// An OutputPath parameter's pattern resolved under --out, #### kept (as EncodeVideo reads).
-fs::path patternOf(const CookContext& ctx, const char* param)
-{
-    return ctx.outputPath(param).parent_path() / fs::path(ctx.params().getString(param)).filename();
-}
 
 util::RetimeSpec specOf(const CookContext& ctx)
 {
@@ -79,7 +74,7 @@ public:
         if (const std::string problem = util::retimeProblem(spec); !problem.empty())
             throw InputError(ctx.nodeId() + "/params", problem);
         const std::vector<std::int64_t> shows = util::retimeSchedule(spec);
-        const fs::path source = patternOf(ctx, "source");
+        const fs::path source = framePatternUnderOut(ctx, "source");
         const std::int64_t number =
             p.getInt("numberFrom") < 0 ? spec.first : p.getInt("numberFrom");
 
@@ -93,7 +88,7 @@ public:
                                  "frame file '" + s.string() + "' is missing");
             sources.insert(fs::weakly_canonical(s));
         }
-        const fs::path file = patternOf(ctx, "file");
+        const fs::path file = framePatternUnderOut(ctx, "file");
         for (std::size_t k = 0; k < shows.size(); ++k)
             if (sources.count(fs::weakly_canonical(util::framePath(file, target(number, k)))))
                 throw InputError(ctx.nodeId() + "/params/file",

@@ -7,6 +7,12 @@
 
 namespace cg {
 
+std::filesystem::path framePatternUnderOut(const CookContext& ctx, const std::string& param)
+{
+    return ctx.outputPath(param).parent_path() /
+           std::filesystem::path(ctx.params().getString(param)).filename();
+}
+
 int scheduledFrames(std::int64_t first, std::int64_t every, std::int64_t start, std::int64_t end)
 {
     if (first < start) first += (start - first + every - 1) / every * every;

@@ -2,6 +2,8 @@
 /// What every writer node shares.
 
 #include <cstdint>
+#include <filesystem>
+#include <string>
 
 #include "core/CoreData.h"
 #include "core/Node.h"
@@ -27,6 +29,11 @@ inline bool writesThisFrame(CookContext& ctx)
     ctx.setOutput("files", std::make_shared<TextData>(""));
     return false;
 }
+
+/// An OutputPath parameter that names a frame-numbered sequence, resolved under --out as a
+/// writer resolves its file (its folder made), with the #### of its file name kept: what a
+/// node that reads or copies every frame's file (EncodeVideo, Retime) walks.
+std::filesystem::path framePatternUnderOut(const CookContext& ctx, const std::string& param);
 
 /// Adds firstFrame and skipEmpty to a writer of file sequences (WriteVDB, WritePoints), so
 /// that its files are a numbered sequence from the first frame with something in it.
