@@ -99,15 +99,18 @@ double powerLawDiameter(double u, double smallest, double largest, double expone
 
 void checkThermalField(const ThermalFieldSettings& s)
 {
-    const auto fail = [](const std::string& what) { throw std::invalid_argument(what); };
+    using Setting = ThermalFieldError::Setting;
+    const auto fail = [](Setting setting, const std::string& what) {
+        throw ThermalFieldError(setting, what);
+    };
     if (s.nx < 1 || s.ny < 1 || !(s.cellSize > 0.0) || !std::isfinite(s.cellSize))
-        fail("the map needs at least one cell of positive size");
+        fail(Setting::Map, "the map needs at least one cell of positive size");
     if (!(s.smallest > 0.0) || !(s.largest >= s.smallest) || !std::isfinite(s.largest))
-        fail("smallest must be > 0 and largest >= smallest");
+        fail(Setting::Sizes, "smallest must be > 0 and largest >= smallest");
     if (!(s.exponent >= -4.0 && s.exponent <= 0.0) || std::abs(s.exponent + 1.0) < 1e-9)
-        fail("the exponent must be in [-4, 0] and not -1");
-    if (!(s.cover > 0.0 && s.cover <= 0.6)) fail("the cover must be in (0, 0.6]");
-    if (!(s.gap >= 0.0 && s.gap <= 4.0)) fail("the gap must be in [0, 4]");
+        fail(Setting::Exponent, "the exponent must be in [-4, 0] and not -1");
+    if (!(s.cover > 0.0 && s.cover <= 0.6)) fail(Setting::Cover, "the cover must be in (0, 0.6]");
+    if (!(s.gap >= 0.0 && s.gap <= 4.0)) fail(Setting::Gap, "the gap must be in [0, 4]");
     // The expected count from the mean area of the law, before drawing any.
     const double k2 = s.exponent + 3.0, k1 = s.exponent + 1.0;
     const double norm = (std::pow(s.largest, k1) - std::pow(s.smallest, k1)) / k1;
@@ -120,9 +123,10 @@ void checkThermalField(const ThermalFieldSettings& s)
     const double ground = s.nx * s.cellSize * s.ny * s.cellSize;
     const double expected = s.cover * ground / (0.25 * kPi * meanSquare);
     if (!(expected < 0.5 * static_cast<double>(kMaxThermals)))
-        fail("the field would need about " + std::to_string(static_cast<long long>(expected)) +
-             " thermals, more than " + std::to_string(kMaxThermals / 2) +
-             ": raise smallest or lower the cover");
+        fail(Setting::Cover, "the field would need about " +
+                                 std::to_string(static_cast<long long>(expected)) +
+                                 " thermals, more than " + std::to_string(kMaxThermals / 2) +
+                                 ": raise smallest or lower the cover");
 }
 
 ThermalField placeThermals(const ThermalFieldSettings& s)

@@ -19,6 +19,8 @@
 /// counter-based on (seed, thermal, try): the same settings give the same field.
 
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace cg::algo {
@@ -53,8 +55,22 @@ inline constexpr std::uint64_t kMaxThermals = 1u << 20;
 /// Diameter number u in [0, 1) of the truncated power law: the inverse of its distribution.
 double powerLawDiameter(double u, double smallest, double largest, double exponent);
 
-/// Throws std::invalid_argument naming the setting that is unusable (sizes, cover, exponent,
-/// or a field that would need more than kMaxThermals thermals).
+/// An unusable setting, and which: the map's size, the cloud sizes, the exponent, the cover
+/// (also a field that would need more than kMaxThermals thermals) or the gap.
+class ThermalFieldError : public std::invalid_argument {
+public:
+    enum class Setting { Map, Sizes, Exponent, Cover, Gap };
+    ThermalFieldError(Setting setting, const std::string& what)
+        : std::invalid_argument(what), mSetting(setting)
+    {
+    }
+    Setting setting() const { return mSetting; }
+
+private:
+    Setting mSetting;
+};
+
+/// Throws ThermalFieldError for an unusable setting.
 void checkThermalField(const ThermalFieldSettings& s);
 
 /// The field's thermals.

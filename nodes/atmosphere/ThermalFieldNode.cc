@@ -59,15 +59,22 @@ double coverOf(const std::vector<float>& map)
     return map.empty() ? 0.0 : static_cast<double>(cloudy) / static_cast<double>(map.size());
 }
 
-/// The parameter a checkThermalField message is about.
-std::string culprit(const std::string& message)
+/// The parameter an unusable setting comes from.
+const char* paramOf(algo::ThermalFieldError::Setting setting)
 {
-    for (const auto& [word, param] : {std::pair{"smallest", "smallestCloud"},
-                                      {"exponent", "exponent"},
-                                      {"gap", "gap"},
-                                      {"thermals", "cover"},
-                                      {"cover", "cover"}})
-        if (message.find(word) != std::string::npos) return param;
+    using Setting = algo::ThermalFieldError::Setting;
+    switch (setting) {
+        case Setting::Map:
+            return "width";
+        case Setting::Sizes:
+            return "smallestCloud";
+        case Setting::Exponent:
+            return "exponent";
+        case Setting::Cover:
+            return "cover";
+        case Setting::Gap:
+            return "gap";
+    }
     return "width";
 }
 
@@ -135,8 +142,8 @@ void registerThermalFieldNode(Registry& registry)
         check.checkAllocation("width", {p.getInt("width"), p.getInt("height")}, 2 * sizeof(float));
         try {
             algo::checkThermalField(settingsFrom(p));
-        } catch (const std::invalid_argument& e) {
-            check.fail(culprit(e.what()), e.what());
+        } catch (const algo::ThermalFieldError& e) {
+            check.fail(paramOf(e.setting()), e.what());
         }
     };
     d.quickParams = {{"width", "40"}, {"height", "40"}};
