@@ -15,16 +15,26 @@ namespace cg::formats {
 
 namespace {
 
+/// The records' properties; with motion, vx, vy, vz and id after the paper's ones.
 std::vector<PlyProperty> cloudProperties(std::size_t count, const float* positions,
-                                         const std::uint8_t* levels, const std::uint32_t* sources)
+                                         const std::uint8_t* levels, const std::uint32_t* sources,
+                                         bool motion = false, const float* velocities = nullptr,
+                                         const std::uint32_t* ids = nullptr)
 {
     // No positions (the header alone needs none): every coordinate property is null.
     const bool any = count > 0 && positions != nullptr;
-    return {{"x", PlyType::Float, any ? positions : nullptr, 3},
-            {"y", PlyType::Float, any ? positions + 1 : nullptr, 3},
-            {"z", PlyType::Float, any ? positions + 2 : nullptr, 3},
-            {"level", PlyType::UChar, levels},
-            {"source", PlyType::UInt, sources}};
+    std::vector<PlyProperty> out = {{"x", PlyType::Float, any ? positions : nullptr, 3},
+                                    {"y", PlyType::Float, any ? positions + 1 : nullptr, 3},
+                                    {"z", PlyType::Float, any ? positions + 2 : nullptr, 3},
+                                    {"level", PlyType::UChar, levels},
+                                    {"source", PlyType::UInt, sources}};
+    if (!motion) return out;
+    const bool moving = count > 0 && velocities != nullptr;
+    out.push_back({"vx", PlyType::Float, moving ? velocities : nullptr, 3});
+    out.push_back({"vy", PlyType::Float, moving ? velocities + 1 : nullptr, 3});
+    out.push_back({"vz", PlyType::Float, moving ? velocities + 2 : nullptr, 3});
+    out.push_back({"id", PlyType::UInt, ids});
+    return out;
 }
 
 [[noreturn]] void failed(const std::filesystem::path& path, int error)
@@ -43,8 +53,8 @@ void writeCloudPly(const std::filesystem::path& path, std::size_t count, const f
 
 CloudPlyChunkWriter::CloudPlyChunkWriter(
     std::filesystem::path path, std::vector<std::pair<std::uint64_t, std::uint64_t>> chunks,
-    const std::string& comment)
-    : mPath(std::move(path))
+    const std::string& comment, bool motion)
+    : mPath(std::move(path)), mMotion(motion)
 {
     std::sort(chunks.begin(), chunks.end());
     for (std::size_t i = 0; i < chunks.size(); ++i) {
@@ -53,7 +63,7 @@ CloudPlyChunkWriter::CloudPlyChunkWriter(
                                         " given twice");
         mTotal += chunks[i].second;
     }
-    const auto properties = cloudProperties(mTotal, nullptr, nullptr, nullptr);
+    const auto properties = cloudProperties(mTotal, nullptr, nullptr, nullptr, mMotion);
     const std::string header = binaryPlyHeader(mTotal, properties, comment);
     const std::size_t recordBytes = plyRecordBytes(properties);
     std::uint64_t offset = header.size();
@@ -75,7 +85,8 @@ CloudPlyChunkWriter::~CloudPlyChunkWriter()
 }
 
 void CloudPlyChunkWriter::write(std::uint64_t first, std::uint64_t count, const float* positions,
-                                const std::uint8_t* levels, const std::uint32_t* sources)
+                                const std::uint8_t* levels, const std::uint32_t* sources,
+                                const float* velocities, const std::uint32_t* ids)
 {
     const auto at = std::lower_bound(mFirsts.begin(), mFirsts.end(), first);
     const std::size_t index = static_cast<std::size_t>(at - mFirsts.begin());
@@ -83,7 +94,8 @@ void CloudPlyChunkWriter::write(std::uint64_t first, std::uint64_t count, const 
         throw std::invalid_argument("cloud PLY: chunk " + std::to_string(first) + " of " +
                                     std::to_string(count) + " particles was not announced");
     if (count == 0) return;
-    const auto properties = cloudProperties(count, positions, levels, sources);
+    const auto properties =
+        cloudProperties(count, positions, levels, sources, mMotion, velocities, ids);
     thread_local std::vector<unsigned char> records;
     records.resize(count * plyRecordBytes(properties));
     packPlyRecords(properties, 0, count, records.data());

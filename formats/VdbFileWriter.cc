@@ -73,6 +73,13 @@ void writeVdbFile(const std::filesystem::path& target, const openvdb::GridBase::
                   const std::string& creator, std::optional<std::uint32_t> compression,
                   const std::function<void()>& beforeCommit)
 {
+    writeVdbFile(target, openvdb::GridCPtrVec{grid}, creator, compression, beforeCommit);
+}
+
+void writeVdbFile(const std::filesystem::path& target, const openvdb::GridCPtrVec& grids,
+                  const std::string& creator, std::optional<std::uint32_t> compression,
+                  const std::function<void()>& beforeCommit)
+{
     // OpenVDB truncates and writes in place: write beside, then rename.
     util::AtomicOutput out(target);
     {
@@ -80,7 +87,7 @@ void writeVdbFile(const std::filesystem::path& target, const openvdb::GridBase::
         if (compression) file.setCompression(*compression);
         openvdb::MetaMap fileMeta;
         fileMeta.insertMeta("creator", openvdb::StringMetadata(creator));
-        file.write(openvdb::GridCPtrVec{grid}, fileMeta);
+        file.write(grids, fileMeta);
         file.close();
     }
     setContentUuid(out.tempPath());

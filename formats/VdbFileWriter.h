@@ -24,5 +24,9 @@ namespace cg::formats {
 void writeVdbFile(const std::filesystem::path& target, const openvdb::GridBase::ConstPtr& grid,
                   const std::string& creator, std::optional<std::uint32_t> compression,
                   const std::function<void()>& beforeCommit = {});
+/// The same with several grids in one file, in this order.
+void writeVdbFile(const std::filesystem::path& target, const openvdb::GridCPtrVec& grids,
+                  const std::string& creator, std::optional<std::uint32_t> compression,
+                  const std::function<void()>& beforeCommit = {});
 
 }  // namespace cg::formats

@@ -55,6 +55,7 @@ void registerBuiltinNodes(Registry& registry)
     registerReadVdbNode(registry);
     registerWritePointsNode(registry);
     registerCombineVolumesNode(registry);
+    registerCloudVelocityNode(registry);
 
     // mapping/
     registerPrimitiveMapperNode(registry);
@@ -67,6 +68,7 @@ void registerBuiltinNodes(Registry& registry)
     registerRendererNode(registry);
     registerWriteImageNode(registry);
     registerWriteCameraNode(registry);
+    registerWriteShotNode(registry);
 }
 
 }  // namespace cg

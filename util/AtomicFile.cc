@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -145,6 +146,16 @@ int writeAllAt(int fd, const void* bytes, std::size_t size, std::uint64_t offset
         offset += static_cast<std::uint64_t>(n);
     }
     return 0;
+}
+
+bool fileHolds(const fs::path& file, std::string_view bytes)
+{
+    std::error_code ec;
+    if (fs::file_size(file, ec) != bytes.size() || ec) return false;
+    std::ifstream in(file, std::ios::binary);
+    std::string existing(bytes.size(), '\0');
+    return in.read(existing.data(), static_cast<std::streamsize>(existing.size())) &&
+           existing == bytes;
 }
 
 void writeFileAtomically(const fs::path& target, std::string_view bytes, const fs::path& tempDir,

@@ -55,6 +55,10 @@ void writeFileAtomically(const std::filesystem::path& target, std::string_view b
                          const std::filesystem::path& tempDir = {},
                          AtomicOutput::Flush flush = AtomicOutput::Flush::ToDisk);
 
+/// Whether `file` already holds exactly `bytes` (a writer whose output would not change can
+/// leave it, and its time stamp, alone); false when it cannot be read.
+bool fileHolds(const std::filesystem::path& file, std::string_view bytes);
+
 /// Saves `bytes` as the file `path` names, atomically, as an editor saves a document: through
 /// symbolic links to the file they finally name (the link stays a link and its target gets
 /// the bytes), keeping that file's permission bits and, where this process may set them, its

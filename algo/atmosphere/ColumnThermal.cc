@@ -46,6 +46,7 @@ void columnThermalStep(const ColumnThermalSettings& s, const ParticleStart& m,
             out.z[i] = in.z[i];
             out.vz[i] = in.vz[i];
             out.temperature[i] = in.temperature[i];
+            if (out.vx != nullptr) out.vx[i] = out.vy[i] = 0.0f;
             continue;
         }
         const float z = in.z[i];
@@ -82,6 +83,7 @@ void columnThermalStep(const ColumnThermalSettings& s, const ParticleStart& m,
         }
         out.x[i] = in.x[i] + dt * vx;
         out.y[i] = in.y[i] + dt * vy;
+        if (out.vx != nullptr) out.vx[i] = vx, out.vy[i] = vy;
     }
 }
 

@@ -66,6 +66,10 @@ struct ColumnStateOut {
     float* z;
     float* vz;
     float* temperature;
+    /// The horizontal velocity of this step (wind plus outflow, m/s): x, y moved by dt times
+    /// it. Null where nobody reads it.
+    float* vx = nullptr;
+    float* vy = nullptr;
 };
 
 /// Per particle, the axis of the tower it rose in (outflow only; may be null without it).

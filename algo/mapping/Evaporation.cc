@@ -44,18 +44,26 @@ CloudChunk chunkAbove(const CloudChunk& chunk, float zMin, KeptParticles& kept)
     kept.positions.clear();
     kept.levels.clear();
     kept.sources.clear();
+    kept.velocities.clear();
+    kept.ids.clear();
     for (std::uint64_t i = 0; i < chunk.count; ++i) {
         if (!survives(chunk.positions[3 * i + 2], zMin)) continue;
         kept.positions.insert(kept.positions.end(), chunk.positions + 3 * i,
                               chunk.positions + 3 * i + 3);
         if (chunk.levels) kept.levels.push_back(chunk.levels[i]);
         if (chunk.sources) kept.sources.push_back(chunk.sources[i]);
+        if (chunk.velocities)
+            kept.velocities.insert(kept.velocities.end(), chunk.velocities + 3 * i,
+                                   chunk.velocities + 3 * i + 3);
+        if (chunk.ids) kept.ids.push_back(chunk.ids[i]);
     }
     CloudChunk out = chunk;
     out.count = kept.positions.size() / 3;
     out.positions = kept.positions.data();
     out.levels = chunk.levels ? kept.levels.data() : nullptr;
     out.sources = chunk.sources ? kept.sources.data() : nullptr;
+    out.velocities = chunk.velocities ? kept.velocities.data() : nullptr;
+    out.ids = chunk.ids ? kept.ids.data() : nullptr;
     return out;
 }
 

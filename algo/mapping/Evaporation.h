@@ -25,11 +25,14 @@ struct KeptParticles {
     std::vector<float> positions;
     std::vector<std::uint8_t> levels;
     std::vector<std::uint32_t> sources;
+    std::vector<float> velocities;
+    std::vector<std::uint32_t> ids;
 };
 
 /// The same for one chunk of forEachCloudChunk: its particles whose height is at least zMin,
-/// in their order, copied into `kept` (levels and sources too when the chunk has them). The
-/// result points into `kept`; its `first` stays the chunk's, which names the chunk.
+/// in their order, copied into `kept` (levels, sources, velocities and ids too when the chunk
+/// has them). The result points into `kept`; its `first` stays the chunk's, which names the
+/// chunk.
 CloudChunk chunkAbove(const CloudChunk& chunk, float zMin, KeptParticles& kept);
 
 }  // namespace cg::algo

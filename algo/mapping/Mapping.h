@@ -88,7 +88,10 @@ struct CondensationView {
     const std::int32_t* condensedFrame = nullptr;  ///< -1 while still vapour
     const float* condensedZ = nullptr;             ///< height at condensation; NaN while vapour
     std::size_t count = 0;
-    const float* vz = nullptr;  ///< vertical speed, m/s; read by Level1Origin::Trail only
+    /// Velocity, m/s: read by Level1Origin::Trail (vz) and for the copies' motion (null: 0).
+    const float* vz = nullptr;
+    const float* vx = nullptr;
+    const float* vy = nullptr;
 };
 
 /// A read-only view of the density map fNoise.
@@ -220,6 +223,27 @@ void copyShift(const PrimitiveView& p, const MappingSettings& s, const float dri
 std::vector<float> sourceOrigins(const SourceTable& table, int frame, const CondensationView& c,
                                  const PrimitiveLibrary& lib, const MappingSettings& s);
 
+/// Velocities (m/s, 3 floats each) of every source's copy at frame t: copyOrigin's time
+/// derivative; zero for sources that start after t. A level 1 copy moves with its
+/// condensation particle (vx, vy, and vz unless it stands on the condensation level; a laid
+/// Trail copy stands still), a deeper one with its parent particle (particleVelocity); past
+/// the primitive's last frame the drift adds R drift exp(-(s - last) / tau) A / ds.
+std::vector<float> copyVelocities(const SourceTable& table, int frame, const CondensationView& c,
+                                  const PrimitiveLibrary& lib, const MappingSettings& s);
+
+/// Velocity (m/s) of fluid id i of src's copy, whose copy moves at copyVelocity, at frame t:
+/// Eq. 10 differentiated, copyVelocity + R (A / ds) (P_f(floor s + 1) - P_f(floor s)), as P_f
+/// is linear between primitive frames; no change of shape past the last frame.
+void particleVelocity(const Source& src, const float* copyVelocity, std::uint32_t i, int frame,
+                      const PrimitiveView& p, const MappingSettings& s, float out[3]);
+
+/// Per source, the first stable id of its copy's particles: the prefix sums of each copy's
+/// largest particle count over all primitive frames, so particle q of source j's copy has id
+/// base[j] + q on every frame (the table only appends). Throws std::invalid_argument when the
+/// ids would not fit in 32 bits.
+std::vector<std::uint64_t> particleIdBases(const SourceTable& table, const PrimitiveLibrary& lib,
+                                           const MappingSettings& s);
+
 /// N_c[L](t) for L = 1..maxLevel (Eq. 13): index L-1.
 std::vector<std::uint64_t> cloudCounts(const SourceTable& table, int frame,
                                        const PrimitiveLibrary& lib, const MappingSettings& s);
@@ -290,12 +314,20 @@ struct CloudChunk {
     /// place a particle in its copy.
     const float* copyOrigins = nullptr;
     std::uint64_t copyCount = 0;
+    /// 3 count floats, m/s: each particle's velocity, Eq. 10 differentiated in time (see
+    /// particleVelocities); nullptr unless requested.
+    const float* velocities = nullptr;
+    /// count stable ids: the same particle has the same id on every frame (particleIdBases);
+    /// nullptr unless requested.
+    const std::uint32_t* ids = nullptr;
 };
 
 struct CloudChunkOptions {
     std::uint64_t chunkParticles = kCloudChunkParticles;  ///< particles a chunk (> 0)
     bool levels = false;                                  ///< also fill CloudChunk::levels
     bool sources = false;                                 ///< also fill CloudChunk::sources
+    bool velocities = false;  ///< also fill CloudChunk::velocities (per-thread buffers only)
+    bool ids = false;         ///< also fill CloudChunk::ids (per-thread buffers only)
     /// Where chunks are written. All null (the default): a reused per-thread buffer of one
     /// chunk, so nothing frame-sized exists. Otherwise frame arrays of the frame's particle
     /// count (positionsOut 3 floats a particle; levelsOut / sourcesOut required when levels /

@@ -25,18 +25,24 @@ namespace {
 /// What every chunk of frame t needs: where each source's copy stands (copyOrigin: Eq. 12's
 /// origin plus its drift; zero before the source starts) and the prefix sums of the cluster
 /// sizes (Eq. 13), so particle q belongs to the source j with offset[j] <= q < offset[j + 1].
+/// With motion asked for, the copies' velocities and the first stable id of each copy too.
 struct FramePlan {
     std::vector<float> copyOrigins;
     std::vector<std::uint64_t> offset;
+    std::vector<float> copyVelocities;  ///< empty unless velocities are asked for
+    std::vector<std::uint64_t> idBase;  ///< empty unless ids are asked for
     std::uint64_t total() const { return offset.back(); }
 };
 
 FramePlan planFrame(const SourceTable& table, int frame, const CondensationView& c,
-                    const PrimitiveLibrary& lib, const MappingSettings& s)
+                    const PrimitiveLibrary& lib, const MappingSettings& s,
+                    const CloudChunkOptions& o = {})
 {
     checkLibrary(lib, s);
     FramePlan plan;
     plan.copyOrigins = originsWithDrift(table, frame, c, lib, s, drifts(lib)).copy;
+    if (o.velocities) plan.copyVelocities = copyVelocities(table, frame, c, lib, s);
+    if (o.ids) plan.idBase = particleIdBases(table, lib, s);
     const std::size_t n = table.sources.size();
     plan.offset.assign(n + 1, 0);
     for (std::size_t j = 0; j < n; ++j)
@@ -95,11 +101,29 @@ void sourceSlice(const Source& src, const float* origin, int frame, const Primit
         copySlice<0>(a, b, w, !past, stride, origin, scale, i1 - i0, out);
 }
 
+/// particleVelocity for particles [i0, i1) of the copy of `src` moving at `copyVelocity`.
+void velocitySlice(const Source& src, const float* copyVelocity, int frame, const PrimitiveView& p,
+                   const MappingSettings& s, std::uint32_t stride, std::uint64_t i0,
+                   std::uint64_t i1, float* __restrict out)
+{
+    for (std::uint64_t q = i0; q < i1; ++q)
+        particleVelocity(src, copyVelocity, copyFluidId(src, q, stride), frame, p, s,
+                         out + 3 * (q - i0));
+}
+
+/// What fillRange writes besides the positions; each null when not asked for.
+struct ChunkFields {
+    std::uint8_t* levels = nullptr;
+    std::uint32_t* sources = nullptr;
+    float* velocities = nullptr;
+    std::uint32_t* ids = nullptr;
+};
+
 /// Particles [first, last) of the frame into xyz (and levels / sources when not null), source
 /// slice by source slice.
 void fillRange(const FramePlan& plan, const SourceTable& table, int frame,
                const PrimitiveLibrary& lib, const MappingSettings& s, std::uint64_t first,
-               std::uint64_t last, float* xyz, std::uint8_t* levels, std::uint32_t* sources)
+               std::uint64_t last, float* xyz, const ChunkFields& out)
 {
     const auto& offset = plan.offset;
     auto j = static_cast<std::size_t>(std::upper_bound(offset.begin(), offset.end(), first) -
@@ -109,11 +133,18 @@ void fillRange(const FramePlan& plan, const SourceTable& table, int frame,
         if (end == q) continue;  // a source not started yet: no cluster, no frame to look up
         const Source& src = table.sources[j];
         const PrimitiveView& p = viewOf(lib, j, s);
-        sourceSlice(src, &plan.copyOrigins[3 * j], frame, p, s, copyStride(s, p), q - offset[j],
+        const std::uint32_t stride = copyStride(s, p);
+        sourceSlice(src, &plan.copyOrigins[3 * j], frame, p, s, stride, q - offset[j],
                     end - offset[j], xyz + 3 * (q - first));
-        if (levels != nullptr) std::fill_n(levels + (q - first), end - q, src.level);
-        if (sources != nullptr)
-            std::fill_n(sources + (q - first), end - q, static_cast<std::uint32_t>(j));
+        if (out.levels != nullptr) std::fill_n(out.levels + (q - first), end - q, src.level);
+        if (out.sources != nullptr)
+            std::fill_n(out.sources + (q - first), end - q, static_cast<std::uint32_t>(j));
+        if (out.velocities != nullptr)
+            velocitySlice(src, &plan.copyVelocities[3 * j], frame, p, s, stride, q - offset[j],
+                          end - offset[j], out.velocities + 3 * (q - first));
+        if (out.ids != nullptr)
+            for (std::uint64_t k = q; k < end; ++k)
+                out.ids[k - first] = static_cast<std::uint32_t>(plan.idBase[j] + (k - offset[j]));
         q = end;
     }
 }
@@ -127,7 +158,8 @@ void runChunks(const FramePlan& plan, const SourceTable& table, int frame,
     const bool direct = o.positionsOut != nullptr;
     if (size == 0)
         throw std::invalid_argument("forEachCloudChunk: chunkParticles must be positive");
-    if (direct ? (o.levels && o.levelsOut == nullptr) || (o.sources && o.sourcesOut == nullptr)
+    if (direct ? (o.levels && o.levelsOut == nullptr) || (o.sources && o.sourcesOut == nullptr) ||
+                     o.velocities || o.ids
                : o.levelsOut != nullptr || o.sourcesOut != nullptr)
         throw std::invalid_argument(
             "forEachCloudChunk: frame arrays must be given for every requested field");
@@ -137,6 +169,8 @@ void runChunks(const FramePlan& plan, const SourceTable& table, int frame,
         std::vector<float> xyz;
         std::vector<std::uint8_t> levels;
         std::vector<std::uint32_t> sources;
+        std::vector<float> velocities;
+        std::vector<std::uint32_t> ids;
     };
     tbb::enumerable_thread_specific<Buffers> perThread;
     // Chunk k is particles [k size, (k + 1) size): fixed by the inputs, whatever the partition.
@@ -148,29 +182,34 @@ void runChunks(const FramePlan& plan, const SourceTable& table, int frame,
                               chunk.first = k * size;
                               chunk.count = std::min(size, total - chunk.first);
                               float* xyz;
-                              std::uint8_t* levels = nullptr;
-                              std::uint32_t* sources = nullptr;
+                              ChunkFields fields;
                               if (direct) {
                                   xyz = o.positionsOut + 3 * chunk.first;
-                                  if (o.levels) levels = o.levelsOut + chunk.first;
-                                  if (o.sources) sources = o.sourcesOut + chunk.first;
+                                  if (o.levels) fields.levels = o.levelsOut + chunk.first;
+                                  if (o.sources) fields.sources = o.sourcesOut + chunk.first;
                               } else {
                                   Buffers& b = perThread.local();
                                   if (b.xyz.empty()) {
                                       b.xyz.resize(3 * size);
                                       if (o.levels) b.levels.resize(size);
                                       if (o.sources) b.sources.resize(size);
+                                      if (o.velocities) b.velocities.resize(3 * size);
+                                      if (o.ids) b.ids.resize(size);
                                   }
                                   xyz = b.xyz.data();
-                                  if (o.levels) levels = b.levels.data();
-                                  if (o.sources) sources = b.sources.data();
+                                  if (o.levels) fields.levels = b.levels.data();
+                                  if (o.sources) fields.sources = b.sources.data();
+                                  if (o.velocities) fields.velocities = b.velocities.data();
+                                  if (o.ids) fields.ids = b.ids.data();
                               }
                               fillRange(plan, table, frame, lib, s, chunk.first,
-                                        chunk.first + chunk.count, xyz, levels, sources);
+                                        chunk.first + chunk.count, xyz, fields);
                               if (consume) {
                                   chunk.positions = xyz;
-                                  chunk.levels = levels;
-                                  chunk.sources = sources;
+                                  chunk.levels = fields.levels;
+                                  chunk.sources = fields.sources;
+                                  chunk.velocities = fields.velocities;
+                                  chunk.ids = fields.ids;
                                   chunk.copyOrigins = plan.copyOrigins.data();
                                   chunk.copyCount = plan.copyOrigins.size() / 3;
                                   consume(chunk);
@@ -186,7 +225,7 @@ std::uint64_t forEachCloudChunk(const SourceTable& table, int frame, const Conde
                                 const std::function<void(const CloudChunk&)>& consume,
                                 const CloudChunkOptions& options)
 {
-    const FramePlan plan = planFrame(table, frame, c, lib, s);
+    const FramePlan plan = planFrame(table, frame, c, lib, s, options);
     runChunks(plan, table, frame, lib, s, consume, options);
     return plan.total();
 }

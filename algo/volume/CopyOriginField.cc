@@ -116,6 +116,27 @@ void CopyOriginField::add(const float* xyz, const std::uint32_t* sources, std::s
     }
 }
 
+void CopyOriginField::addVectors(const float* xyz, const float* vectors, std::size_t count)
+{
+    Accumulator::LocalCells& local = mAccumulator->locals.local();
+    for (std::size_t i = 0; i < count; ++i) {
+        std::int64_t value[3];
+        for (int a = 0; a < 3; ++a) {
+            const double v = vectors[3 * i + a];
+            if (!(std::fabs(v) < kMaxOrigin))
+                throw std::invalid_argument(
+                    "cell field: a particle's vector is not finite or beyond 1,000 km");
+            value[a] = std::llround(v * kOriginUnits);
+        }
+        const float* p = xyz + 3 * i;
+        const std::uint64_t k =
+            key(cellOf(p[0], mCellSize), cellOf(p[1], mCellSize), cellOf(p[2], mCellSize));
+        IntegerCell* cell = local.recent.get(k, [&] { return &local.cells[k]; });
+        for (int a = 0; a < 3; ++a) cell->sum[a] += value[a];
+        ++cell->count;
+    }
+}
+
 void CopyOriginField::finish()
 {
     std::unordered_map<std::uint64_t, IntegerCell, KeyHash> total;

@@ -15,7 +15,8 @@
 /// Deterministic for any thread count and any order of the particles: the sums are integers
 /// (origins in units of 2^-10 m, so a copy origin must lie within 1,000 km), which add
 /// associatively. So particles can be added in chunks from several threads as they stream
-/// from the mapper. No engine includes.
+/// from the mapper. The same cells average any vector a particle carries instead of its
+/// copy's origin (addVectors: the velocity field). No engine includes.
 
 #include <cstddef>
 #include <cstdint>
@@ -44,6 +45,10 @@ public:
     /// an origin that is not finite or lies beyond 1,000 km, a particle beyond 2^20 cells.
     void add(const float* xyz, const std::uint32_t* sources, std::size_t count,
              const float* copyOrigins, std::size_t copyCount);
+    /// Bins particles each with a vector of its own (3 floats a particle, |v| < 1,000 km in
+    /// the field's units): the field is then their mean, as with copy origins. Safe to call
+    /// from several threads at once, before finish; not to be mixed with `add`.
+    void addVectors(const float* xyz, const float* vectors, std::size_t count);
     /// Merges what the threads added; the field can be read from then on.
     void finish();
 

@@ -81,7 +81,7 @@ void registerCondensationNode(Registry& registry)
         "Atmosphere profile each particle has its own dew point, the profile's at its start "
         "height falling 1.8 degC/km as it rises, so it condenses at its lifting condensation "
         "level; a VapourEmitter moisture map adds each particle's perturbation.";
-    d.version = 2;  // each version's change: CHANGES.md, "Node versions"
+    d.version = 3;  // each version's change: CHANGES.md, "Node versions"
     d.simulation = true;
     d.inputs = {port("particles", "VapourParticles", "the particles at this frame"),
                 port("atmosphere", "Atmosphere", "the environment (its dew point T_dp)")};

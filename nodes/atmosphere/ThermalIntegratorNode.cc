@@ -111,7 +111,7 @@ private:
                             y.data(), previous.z.data(), static_cast<float>(s.outflowBottom), axisX,
                             axisY);
         }
-        std::vector<float> xNext(n), yNext(n), z(n), vz(n), temperature(n);
+        std::vector<float> xNext(n), yNext(n), vxNext(n), vyNext(n), z(n), vz(n), temperature(n);
         const auto orNull = [](const std::vector<float>& v) {
             return v.empty() ? nullptr : v.data();
         };
@@ -120,16 +120,19 @@ private:
             {orNull(axisX), orNull(axisY)},
             {x.data(), y.data(), previous.z.data(), previous.vz.data(),
              previous.temperature.data()},
-            {xNext.data(), yNext.data(), z.data(), vz.data(), temperature.data()}, n,
-            [&ctx] { ctx.checkCancelled(); });
+            {xNext.data(), yNext.data(), z.data(), vz.data(), temperature.data(), vxNext.data(),
+             vyNext.data()},
+            n, [&ctx] { ctx.checkCancelled(); });
         // Particles nothing moves sideways keep sharing the emission's x, y.
         if (atmosphere.wind.calm() && s.outflowDivergence <= 0.0 && !previous.movedHorizontally()) {
             xNext.clear();
             yNext.clear();
+            vxNext.clear();
+            vyNext.clear();
         }
-        return std::make_shared<VapourParticlesData>(previous.statics, std::move(xNext),
-                                                     std::move(yNext), std::move(z), std::move(vz),
-                                                     std::move(temperature));
+        return std::make_shared<VapourParticlesData>(
+            previous.statics, std::move(xNext), std::move(yNext), std::move(vxNext),
+            std::move(vyNext), std::move(z), std::move(vz), std::move(temperature));
     }
 };
 
@@ -139,6 +142,7 @@ void registerThermalIntegratorNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "ThermalIntegrator";
+    d.version = 2;  // each version's change: CHANGES.md, "Node versions"
     d.category = "atmosphere";
     d.doc =
         "Vapour particles rising under the thermal effect (Sec. 5.1, pseudocode lines 29-35). "

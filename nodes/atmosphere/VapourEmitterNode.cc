@@ -232,7 +232,7 @@ void registerVapourEmitterNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "VapourEmitter";
-    d.version = 4;
+    d.version = 5;
     d.category = "atmosphere";
     d.doc =
         "Initial water vapour particles of the stochastic simulation (Sec. 5.1) at time t0. "

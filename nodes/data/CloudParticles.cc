@@ -119,7 +119,11 @@ void CloudParticlesData::forEachChunk(const std::function<void(const algo::Cloud
                                       CloudChunkFields fields,
                                       const std::function<void()>& checkCancelled) const
 {
-    if (!mHaveArrays) {
+    const bool motion = fields.velocities || fields.ids;
+    if (motion && !hasMotion())
+        throw std::invalid_argument("these cloud particles carry no motion (velocities, ids)");
+    // The arrays hold no motion: a stream gives it whether or not they were made.
+    if (!mHaveArrays || motion) {
         mStream->forEachChunk(consume, fields, checkCancelled);
         return;
     }
@@ -139,6 +143,8 @@ void CloudParticlesData::forEachChunk(const std::function<void(const algo::Cloud
         consume(chunk);
     });
 }
+
+bool CloudParticlesData::hasMotion() const { return mStream && mStream->hasMotion(); }
 
 std::size_t CloudParticlesData::byteSize() const
 {

@@ -24,8 +24,10 @@ inline constexpr int kMaxCloudLevel = 32;
 
 /// What a chunk of cloud particles carries besides the positions.
 struct CloudChunkFields {
-    bool levels = false;   ///< CloudChunk::levels
-    bool sources = false;  ///< CloudChunk::sources, with the frame's copy origins
+    bool levels = false;      ///< CloudChunk::levels
+    bool sources = false;     ///< CloudChunk::sources, with the frame's copy origins
+    bool velocities = false;  ///< CloudChunk::velocities (a stream with motion only)
+    bool ids = false;         ///< CloudChunk::ids (a stream with motion only)
 };
 
 /// What makes a frame's cloud particles on demand (GenerateCloud's generator), so that a
@@ -34,7 +36,8 @@ class CloudParticleStream {
 public:
     virtual ~CloudParticleStream() = default;
     /// Hands every particle to `consume` once, in chunks: positions always, levels and
-    /// sources (with the frame's copy origins) when asked. Chunks come concurrently from
+    /// sources (with the frame's copy origins) when asked, velocities and ids when asked of a
+    /// stream that hasMotion(). Chunks come concurrently from
     /// several threads in no fixed order, so only a consumer whose result does not depend on
     /// the order may use this (the gaussian splat, the copy origin field: integer sums), or
     /// one that places each chunk by its `first` (the PLY writer). The same frame gives the
@@ -45,6 +48,8 @@ public:
     /// The frame's arrays, particles in order.
     virtual algo::CloudParticleArrays materialise(
         const std::function<void()>& checkCancelled) const = 0;
+    /// Whether forEachChunk gives velocities and stable ids when asked.
+    virtual bool hasMotion() const { return false; }
 };
 
 class CloudParticlesData final : public Data {
@@ -78,11 +83,15 @@ public:
     /// coordinates.
     const algo::UninitArray<float>& copyOrigins() const { return arrays().copyOrigins; }
     std::size_t size() const { return levels().size(); }
+    /// Whether forEachChunk gives each particle's velocity and stable id (a frame made by the
+    /// mapper does; arrays do not hold them).
+    bool hasMotion() const;
 
     /// Hands every particle to `consume` once, in chunks, concurrently and in no fixed order
     /// (see CloudParticleStream): over the arrays once they exist, else from the stream
     /// without a frame-sized array. Levels, sources and copy origins come with the chunks as
-    /// `fields` asks.
+    /// `fields` asks; velocities and ids only from a stream with motion (always streamed;
+    /// std::invalid_argument without).
     void forEachChunk(const std::function<void(const algo::CloudChunk&)>& consume,
                       CloudChunkFields fields,
                       const std::function<void()>& checkCancelled = {}) const;

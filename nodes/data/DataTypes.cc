@@ -9,6 +9,7 @@
 #include "nodes/data/Map2D.h"
 #include "nodes/data/PrimitiveSet.h"
 #include "nodes/data/VapourParticles.h"
+#include "nodes/data/VelocityVolume.h"
 
 namespace cg {
 
@@ -23,6 +24,7 @@ void registerNodeDataTypes(Registry& registry)
     registerMap2DType(registry);
     registerPrimitiveSetType(registry);
     registerVapourParticleTypes(registry);
+    registerVelocityVolumeType(registry);
 }
 
 }  // namespace cg

@@ -51,16 +51,19 @@ std::shared_ptr<const VapourParticlesData> readParticles(ByteReader& in, const c
     auto t = in.podVector<float>();
     auto x = in.podVector<float>();
     auto y = in.podVector<float>();
+    auto vx = in.podVector<float>();
+    auto vy = in.podVector<float>();
     const std::size_t n = statics->id.size();
     const auto emptyOrN = [n](const std::vector<float>& v) { return v.empty() || v.size() == n; };
     if (statics->homeCell.size() != n || statics->x.size() != n || statics->y.size() != n ||
         statics->startZ.size() != n || !emptyOrN(statics->dewpointOffset) ||
         !emptyOrN(statics->releaseTime) || z.size() != n || vz.size() != n || t.size() != n ||
-        !emptyOrN(x) || x.size() != y.size())
+        !emptyOrN(x) || x.size() != y.size() || !emptyOrN(vx) || vx.size() != vy.size())
         checks::refuse(type, "particle arrays differ in length");  // before checkStatics reads them
     checkStatics(*statics, type);
     return std::make_shared<VapourParticlesData>(std::move(statics), std::move(x), std::move(y),
-                                                 std::move(z), std::move(vz), std::move(t));
+                                                 std::move(vx), std::move(vy), std::move(z),
+                                                 std::move(vz), std::move(t));
 }
 
 /// Condensation frames are -1 (still vapour) or the frame a particle condensed, with a finite
@@ -107,12 +110,24 @@ VapourParticlesData::VapourParticlesData(std::shared_ptr<const VapourStatics> st
                                          std::vector<float> x_, std::vector<float> y_,
                                          std::vector<float> z_, std::vector<float> vz_,
                                          std::vector<float> temperature_)
+    : VapourParticlesData(std::move(statics_), std::move(x_), std::move(y_), {}, {}, std::move(z_),
+                          std::move(vz_), std::move(temperature_))
+{
+}
+
+VapourParticlesData::VapourParticlesData(std::shared_ptr<const VapourStatics> statics_,
+                                         std::vector<float> x_, std::vector<float> y_,
+                                         std::vector<float> vx_, std::vector<float> vy_,
+                                         std::vector<float> z_, std::vector<float> vz_,
+                                         std::vector<float> temperature_)
     : statics(std::move(statics_)),
       z(std::move(z_)),
       vz(std::move(vz_)),
       temperature(std::move(temperature_)),
       mX(std::move(x_)),
-      mY(std::move(y_))
+      mY(std::move(y_)),
+      mVx(std::move(vx_)),
+      mVy(std::move(vy_))
 {
     const std::size_t n = statics ? statics->size() : 0;
     if (!statics || statics->homeCell.size() != n || statics->x.size() != n ||
@@ -120,7 +135,7 @@ VapourParticlesData::VapourParticlesData(std::shared_ptr<const VapourStatics> st
         (!statics->dewpointOffset.empty() && statics->dewpointOffset.size() != n) ||
         (!statics->releaseTime.empty() && statics->releaseTime.size() != n) || z.size() != n ||
         vz.size() != n || temperature.size() != n || (!mX.empty() && mX.size() != n) ||
-        mY.size() != mX.size())
+        mY.size() != mX.size() || (!mVx.empty() && mVx.size() != n) || mVy.size() != mVx.size())
         throw std::invalid_argument("VapourParticles: arrays differ in length");
 }
 
@@ -128,7 +143,8 @@ std::size_t VapourParticlesData::byteSize() const
 {
     // The statics are shared across frames; count them anyway, as a cache cannot know.
     return sizeof(*this) + sizeof(VapourStatics) + size() * (5 * 4 + 3 * 4) +
-           (statics->dewpointOffset.size() + statics->releaseTime.size() + mX.size() + mY.size()) *
+           (statics->dewpointOffset.size() + statics->releaseTime.size() + mX.size() + mY.size() +
+            mVx.size() + mVy.size()) *
                4;
 }
 
@@ -146,6 +162,8 @@ bool VapourParticlesData::serialize(ByteWriter& out) const
     out.podVector(temperature);
     out.podVector(mX);
     out.podVector(mY);
+    out.podVector(mVx);
+    out.podVector(mVy);
     return true;
 }
 
@@ -193,7 +211,7 @@ void registerVapourParticleTypes(Registry& registry)
     registry.addDataType(
         {"VapourParticles",
          "water vapour particles: id, home cell, start position and moisture, "
-         "height, vertical velocity, temperature, and x, y once moved",
+         "height, vertical velocity, temperature, and x, y and their velocity once moved",
          [](ByteReader& in) -> DataPtr { return VapourParticlesData::deserialize(in); }});
     registry.addDataType({"Condensation",
                           "vapour particles with the frame at which each condensed, and the "

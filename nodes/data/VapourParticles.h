@@ -40,6 +40,12 @@ public:
     VapourParticlesData(std::shared_ptr<const VapourStatics> statics, std::vector<float> x,
                         std::vector<float> y, std::vector<float> z, std::vector<float> vz,
                         std::vector<float> temperature);
+    /// With the horizontal velocity of the step that moved them here as well (`vx`, `vy` empty
+    /// or size()), for the motion of what rides on them (the mapper's copies).
+    VapourParticlesData(std::shared_ptr<const VapourStatics> statics, std::vector<float> x,
+                        std::vector<float> y, std::vector<float> vx, std::vector<float> vy,
+                        std::vector<float> z, std::vector<float> vz,
+                        std::vector<float> temperature);
 
     const std::shared_ptr<const VapourStatics> statics;
     const std::vector<float> z;            ///< height P_vz, metres
@@ -51,6 +57,10 @@ public:
     const std::vector<float>& xs() const { return mX.empty() ? statics->x : mX; }
     const std::vector<float>& ys() const { return mY.empty() ? statics->y : mY; }
     bool movedHorizontally() const { return !mX.empty(); }
+    /// The horizontal velocity (m/s) of the step that brought each particle here (the wind at
+    /// the height it came from, plus the outflow); empty where it is zero or unknown.
+    const std::vector<float>& vxs() const { return mVx; }
+    const std::vector<float>& vys() const { return mVy; }
 
     std::string typeName() const override { return "VapourParticles"; }
     std::size_t byteSize() const override;
@@ -58,7 +68,8 @@ public:
     static std::shared_ptr<const VapourParticlesData> deserialize(ByteReader& in);
 
 private:
-    std::vector<float> mX, mY;  ///< empty: statics->x, y
+    std::vector<float> mX, mY;    ///< empty: statics->x, y
+    std::vector<float> mVx, mVy;  ///< empty: zero
 };
 
 /// Which particles have become condensation particles (pseudocode lines 9-14).

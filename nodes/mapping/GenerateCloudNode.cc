@@ -55,6 +55,8 @@ public:
         algo::CloudChunkOptions o;
         o.levels = fields.levels;
         o.sources = fields.sources;
+        o.velocities = fields.velocities;
+        o.ids = fields.ids;
         o.checkCancelled = checkCancelled;
         if (!mBase) {
             algo::forEachCloudChunk(mSources->table, mFrame, mCond, mPrim.library,
@@ -80,6 +82,8 @@ public:
         if (mBase) algo::dropCloudParticlesBelow(arrays, *mBase);
         return arrays;
     }
+
+    bool hasMotion() const override { return true; }
 
 private:
     std::shared_ptr<const CloudSourcesData> mSources;

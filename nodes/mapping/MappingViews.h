@@ -20,6 +20,8 @@ inline algo::CondensationView condensationView(const CondensationData& c)
     v.condensedFrame = c.condensedFrame.data();
     v.condensedZ = c.condensedHeight.data();
     v.vz = c.particles->vz.data();
+    v.vx = c.particles->vxs().empty() ? nullptr : c.particles->vxs().data();
+    v.vy = c.particles->vys().empty() ? nullptr : c.particles->vys().data();
     v.count = c.particles->size();
     return v;
 }

@@ -37,14 +37,17 @@ public:
                 chunks.emplace_back(chunk.first, chunk.count);
             },
             CloudChunkFields{}, cancel);
+        const bool motion = ctx.params().getBool("motion") && cloud->hasMotion();
         util::AtomicOutput out(path);
         formats::CloudPlyChunkWriter ply(out.tempPath(), std::move(chunks),
-                                         "cloud particles, frame " + std::to_string(ctx.frame()));
+                                         "cloud particles, frame " + std::to_string(ctx.frame()),
+                                         motion);
         cloud->forEachChunk(
             [&](const algo::CloudChunk& chunk) {
-                ply.write(chunk.first, chunk.count, chunk.positions, chunk.levels, chunk.sources);
+                ply.write(chunk.first, chunk.count, chunk.positions, chunk.levels, chunk.sources,
+                          chunk.velocities, chunk.ids);
             },
-            CloudChunkFields{true, true}, cancel);
+            CloudChunkFields{true, true, motion, motion}, cancel);
         ply.close();
         out.commit();
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));
@@ -59,9 +62,15 @@ void registerWriteCloudParticlesNode(Registry& registry)
         "WriteCloudParticles",
         "Writes cloud particles as a binary little-endian PLY point cloud (Blender, Houdini, "
         "ParaView): float x, y, z (m), uchar level (L), uint source (index in the mapper's "
-        "source table); #### in the name becomes the frame number. A frame streamed from "
-        "GenerateCloud is written chunk by chunk, without a frame-sized array.",
+        "source table); with motion, float vx, vy, vz (m/s, the particle's velocity: Eq. 10 "
+        "differentiated) and uint id (the same particle has the same id on every frame, for "
+        "trails and motion blur); #### in the name becomes the frame number. A frame streamed "
+        "from GenerateCloud is written chunk by chunk, without a frame-sized array.",
         port("particles", "CloudParticles", "the cloud particles to write"), "cloud.####.ply");
+    d.version = 2;  // each version's change: CHANGES.md, "Node versions"
+    d.params.push_back(boolParam("motion", true,
+                                 "write each particle's velocity and stable id (particles the "
+                                 "mapper made; others have none and are written without)"));
     d.create = [] { return std::make_unique<WriteCloudParticlesNode>(); };
     registry.addNode(std::move(d));
 }

@@ -8,6 +8,7 @@
 
 #include "algo/render/integrators/RenderPathTrace.h"
 #include "algo/render/integrators/RenderVolume.h"
+#include "core/CoreData.h"
 #include "core/Error.h"
 #include "core/Node.h"
 #include "core/Registry.h"
@@ -17,6 +18,7 @@
 #include "nodes/data/Image.h"
 #include "nodes/render/CameraParams.h"
 #include "nodes/render/RenderNodes.h"
+#include "nodes/render/ShotJson.h"
 
 namespace cg {
 
@@ -117,6 +119,7 @@ public:
                                    img.width, img.height, std::move(img.rgba),
                                    std::move(img.background), settings.camera, std::move(aovs)));
         ctx.setOutput("camera", path);
+        ctx.setOutput("lighting", std::make_shared<TextData>(lightingJson(settings)));
     }
 };
 
@@ -128,7 +131,7 @@ void registerRendererNode(Registry& registry)
     const auto v3 = [](const algo::RenderVec3& v) { return Vec3{v.x(), v.y(), v.z()}; };
     NodeDecl d;
     d.type = "Renderer";
-    d.version = 22;  // each version's change: CHANGES.md, "Node versions"
+    d.version = 23;  // each version's change: CHANGES.md, "Node versions"
     d.category = "render";
     d.framesInAnyOrder = true;
     // A moving camera makes each frame differ; a still one renders a still volume once.
@@ -159,7 +162,9 @@ void registerRendererNode(Registry& registry)
                       "linear radiance RGBA, alpha = volume opacity, with the background and "
                       "the frame's camera"),
                  port("camera", "CameraPath",
-                      "the camera over the whole shot, for WriteCamera (the same every frame)")};
+                      "the camera over the whole shot, for WriteCamera (the same every frame)"),
+                 port("lighting", "Text",
+                      "the sun, sky, ground and the medium's optics as JSON, for WriteShot")};
     d.params = {
         stringParam("mode", "fast",
                     "fast = the ray marcher with light maps and the multiple-scattering model; "

@@ -1,7 +1,6 @@
 // WriteCamera: the Renderer's camera over the whole shot as a Nuke .chan file.
 
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -38,18 +37,6 @@ std::vector<formats::ChanLine> chanLines(const CameraPathData& path, int first, 
     return lines;
 }
 
-/// Whether `file` already holds exactly `text`: a moving camera cooks this node on every
-/// frame with the same shot, and the file need not be written (and flushed) again.
-bool holds(const std::filesystem::path& file, const std::string& text)
-{
-    std::error_code ec;
-    if (std::filesystem::file_size(file, ec) != text.size() || ec) return false;
-    std::ifstream in(file, std::ios::binary);
-    std::string existing(text.size(), '\0');
-    return in.read(existing.data(), static_cast<std::streamsize>(existing.size())) &&
-           existing == text;
-}
-
 class WriteCameraNode final : public Node {
 public:
     void cook(CookContext& ctx) override
@@ -58,7 +45,8 @@ public:
         const std::filesystem::path file = ctx.outputPath("file");
         const std::string text =
             formats::chanText(chanLines(*path, ctx.startFrame(), ctx.endFrame()));
-        if (!holds(file, text)) util::writeFileAtomically(file, text);
+        // A moving camera cooks this node on every frame with the same shot.
+        if (!util::fileHolds(file, text)) util::writeFileAtomically(file, text);
         ctx.setOutput("files", std::make_shared<TextData>(file.string()));
     }
 };

@@ -14,6 +14,7 @@ void registerWriteVdbNode(Registry& registry);        // WriteVDB
 void registerReadVdbNode(Registry& registry);         // ReadVDB
 void registerWritePointsNode(Registry& registry);     // WritePoints: VDB Points
 void registerCombineVolumesNode(Registry& registry);  // CombineVolumes
+void registerCloudVelocityNode(Registry& registry);   // CloudVelocity: vel for motion blur
 
 /// ReadVDB's checks that need the grid's voxels (every value finite; a domain the Renderer
 /// can hold, from where the voxels lie), which loading leaves to the cook (ReadVDB's, the

@@ -12,6 +12,7 @@
 #include "formats/VdbFileWriter.h"
 #include "nodes/DeclHelpers.h"
 #include "nodes/data/FogVolume.h"
+#include "nodes/data/VelocityVolume.h"
 #include "nodes/io/WriterSupport.h"
 #include "nodes/volume/VolumeNodes.h"
 
@@ -32,6 +33,21 @@ std::uint32_t compressionFlags(const std::string& choice, const std::string& nod
            (blosc ? openvdb::io::COMPRESS_BLOSC : openvdb::io::COMPRESS_ZIP);
 }
 
+/// The velocity grid to write beside `density`, which it must share a transform with.
+openvdb::GridBase::ConstPtr velocityGrid(const VelocityVolumeData& velocity,
+                                         const openvdb::FloatGrid& density, bool half,
+                                         const std::string& nodeId)
+{
+    if (velocity.grid->transform() != density.transform())
+        throw InputError(nodeId + "/inputs/velocity",
+                         "the velocity grid is not on the volume's transform (make it from "
+                         "the same volume with CloudVelocity)");
+    openvdb::Vec3fGrid::Ptr grid = openvdb::ConstPtrCast<openvdb::Vec3fGrid>(velocity.grid)->copy();
+    grid->setName("vel");
+    grid->setSaveFloatAsHalf(half);
+    return grid;
+}
+
 class WriteVdbNode final : public Node {
 public:
     void cook(CookContext& ctx) override
@@ -43,10 +59,14 @@ public:
         // A shallow copy shares the (immutable) tree; only its save flag differs.
         openvdb::FloatGrid::Ptr grid =
             openvdb::ConstPtrCast<openvdb::FloatGrid>(volume->grid)->copy();
-        grid->setSaveFloatAsHalf(ctx.params().getBool("halfFloat"));
+        const bool half = ctx.params().getBool("halfFloat");
+        grid->setSaveFloatAsHalf(half);
+        openvdb::GridCPtrVec grids{grid};
+        if (const auto velocity = ctx.input<VelocityVolumeData>("velocity"))
+            grids.push_back(velocityGrid(*velocity, *grid, half, ctx.nodeId()));
 
         const std::filesystem::path path = ctx.outputPath("file");
-        formats::writeVdbFile(path, grid, "CloudGraph WriteVDB", flags,
+        formats::writeVdbFile(path, grids, "CloudGraph WriteVDB", flags,
                               [&] { ctx.checkCancelled(); });
         ctx.setOutput("files", std::make_shared<TextData>(path.string()));
     }
@@ -65,8 +85,12 @@ void registerWriteVdbNode(Registry& registry)
         "has an active voxel: a cloud that forms at frame 51 of a run with every = 1 gives "
         "density.0051.vdb, density.0052.vdb, ..., a numbered sequence that Blender imports "
         "as one (it needs consecutive numbers: every = 1, and skipEmpty off if the cloud can "
-        "vanish mid-run).",
+        "vanish mid-run). With a velocity (CloudVelocity), the file also holds the Vec3f grid "
+        "'vel' in m/s, which Houdini reads as velocity and Blender as the volume's velocity "
+        "grid (motion blur).",
         port("volume", "FogVolume", "the volume to write"), "density.####.vdb");
+    d.inputs.push_back(port("velocity", "VelocityVolume",
+                            "optional: the volume's velocity, written as the grid 'vel'", true));
     d.version = 2;         // each version's change: CHANGES.md, "Node versions"
     addSequenceParams(d);  // empty: a grid without active voxels
     d.params.push_back(boolParam("halfFloat", false,

@@ -142,8 +142,8 @@ def main():
         report = dict(browser.run(REPORT))
         assert report.get("render") == "cooked", report
         recooked = sorted(n for n, s in report.items() if s == "cooked")
-        assert recooked == ["image", "render"], \
-            f"only the Renderer and its writer should recook: {report}"
+        assert recooked == ["camera", "image", "render", "shot"], \
+            f"only the Renderer and its writers should recook: {report}"
         frame_file = os.path.join(args.work, "out", "figure6", "frame.0150.png")
         assert os.path.exists(frame_file), "the writer wrote no frame"
         assert browser.run(PREVIEW_BYTES) != before, "the preview did not change"

@@ -255,4 +255,37 @@ TEST(PlyWriter, CloudParticlesCarryLevelAndSourceInA17ByteRecord)
     EXPECT_EQ(readPly(dir / "e.ply").count, 0u);
 }
 
+// With motion, each record goes on with the velocity and the stable id, written from chunks
+// in any order at their places.
+TEST(PlyWriter, CloudParticlesWithMotionCarryVelocityAndIdInA33ByteRecord)
+{
+    test::TempDir dir;
+    const std::vector<float> xyz = {1.5f, -2.0f, 300.25f, 4.0f, 5.0f, 6.0f, 7.0f, 8.0f, 9.0f};
+    const std::vector<float> v = {0.5f, -1.0f, 8.25f, 0.0f, 2.0f, -3.0f, 1e-3f, 0.0f, 7.0f};
+    const std::vector<std::uint8_t> levels = {1, 2, 3};
+    const std::vector<std::uint32_t> sources = {0, 4, 9};
+    const std::vector<std::uint32_t> ids = {17, 3, 0xFFFFFFFEu};
+    {
+        formats::CloudPlyChunkWriter w(dir / "m.ply", {{2, 1}, {0, 2}}, "frame 4", true);
+        w.write(2, 1, &xyz[6], &levels[2], &sources[2], &v[6], &ids[2]);
+        w.write(0, 2, xyz.data(), levels.data(), sources.data(), v.data(), ids.data());
+        w.close();
+    }
+    const PlyFile ply = readPly(dir / "m.ply");
+    ASSERT_EQ(ply.count, 3u);
+    const std::vector<std::pair<std::string, std::string>> expected = {
+        {"float", "x"},  {"float", "y"},  {"float", "z"},  {"uchar", "level"}, {"uint", "source"},
+        {"float", "vx"}, {"float", "vy"}, {"float", "vz"}, {"uint", "id"}};
+    EXPECT_EQ(ply.properties, expected);
+    const std::string bytes = test::readFile(dir / "m.ply");
+    EXPECT_EQ(bytes.size(), bytes.find("end_header\n") + 11 + 3 * 33);
+    for (std::size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(ply.value(i, "z"), xyz[3 * i + 2]);
+        EXPECT_EQ(ply.value(i, "vx"), v[3 * i]);
+        EXPECT_EQ(ply.value(i, "vy"), v[3 * i + 1]);
+        EXPECT_EQ(ply.value(i, "vz"), v[3 * i + 2]);
+        EXPECT_EQ(ply.value(i, "id"), ids[i]);
+    }
+}
+
 }  // namespace cg

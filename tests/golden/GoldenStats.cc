@@ -17,6 +17,7 @@
 #include "nodes/data/Map2D.h"
 #include "nodes/data/PrimitiveSet.h"
 #include "nodes/data/VapourParticles.h"
+#include "nodes/data/VelocityVolume.h"
 
 namespace cg::golden {
 
@@ -68,6 +69,19 @@ void cloudParticles(Stats& s, const CloudParticlesData& d)
 }
 
 void fogVolume(Stats& s, const FogVolumeData& d) { s = gridStats(*d.grid); }
+
+/// The velocity grid's voxels and its mean velocity per axis, m/s.
+void velocityVolume(Stats& s, const VelocityVolumeData& d)
+{
+    const auto n = static_cast<std::int64_t>(d.grid->activeVoxelCount());
+    count(s, "active_voxels", n);
+    double sum[3] = {0.0, 0.0, 0.0};
+    for (auto it = d.grid->cbeginValueOn(); it; ++it)
+        for (int k = 0; k < 3; ++k) sum[k] += (*it)[k];
+    const char* axes[] = {"x", "y", "z"};
+    for (int k = 0; k < 3; ++k)
+        mean(s, std::string("mean_v") + axes[k], n > 0 ? sum[k] / static_cast<double>(n) : 0.0);
+}
 
 void image(Stats& s, const ImageData& d)
 {
@@ -257,11 +271,12 @@ Stats statsOf(const Data& v)
     Stats s;
     const bool known =
         as<CloudParticlesData>(v, s, cloudParticles) || as<FogVolumeData>(v, s, fogVolume) ||
-        as<ImageData>(v, s, image) || as<Map2DData>(v, s, map2D) ||
-        as<CameraPathData>(v, s, cameraPath) || as<VapourParticlesData>(v, s, vapour) ||
-        as<CondensationData>(v, s, condensation) || as<PrimitiveSetData>(v, s, primitive) ||
-        as<CloudSourcesData>(v, s, sources) || as<AtmosphereData>(v, s, atmosphere) ||
-        as<FloatArrayData>(v, s, floatArray) || as<TextData>(v, s, text) ||
+        as<VelocityVolumeData>(v, s, velocityVolume) || as<ImageData>(v, s, image) ||
+        as<Map2DData>(v, s, map2D) || as<CameraPathData>(v, s, cameraPath) ||
+        as<VapourParticlesData>(v, s, vapour) || as<CondensationData>(v, s, condensation) ||
+        as<PrimitiveSetData>(v, s, primitive) || as<CloudSourcesData>(v, s, sources) ||
+        as<AtmosphereData>(v, s, atmosphere) || as<FloatArrayData>(v, s, floatArray) ||
+        as<TextData>(v, s, text) ||
         as<IntData>(v, s, [](Stats& o, const IntData& d) { count(o, "value", d.value); }) ||
         as<FloatData>(v, s, [](Stats& o, const FloatData& d) { mean(o, "value", d.value); });
     if (!known)

@@ -489,13 +489,13 @@ algo::VapourEmission emitted()
 struct VapourFields {
     std::vector<std::uint32_t> id, homeCell;
     std::vector<float> x, y, z, vz, t;
-    std::vector<float> startZ, dewpointOffset, releaseTime, movedX, movedY;
+    std::vector<float> startZ, dewpointOffset, releaseTime, movedX, movedY, movedVx, movedVy;
 };
 
 VapourFields vapourFields()
 {
     algo::VapourEmission e = emitted();
-    return {e.id, e.homeCell, e.x, e.y, e.z, e.vz, e.temperature, e.z, {}, {}, {}, {}};
+    return {e.id, e.homeCell, e.x, e.y, e.z, e.vz, e.temperature, e.z, {}, {}, {}, {}, {}, {}};
 }
 
 Bytes vapourBytes(const VapourFields& f)
@@ -513,6 +513,8 @@ Bytes vapourBytes(const VapourFields& f)
     out.podVector(f.t);
     out.podVector(f.movedX);
     out.podVector(f.movedY);
+    out.podVector(f.movedVx);
+    out.podVector(f.movedVy);
     return out.buffer();
 }
 
@@ -526,7 +528,8 @@ std::shared_ptr<const VapourParticlesData> particlesOf(const VapourFields& f)
     statics->startZ = f.startZ;
     statics->dewpointOffset = f.dewpointOffset;
     statics->releaseTime = f.releaseTime;
-    return std::make_shared<VapourParticlesData>(statics, f.movedX, f.movedY, f.z, f.vz, f.t);
+    return std::make_shared<VapourParticlesData>(statics, f.movedX, f.movedY, f.movedVx, f.movedVy,
+                                                 f.z, f.vz, f.t);
 }
 
 TEST(CachedValueDecoding, VapourParticlesRoundTripAndRefuseBrokenStatics)
@@ -546,8 +549,12 @@ TEST(CachedValueDecoding, VapourParticlesRoundTripAndRefuseBrokenStatics)
     moved.releaseTime.assign(moved.id.size(), 12.5f);
     moved.movedX.assign(moved.id.size(), -40.0f);  // blown off the map: not refused
     moved.movedY = moved.y;
+    moved.movedVx.assign(moved.id.size(), 7.5f);
+    moved.movedVy.assign(moved.id.size(), -0.25f);
     const auto movedBack = roundTrip(*particlesOf(moved));
     EXPECT_EQ(movedBack->xs(), moved.movedX);
+    EXPECT_EQ(movedBack->vxs(), moved.movedVx);
+    EXPECT_EQ(movedBack->vys(), moved.movedVy);
     EXPECT_EQ(movedBack->statics->x, moved.x);
     EXPECT_EQ(movedBack->statics->dewpointOffset, moved.dewpointOffset);
     EXPECT_EQ(movedBack->statics->startZ, moved.startZ);
@@ -583,6 +590,13 @@ TEST(CachedValueDecoding, VapourParticlesRoundTripAndRefuseBrokenStatics)
         },
         "particle 3 has no finite start");
     forged([](VapourFields& g) { g.releaseTime = {1.0f}; }, "particle arrays differ in length");
+    forged([](VapourFields& g) { g.movedVx = {1.0f}; }, "particle arrays differ in length");
+    forged(
+        [](VapourFields& g) {
+            g.movedVx = g.x;
+            g.movedVy = {};
+        },
+        "particle arrays differ in length");
 }
 
 /// A condensation height for each condensation frame: 1000 m + 10 m a frame, NaN for -1.

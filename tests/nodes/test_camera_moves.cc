@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -44,6 +46,7 @@ protected:
         registerRendererNode(registry);
         registerWriteImageNode(registry);
         registerWriteCameraNode(registry);
+        registerWriteShotNode(registry);
     }
 
     /// A small cumulus seen by a Renderer with `renderParams`, frames 0-9, and `extra` nodes.
@@ -140,6 +143,60 @@ TEST_F(CameraMovesTest, AChanWrittenAndReadBackGivesTheSameCameraOnEveryFrame)
                 EXPECT_LT((ra.direction(px, py) - rb.direction(px, py)).length(), 1e-9) << frame;
         EXPECT_NEAR(a.fovDegrees, b.fovDegrees, 1e-12);
     }
+}
+
+// WriteShot: the camera of every frame of the graph's range as the Renderer has it, the
+// frame time, and the lighting with the volume's optics; a text that is not the Renderer's
+// lighting is refused naming the port.
+TEST_F(CameraMovesTest, TheShotHoldsEveryFramesCameraAndTheLightingTheRendererUsed)
+{
+    Graph g = scene(std::string(R"("cameraKeys": )") + kKeys + R"(, "sunIntensity": 17)",
+                    R"(, "shot": {"type": "WriteShot", "inputs": {"camera":
+                             "render.camera", "lighting": "render.lighting"},
+                             "params": {"file": "cam/shot.json"}})");
+    g.timeStep = 2.5;
+    EvaluatorOptions options;
+    options.outDir = out.path();
+    Evaluator ev(registry, options);
+    ev.cookFrames(g, 3, 3);  // any one frame writes the whole shot
+    const nlohmann::json shot = nlohmann::json::parse(test::readFile(out / "cam/shot.json"));
+    EXPECT_EQ(shot["cloudgraph_shot"], 1);
+    EXPECT_EQ(shot["frames"]["start"], 0);
+    EXPECT_EQ(shot["frames"]["end"], 9);
+    EXPECT_EQ(shot["frame_time_s"], 2.5);
+    EXPECT_EQ(shot["image"]["width"], 40);
+    ASSERT_EQ(shot["camera"].size(), 10u);
+    for (int frame = 0; frame <= 9; ++frame) {
+        const algo::RenderCamera c = *image(g, frame)->camera;
+        const nlohmann::json& k = shot["camera"][static_cast<std::size_t>(frame)];
+        EXPECT_EQ(k["frame"], frame);
+        for (int a = 0; a < 3; ++a) {
+            EXPECT_EQ(k["position"][a].get<double>(), c.position[a]) << frame;
+            EXPECT_EQ(k["look_at"][a].get<double>(), c.lookAt[a]) << frame;
+        }
+        EXPECT_EQ(k["vertical_fov_deg"].get<double>(), c.fovDegrees) << frame;
+    }
+    const nlohmann::json& light = shot["lighting"];
+    EXPECT_EQ(light["sun"]["irradiance"], 17.0);
+    double norm = 0.0;
+    for (int a = 0; a < 3; ++a) norm += std::pow(light["sun"]["direction"][a].get<double>(), 2);
+    EXPECT_NEAR(norm, 1.0, 1e-12);
+    // The default two-lobe phase: (1 - 0.2) 0.8 + 0.2 (-0.3).
+    EXPECT_NEAR(light["medium"]["mean_cosine"].get<double>(), 0.58, 1e-12);
+
+    const Graph bad = parseGraph(R"({"cloudgraph": 1, "frames": {"start": 0, "end": 2}, "nodes": {
+        "camera": {"type": "TestCameraSource"}, "text": {"type": "TestTextSource"},
+        "shot": {"type": "WriteShot", "inputs": {"camera": "camera.camera",
+                 "lighting": "text.value"}}}})",
+                                 "bad.json", registry);
+    try {
+        ev.cookFrames(bad, 0, 0);
+        ADD_FAILURE() << "a text was written as the lighting";
+    } catch (const CookError& e) {
+        EXPECT_TRUE(e.inputFault());
+        EXPECT_NE(std::string(e.what()).find("not a JSON object"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(out / "shot.json"));
 }
 
 TEST_F(CameraMovesTest, TheExrsCameraPutsAPointOnThePixelTheRendererShotItThrough)

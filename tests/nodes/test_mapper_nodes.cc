@@ -4,12 +4,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <mutex>
 
 #include <tbb/global_control.h>
 
+#include <openvdb/io/File.h>
 #include "algo/volume/SurfaceDetail.h"
 #include "algo/volume/Voxelize.h"
 #include "core/CoreData.h"
+#include "core/Error.h"
 #include "core/Evaluator.h"
 #include "core/Graph.h"
 #include "formats/CloudPly.h"
@@ -242,6 +246,7 @@ TEST_F(MapperNodes, StreamedPlyEqualsThePlyOfTheFrameArraysByteForByte)
     g.setParam("primitive", "sink", 1.0);
     g.setParam("mapper", "level1Origin", std::string("condensationLevel"));
     g.setParam("write", "every", 1);
+    g.setParam("write", "motion", false);  // the arrays hold no motion
     const int frame = 125;
     for (const bool evaporate : {false, true})
         for (const int threads : {1, 2}) {
@@ -265,6 +270,171 @@ TEST_F(MapperNodes, StreamedPlyEqualsThePlyOfTheFrameArraysByteForByte)
             EXPECT_TRUE(streamed == expected)
                 << "evaporate " << evaporate << ", threads " << threads;
         }
+}
+
+// GenerateCloud's particles move as their positions change from frame to frame: in a wind
+// that turns and strengthens with height, with evaporation, every particle present on frames
+// t - 1, t and t + 1 (matched by id) has a velocity within 2% (plus 0.3 m/s) of the central
+// difference. The condensation particles' own sideways speed is the wind of the step before
+// (explicit Euler), so differences across a step differ from it by the wind's change over
+// one step's rise.
+TEST_F(MapperNodes, GeneratedParticlesMoveAsTheirPositionsChangeFrameToFrame)
+{
+    std::string text = kGraph;
+    const std::string calm = R"("atmosphere": {"type": "Atmosphere"})";
+    text.replace(text.find(calm), calm.size(),
+                 R"("atmosphere": {"type": "Atmosphere", "params": {"wind": "layers",
+                    "windHeights": [0, 4000], "windSpeeds": [4, 12],
+                    "windDirections": [270, 230]}})");
+    Graph g = parseGraph(text, "mapper.json", registry);
+    g.setParam("cloud", "evaporateBelowBase", true);
+    Evaluator ev(registry, EvaluatorOptions{});
+    struct Moving {
+        float p[3], v[3];
+    };
+    const auto frame = [&](int t) {
+        const auto cloud = std::dynamic_pointer_cast<const CloudParticlesData>(
+            ev.pull(g, "cloud", t)->at("particles"));
+        EXPECT_TRUE(cloud->hasMotion());
+        std::map<std::uint32_t, Moving> out;
+        std::mutex mutex;
+        cloud->forEachChunk(
+            [&](const algo::CloudChunk& c) {
+                const std::lock_guard<std::mutex> lock(mutex);
+                for (std::uint64_t i = 0; i < c.count; ++i) {
+                    Moving m{};
+                    std::copy_n(c.positions + 3 * i, 3, m.p);
+                    std::copy_n(c.velocities + 3 * i, 3, m.v);
+                    EXPECT_TRUE(out.emplace(c.ids[i], m).second) << "id " << c.ids[i];
+                }
+            },
+            CloudChunkFields{false, false, true, true});
+        return out;
+    };
+    const int t = 110;
+    const auto before = frame(t - 1), now = frame(t), after = frame(t + 1);
+    ASSERT_GT(now.size(), 5000u);
+    std::size_t compared = 0, off = 0;
+    double sideways = 0.0;
+    for (const auto& [id, q] : now) {
+        const auto b = before.find(id), a = after.find(id);
+        if (b == before.end() || a == after.end()) continue;
+        ++compared;
+        double err = 0.0, speed = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            const double fd = (a->second.p[k] - b->second.p[k]) / (2 * 0.2);
+            err += (fd - q.v[k]) * (fd - q.v[k]);
+            speed += fd * fd;
+        }
+        sideways = std::max(sideways, std::hypot(double(q.v[0]), double(q.v[1])));
+        if (std::sqrt(err) > 0.02 * std::sqrt(speed) + 0.3) ++off;
+    }
+    EXPECT_GT(compared, now.size() / 2);
+    EXPECT_GT(sideways, 4.0);  // the wind moves them
+    // A copy that reaches its primitive's last frame between t - 1 and t + 1 changes its
+    // velocity there (from its shape's motion to the drift): those few may differ.
+    EXPECT_LT(off, compared / 50) << off << " of " << compared;
+}
+
+// CloudVelocity and WriteVDB: the file holds 'density' and a Vec3f 'vel' on the same voxels,
+// each voxel moving as the particles around it (its velocity within the range of theirs, and
+// their mean in the mean); a velocity made from another volume is refused naming the port.
+TEST_F(MapperNodes, WriteVdbWritesTheVelocityGridBesideTheDensity)
+{
+    std::string text = kGraph;
+    const std::string write = R"("write": {)";
+    text.replace(text.find(write), write.size(),
+                 R"("vox": {"type": "Voxelizer", "inputs": {"particles": "cloud.particles"},
+                            "params": {"voxelSize": 8, "radius": 14}},
+                    "coarse": {"type": "Voxelizer", "inputs": {"particles": "cloud.particles"},
+                            "params": {"voxelSize": 16, "radius": 14}},
+                    "vel": {"type": "CloudVelocity", "params": {"cellSize": 28},
+                            "inputs": {"particles": "cloud.particles", "volume": "VOLUME"}},
+                    "vdb": {"type": "WriteVDB", "params": {"file": "v.####.vdb"},
+                            "inputs": {"volume": "vox.volume", "velocity": "vel.velocity"}},
+                    "write": {)");
+    const auto graphWith = [&](const std::string& volume) {
+        std::string t = text;
+        t.replace(t.find("VOLUME"), 6, volume);
+        return parseGraph(t, "mapper.json", registry);
+    };
+    const Graph g = graphWith("vox.volume");
+    test::TempDir out;
+    EvaluatorOptions options;
+    options.outDir = out.path();
+    Evaluator ev(registry, options);
+    const int frame = 110;
+    ev.pull(g, "vdb", frame);
+    openvdb::io::File file((out / "v.0110.vdb").string());
+    file.open();
+    const auto density = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("density"));
+    const auto vel = openvdb::gridPtrCast<openvdb::Vec3fGrid>(file.readGrid("vel"));
+    file.close();
+    ASSERT_TRUE(density && vel);
+    EXPECT_TRUE(vel->tree().hasSameTopology(density->tree()));
+    EXPECT_EQ(vel->transform(), density->transform());
+    EXPECT_GT(vel->activeVoxelCount(), 1000u);
+
+    const auto cloud = std::dynamic_pointer_cast<const CloudParticlesData>(
+        ev.pull(g, "cloud", frame)->at("particles"));
+    openvdb::Vec3d lo(1e30), hi(-1e30), sum(0.0);
+    std::size_t n = 0;
+    std::mutex mutex;
+    cloud->forEachChunk(
+        [&](const algo::CloudChunk& c) {
+            const std::lock_guard<std::mutex> lock(mutex);
+            for (std::uint64_t i = 0; i < c.count; ++i, ++n)
+                for (int k = 0; k < 3; ++k) {
+                    lo[k] = std::min(lo[k], double(c.velocities[3 * i + k]));
+                    hi[k] = std::max(hi[k], double(c.velocities[3 * i + k]));
+                    sum[k] += c.velocities[3 * i + k];
+                }
+        },
+        CloudChunkFields{false, false, true, false});
+    openvdb::Vec3d voxelSum(0.0);
+    for (auto it = vel->cbeginValueOn(); it; ++it)
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_GE((*it)[k], lo[k] - 1e-3);
+            EXPECT_LE((*it)[k], hi[k] + 1e-3);
+            voxelSum[k] += (*it)[k];
+        }
+    // The rise dominates: the voxels' mean rise is the particles' within 20%.
+    const double rise = sum[2] / n, voxelRise = voxelSum[2] / vel->activeVoxelCount();
+    EXPECT_GT(rise, 1.0);
+    EXPECT_NEAR(voxelRise, rise, 0.2 * rise);
+
+    try {
+        ev.pull(graphWith("coarse.volume"), "vdb", frame);
+        ADD_FAILURE() << "a velocity on another transform was written";
+    } catch (const CookError& e) {
+        EXPECT_TRUE(e.inputFault());
+        EXPECT_NE(std::string(e.what()).find("/nodes/vdb/inputs/velocity"), std::string::npos)
+            << e.what();
+    }
+}
+
+// Particles that are not the mapper's carry no motion: CloudVelocity says so, naming its port.
+TEST_F(MapperNodes, CloudVelocityRefusesParticlesWithoutMotion)
+{
+    std::string text = kGraph;
+    const std::string write = R"("write": {)";
+    text.replace(
+        text.find(write), write.size(),
+        R"("points": {"type": "VapourPoints", "inputs": {"condensation": "condense.condensation"}},
+                    "vox": {"type": "Voxelizer", "inputs": {"particles": "points.particles"},
+                            "params": {"voxelSize": 8, "radius": 14}},
+                    "vel": {"type": "CloudVelocity",
+                            "inputs": {"particles": "points.particles", "volume": "vox.volume"}},
+                    "write": {)");
+    const Graph g = parseGraph(text, "mapper.json", registry);
+    Evaluator ev(registry, {});
+    try {
+        ev.pull(g, "vel", 110);
+        ADD_FAILURE() << "vapour points were given a velocity";
+    } catch (const CookError& e) {
+        EXPECT_TRUE(e.inputFault());
+        EXPECT_NE(std::string(e.what()).find("carry no motion"), std::string::npos) << e.what();
+    }
 }
 
 }  // namespace cg

@@ -16,6 +16,7 @@
 #include "nodes/data/FogVolume.h"
 #include "nodes/data/Image.h"
 #include "nodes/data/PrimitiveSet.h"
+#include "nodes/data/VelocityVolume.h"
 
 namespace cg {
 
@@ -54,6 +55,51 @@ NodeDecl decl(const std::string& type, const std::string& doc)
     d.doc = doc;
     return d;
 }
+
+/// A lattice of particles that turn about the z axis at `spin` rad/s and rise at 2 m/s, as a
+/// stream with motion (what GenerateCloud makes), in one chunk.
+class SpinningLattice final : public CloudParticleStream {
+public:
+    SpinningLattice(std::vector<float> positions, double spin)
+        : mPositions(std::move(positions)), mSpin(static_cast<float>(spin))
+    {
+        const std::size_t n = mPositions.size() / 3;
+        for (std::size_t i = 0; i < n; ++i) {
+            mVelocities.insert(mVelocities.end(),
+                               {-mSpin * mPositions[3 * i + 1], mSpin * mPositions[3 * i], 2.0f});
+            mIds.push_back(static_cast<std::uint32_t>(i));
+        }
+    }
+    void forEachChunk(const std::function<void(const algo::CloudChunk&)>& consume,
+                      CloudChunkFields fields, const std::function<void()>&) const override
+    {
+        const std::size_t n = mIds.size();
+        const std::vector<std::uint8_t> levels(n, 1);
+        const std::vector<std::uint32_t> sources(n, 0);
+        algo::CloudChunk c;
+        c.count = n;
+        c.positions = mPositions.data();
+        c.levels = fields.levels ? levels.data() : nullptr;
+        c.sources = fields.sources ? sources.data() : nullptr;
+        c.velocities = fields.velocities ? mVelocities.data() : nullptr;
+        c.ids = fields.ids ? mIds.data() : nullptr;
+        consume(c);
+    }
+    algo::CloudParticleArrays materialise(const std::function<void()>&) const override
+    {
+        const std::size_t n = mIds.size();
+        return {algo::UninitArray<float>(mPositions),
+                algo::UninitArray<std::uint8_t>(std::vector<std::uint8_t>(n, 1)),
+                algo::UninitArray<std::uint32_t>(std::vector<std::uint32_t>(n, 0)),
+                {}};
+    }
+    bool hasMotion() const override { return true; }
+
+private:
+    std::vector<float> mPositions, mVelocities;
+    std::vector<std::uint32_t> mIds;
+    float mSpin;
+};
 
 }  // namespace
 
@@ -175,10 +221,13 @@ void registerFixtureNodes(Registry& registry)
     });
     registry.addNode(primitive);
 
-    NodeDecl cloud = decl("TestCloudSource", "cloud particles on a lattice filling a ball");
+    NodeDecl cloud = decl("TestCloudSource",
+                          "cloud particles on a lattice filling a ball, turning about z at "
+                          "`spin` and rising at 2 m/s (a stream with motion)");
     cloud.outputs = {port("particles", "CloudParticles", "the particles")};
     cloud.params = {floatParam("radius", 20.0, "m", "ball radius", 1, 1000),
-                    floatParam("spacing", 4.0, "m", "lattice spacing", 0.5, 100)};
+                    floatParam("spacing", 4.0, "m", "lattice spacing", 0.5, 100),
+                    floatParam("spin", 0.01, "rad/s", "angular velocity about z", -1, 1)};
     cloud.create = counted([](CookContext& ctx) {
         const double r = ctx.params().getFloat("radius");
         const double h = ctx.params().getFloat("spacing");
@@ -190,12 +239,25 @@ void registerFixtureNodes(Registry& registry)
                         positions.insert(positions.end(),
                                          {static_cast<float>(x), static_cast<float>(y),
                                           static_cast<float>(z + r)});
-        const std::size_t n = positions.size() / 3;
-        ctx.setOutput("particles", std::make_shared<CloudParticlesData>(
-                                       std::move(positions), std::vector<std::uint8_t>(n, 1),
-                                       std::vector<std::uint32_t>(n, 0)));
+        ctx.setOutput("particles",
+                      std::make_shared<CloudParticlesData>(std::make_shared<SpinningLattice>(
+                          std::move(positions), ctx.params().getFloat("spin"))));
     });
     registry.addNode(cloud);
+
+    NodeDecl velocity = decl("TestVelocitySource",
+                             "a velocity grid on TestFogSource's transform: a ball of voxels "
+                             "all moving at `speed` m/s along x");
+    velocity.outputs = {port("velocity", "VelocityVolume", "the velocity")};
+    velocity.params = {floatParam("speed", 3.0, "m/s", "speed along x", -100, 100)};
+    velocity.create = counted([](CookContext& ctx) {
+        auto grid = openvdb::Vec3fGrid::create(openvdb::Vec3f(0.0f));
+        grid->setName("vel");
+        const auto v = static_cast<float>(ctx.params().getFloat("speed"));
+        grid->fill(openvdb::CoordBBox({-4, -4, -4}, {4, 4, 4}), openvdb::Vec3f(v, 0.0f, 0.0f));
+        ctx.setOutput("velocity", std::make_shared<VelocityVolumeData>(grid));
+    });
+    registry.addNode(velocity);
 
     NodeDecl fog = decl("TestFogSource", "a fog volume: a ball of constant density");
     fog.outputs = {port("volume", "FogVolume", "the volume")};
@@ -290,6 +352,7 @@ std::string sourceNodeFor(const std::string& dataType, std::string& outputPort)
         {"FogVolume", {"TestFogSource", "volume"}},
         {"Image", {"TestImageSource", "image"}},
         {"CameraPath", {"TestCameraSource", "camera"}},
+        {"VelocityVolume", {"TestVelocitySource", "velocity"}},
     };
     auto it = sources.find(dataType);
     if (it == sources.end()) return "";
