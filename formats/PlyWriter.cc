@@ -33,6 +33,8 @@ void writeParticlesPly(const std::filesystem::path& path, const PlyParticleView&
                    {{"x", PlyType::Float, p.x},
                     {"y", PlyType::Float, p.y},
                     {"z", PlyType::Float, p.z},
+                    {"vx", PlyType::Float, p.vx},
+                    {"vy", PlyType::Float, p.vy},
                     {"vz", PlyType::Float, p.vz},
                     {"temperature", PlyType::Float, p.temperature},
                     {"id", PlyType::Int, p.id},  // checked above: the bits are the same

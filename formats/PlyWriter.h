@@ -9,6 +9,8 @@
 ///   property float x            (m)
 ///   property float y            (m)
 ///   property float z            (m, height P_vz)
+///   property float vx           (m/s, the wind and outflow that moved it; 0 in calm air)
+///   property float vy           (m/s)
 ///   property float vz           (m/s, U_vz)
 ///   property float temperature  (degrees Celsius, T_v)
 ///   property int id
@@ -16,7 +18,7 @@
 ///   property int home_cell
 ///   end_header
 ///
-/// followed by N records of 32 bytes, every value little-endian whatever the host order,
+/// followed by N records of 40 bytes, every value little-endian whatever the host order,
 /// written by writeBinaryPly (PlyFile.h).
 
 #include <cstddef>
@@ -27,12 +29,14 @@
 
 namespace cg::formats {
 
-/// Borrowed arrays of `count` particles each. `state` may be null (every state is 0).
+/// Borrowed arrays of `count` particles each. `state`, `vx` and `vy` may be null (zeros).
 struct PlyParticleView {
     std::size_t count = 0;
     const float* x = nullptr;            ///< metres
     const float* y = nullptr;            ///< metres
     const float* z = nullptr;            ///< metres
+    const float* vx = nullptr;           ///< m/s, optional
+    const float* vy = nullptr;           ///< m/s, optional
     const float* vz = nullptr;           ///< m/s
     const float* temperature = nullptr;  ///< degrees Celsius
     const std::uint32_t* id = nullptr;
@@ -40,8 +44,8 @@ struct PlyParticleView {
     const std::uint32_t* homeCell = nullptr;
 };
 
-/// Bytes of one binary record (five floats, three ints).
-constexpr std::size_t kPlyRecordBytes = 8 * 4;
+/// Bytes of one binary record (seven floats, three ints).
+constexpr std::size_t kPlyRecordBytes = 10 * 4;
 
 /// Writes `particles` to `path` (created or truncated). `comment` goes after "CloudGraph "
 /// on the comment line (line breaks become spaces). Throws std::invalid_argument when a

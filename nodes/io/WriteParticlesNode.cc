@@ -48,6 +48,8 @@ public:
         view.x = particles->xs().data();
         view.y = particles->ys().data();
         view.z = particles->z.data();
+        view.vx = particles->vxs().empty() ? nullptr : particles->vxs().data();
+        view.vy = particles->vys().empty() ? nullptr : particles->vys().data();
         view.vz = particles->vz.data();
         view.temperature = particles->temperature.data();
         view.id = s.id.data();
@@ -73,12 +75,13 @@ void registerWriteParticlesNode(Registry& registry)
         "WriteParticles",
         "Writes vapour particles as a binary little-endian PLY point cloud (Blender, Houdini, "
         "ParaView) under the output directory; #### in the name becomes the frame number. Each "
-        "vertex has float x, y, z (m), vz (m/s), temperature (degC) and int id, state, "
+        "vertex has float x, y, z (m), vx, vy, vz (m/s), temperature (degC) and int id, state, "
         "home_cell; state is 1 for a condensation particle when 'condensation' is connected, "
         "else 0.",
         port("particles", "VapourParticles", "the particles to write"), "particles.####.ply");
     d.inputs.push_back(port("condensation", "Condensation",
                             "which particles have condensed (state 1); the same particles", true));
+    d.version = 2;  // each version's change: CHANGES.md, "Node versions"
     d.create = [] { return std::make_unique<WriteParticlesNode>(); };
     registry.addNode(std::move(d));
 }

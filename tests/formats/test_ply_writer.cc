@@ -106,7 +106,7 @@ PlyFile readPly(const std::filesystem::path& path)
 }
 
 struct Arrays {
-    std::vector<float> x, y, z, vz, t;
+    std::vector<float> x, y, z, vx, vy, vz, t;
     std::vector<std::uint32_t> id, home;
     std::vector<std::int32_t> state;
 
@@ -117,6 +117,8 @@ struct Arrays {
         v.x = x.data();
         v.y = y.data();
         v.z = z.data();
+        v.vx = vx.data();
+        v.vy = vy.data();
         v.vz = vz.data();
         v.temperature = t.data();
         v.id = id.data();
@@ -134,6 +136,8 @@ Arrays sample(std::size_t n)
         a.x.push_back(f * 0.5f + 0.125f);
         a.y.push_back(-f * 3.25f);
         a.z.push_back(1e3f + f / 7.0f);
+        a.vx.push_back(4.0f + f * 0.25f);
+        a.vy.push_back(-f * 2e-3f);
         a.vz.push_back(i % 3 == 0 ? -0.0f : f * 1e-3f);
         a.t.push_back(30.0f - f * 0.01f);
         a.id.push_back(static_cast<std::uint32_t>(i));
@@ -160,6 +164,7 @@ TEST(PlyWriter, HeaderIsExactlyTheDocumentedOne)
     const std::string header =
         "ply\nformat binary_little_endian 1.0\ncomment CloudGraph frame 4 second line\n"
         "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "property float vx\nproperty float vy\n"
         "property float vz\nproperty float temperature\nproperty int id\nproperty int state\n"
         "property int home_cell\nend_header\n";
     ASSERT_EQ(text.substr(0, header.size()), header);
@@ -178,8 +183,9 @@ TEST(PlyWriter, ReaderGetsBackEveryValue)
     EXPECT_EQ(ply.headerLines.at(1), "format binary_little_endian 1.0");
     EXPECT_EQ(ply.headerLines.at(2), "comment CloudGraph test");
     const std::vector<std::pair<std::string, std::string>> props = {
-        {"float", "x"},           {"float", "y"}, {"float", "z"},   {"float", "vz"},
-        {"float", "temperature"}, {"int", "id"},  {"int", "state"}, {"int", "home_cell"}};
+        {"float", "x"},   {"float", "y"},      {"float", "z"},           {"float", "vx"},
+        {"float", "vy"},  {"float", "vz"},     {"float", "temperature"}, {"int", "id"},
+        {"int", "state"}, {"int", "home_cell"}};
     EXPECT_EQ(ply.properties, props);
     ASSERT_EQ(ply.count, a.x.size());
 
@@ -187,6 +193,8 @@ TEST(PlyWriter, ReaderGetsBackEveryValue)
         ASSERT_EQ(ply.value(i, "x"), a.x[i]) << i;
         ASSERT_EQ(ply.value(i, "y"), a.y[i]) << i;
         ASSERT_EQ(ply.value(i, "z"), a.z[i]) << i;
+        ASSERT_EQ(ply.value(i, "vx"), a.vx[i]) << i;
+        ASSERT_EQ(ply.value(i, "vy"), a.vy[i]) << i;
         ASSERT_EQ(ply.value(i, "vz"), a.vz[i]) << i;
         ASSERT_EQ(ply.value(i, "temperature"), a.t[i]) << i;
         ASSERT_EQ(ply.value(i, "id"), a.id[i]) << i;

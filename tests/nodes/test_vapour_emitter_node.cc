@@ -201,14 +201,15 @@ TEST_F(VapourEmitterNodeTest, WriteParticlesWritesAReadablePlyPerFrame)
     for (const char* name : {"out/name.0000.ply", "out/name.0001.ply"}) {
         SCOPED_TRACE(name);
         const PlyRecords ply = readPly(dir / name);
-        const std::vector<std::string> names = {"x",           "y",  "z",     "vz",
-                                                "temperature", "id", "state", "home_cell"};
+        const std::vector<std::string> names = {"x",  "y",           "z",  "vx",    "vy",
+                                                "vz", "temperature", "id", "state", "home_cell"};
         EXPECT_EQ(ply.names, names);
         ASSERT_EQ(ply.rows.size(), p->size());
         for (std::size_t i = 0; i < p->size(); ++i) {
             ASSERT_EQ(ply.at(i, "x"), p->statics->x[i]);
             ASSERT_EQ(ply.at(i, "y"), p->statics->y[i]);
             ASSERT_EQ(ply.at(i, "z"), p->z[i]);
+            ASSERT_EQ(ply.at(i, "vx"), 0.0);  // emitted: nothing has moved them yet
             ASSERT_EQ(ply.at(i, "vz"), p->vz[i]);
             ASSERT_EQ(ply.at(i, "temperature"), p->temperature[i]);
             ASSERT_EQ(ply.at(i, "id"), p->statics->id[i]);
