@@ -1,12 +1,15 @@
 // GenerateCloud: the cloud particles of one frame, made on demand from the source table
 // (Eq. 10-12).
 
+#include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <utility>
 
 #include <tbb/enumerable_thread_specific.h>
 
+#include "algo/mapping/Dissipation.h"
 #include "algo/mapping/Evaporation.h"
 #include "core/Error.h"
 #include "core/Node.h"
@@ -28,7 +31,8 @@ class GeneratedCloud final : public CloudParticleStream {
 public:
     GeneratedCloud(std::shared_ptr<const CloudSourcesData> sources,
                    std::shared_ptr<const CondensationData> condensation, PrimitiveInputs primitives,
-                   int frame, bool evaporateBelowBase)
+                   int frame, bool evaporateBelowBase,
+                   std::optional<algo::DissipationSettings> dissipation)
         : mSources(std::move(sources)),
           mCondensation(std::move(condensation)),
           mPrimitives(std::move(primitives)),
@@ -37,6 +41,7 @@ public:
           mFrame(frame)
     {
         if (evaporateBelowBase) mBase = algo::condensationLevel(mCond);
+        if (dissipation) mDissipation = dissipationFrame(*dissipation);
     }
 
     /// How many particles the frame has before evaporation, without generating them.
@@ -54,22 +59,28 @@ public:
     {
         algo::CloudChunkOptions o;
         o.levels = fields.levels;
-        o.sources = fields.sources;
+        // Dissipation reads each particle's source, copy origin and id.
+        o.sources = fields.sources || mDissipation;
         o.velocities = fields.velocities;
-        o.ids = fields.ids;
+        o.ids = fields.ids || mDissipation;
         o.checkCancelled = checkCancelled;
-        if (!mBase) {
+        if (!mBase && !mDissipation) {
             algo::forEachCloudChunk(mSources->table, mFrame, mCond, mPrim.library,
                                     mSources->settings, consume, o);
             return;
         }
-        // Evaporation: each chunk handed on without its particles under the base.
-        tbb::enumerable_thread_specific<algo::KeptParticles> perThread;
-        const float base = *mBase;
+        // Each chunk handed on without its particles under the base or evaporated.
+        struct Kept {
+            algo::KeptParticles above, surviving;
+        };
+        tbb::enumerable_thread_specific<Kept> perThread;
         algo::forEachCloudChunk(
             mSources->table, mFrame, mCond, mPrim.library, mSources->settings,
             [&](const algo::CloudChunk& chunk) {
-                consume(algo::chunkAbove(chunk, base, perThread.local()));
+                Kept& kept = perThread.local();
+                algo::CloudChunk c = mBase ? algo::chunkAbove(chunk, *mBase, kept.above) : chunk;
+                if (mDissipation) c = algo::chunkSurviving(c, *mDissipation, kept.surviving);
+                consume(c);
             },
             o);
     }
@@ -77,6 +88,7 @@ public:
     algo::CloudParticleArrays materialise(
         const std::function<void()>& checkCancelled) const override
     {
+        if (mDissipation) return materialiseFromChunks(checkCancelled);
         auto arrays = algo::generateCloudParticles(mSources->table, mFrame, mCond, mPrim.library,
                                                    mSources->settings, checkCancelled);
         if (mBase) algo::dropCloudParticlesBelow(arrays, *mBase);
@@ -86,6 +98,53 @@ public:
     bool hasMotion() const override { return true; }
 
 private:
+    algo::DissipationFrame dissipationFrame(const algo::DissipationSettings& d) const
+    {
+        algo::DissipationFrame f;
+        f.decay = algo::cloudDecay(mSources->table, mFrame, mPrim.library, mSources->settings, d);
+        for (const algo::PrimitiveView& p : mPrim.library.views)
+            f.extents.push_back(algo::primitiveExtent(p));
+        f.table = &mSources->table;
+        f.library = &mPrim.library;
+        f.settings = &mSources->settings;
+        f.frame = mFrame;
+        return f;
+    }
+
+    /// The frame's arrays from the filtered chunks, in particle order.
+    algo::CloudParticleArrays materialiseFromChunks(
+        const std::function<void()>& checkCancelled) const
+    {
+        std::map<std::uint64_t, algo::KeptParticles> chunks;  // by first particle
+        std::vector<float> copyOrigins;                       // the same in every chunk
+        std::mutex mutex;
+        forEachChunk(
+            [&](const algo::CloudChunk& c) {
+                algo::KeptParticles k;
+                k.positions.assign(c.positions, c.positions + 3 * c.count);
+                k.levels.assign(c.levels, c.levels + c.count);
+                k.sources.assign(c.sources, c.sources + c.count);
+                const std::lock_guard<std::mutex> lock(mutex);
+                if (copyOrigins.empty())
+                    copyOrigins.assign(c.copyOrigins, c.copyOrigins + 3 * c.copyCount);
+                chunks.emplace(c.first, std::move(k));
+            },
+            CloudChunkFields{true, true}, checkCancelled);
+        std::size_t n = 0;
+        for (const auto& [first, k] : chunks) n += k.levels.size();
+        algo::CloudParticleArrays out{
+            algo::UninitArray<float>(3 * n), algo::UninitArray<std::uint8_t>(n),
+            algo::UninitArray<std::uint32_t>(n), algo::UninitArray<float>(copyOrigins)};
+        std::size_t at = 0;
+        for (const auto& [first, k] : chunks) {
+            std::copy(k.positions.begin(), k.positions.end(), out.positions.data() + 3 * at);
+            std::copy(k.levels.begin(), k.levels.end(), out.levels.data() + at);
+            std::copy(k.sources.begin(), k.sources.end(), out.sources.data() + at);
+            at += k.levels.size();
+        }
+        return out;
+    }
+
     std::shared_ptr<const CloudSourcesData> mSources;
     std::shared_ptr<const CondensationData> mCondensation;
     PrimitiveInputs mPrimitives;
@@ -93,6 +152,7 @@ private:
     algo::CondensationView mCond;  ///< views into *mCondensation
     int mFrame;
     std::optional<float> mBase;  ///< evaporation: particles under it are dropped
+    std::optional<algo::DissipationFrame> mDissipation;  ///< clouds that evaporate
 };
 
 class GenerateCloudNode final : public Node {
@@ -104,9 +164,15 @@ public:
         const PrimitiveInputs primitives = primitiveInputs(ctx);
         // A table read from a disk cache must index these inputs before anything reads them.
         checkSourcesFit(sources->table, sources->settings, *condensation, primitives);
-        auto cloud =
-            std::make_shared<GeneratedCloud>(sources, condensation, primitives, ctx.frame(),
-                                             ctx.params().getBool("evaporateBelowBase"));
+        std::optional<algo::DissipationSettings> dissipation;
+        if (ctx.params().getBool("dissipate")) {
+            dissipation.emplace();
+            dissipation->hold = ctx.params().getFloat("hold");
+            dissipation->decayTime = ctx.params().getFloat("decayTime");
+        }
+        auto cloud = std::make_shared<GeneratedCloud>(
+            sources, condensation, primitives, ctx.frame(),
+            ctx.params().getBool("evaporateBelowBase"), dissipation);
         const std::uint64_t total = cloud->particleCount();
         const auto limit = static_cast<std::uint64_t>(ctx.params().getInt("maxCloudParticles"));
         if (total > limit) {
@@ -151,15 +217,29 @@ void registerGenerateCloudNode(Registry& registry)
     };
     for (PortDecl& p : primitivePorts()) d.inputs.push_back(std::move(p));
     d.outputs = {port("particles", "CloudParticles", "the cloud particles of this frame")};
-    d.params = {intParam("maxCloudParticles", 100000000, "particles",
-                         "refuse a frame with more cloud particles than this, before allocating "
-                         "(17 bytes each; value ours)",
-                         1, 4e9),
-                boolParam("evaporateBelowBase", false,
-                          "ours: drop the cloud particles under the condensation level, the "
-                          "lowest height at which a condensation particle condensed, as real "
-                          "cloud droplets evaporate below the base; off keeps every particle "
-                          "(the paper)")};
+    d.params = {
+        intParam("maxCloudParticles", 100000000, "particles",
+                 "refuse a frame with more cloud particles than this, before allocating "
+                 "(17 bytes each; value ours)",
+                 1, 4e9),
+        boolParam("evaporateBelowBase", false,
+                  "ours: drop the cloud particles under the condensation level, the "
+                  "lowest height at which a condensation particle condensed, as real "
+                  "cloud droplets evaporate below the base; off keeps every particle "
+                  "(the paper)"),
+        boolParam("dissipate", false,
+                  "ours: clouds evaporate once their thermal stops feeding them (their "
+                  "level 1 copy's primitive has played to its end), from the edges "
+                  "inward, hold seconds later, over decayTime R / R0; off keeps every "
+                  "cloud forever (the paper). docs/mapper.md, 'Clouds that dissipate'"),
+        floatParam("hold", 120.0, "s",
+                   "ours: time between the end of a cloud's growth and its decay", 0.0, 1e6),
+        floatParam("decayTime", 600.0, "s",
+                   "ours: time a cloud of the largest scale (R = R0, the mapper's "
+                   "scaleCoefficient) takes to evaporate; smaller clouds take "
+                   "proportionally less (small cumulus live minutes, large ones tens "
+                   "of minutes)",
+                   0.0, 1e6)};
     d.create = [] { return std::make_unique<GenerateCloudNode>(); };
     registry.addNode(std::move(d));
 }

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -435,6 +436,57 @@ TEST_F(MapperNodes, CloudVelocityRefusesParticlesWithoutMotion)
         EXPECT_TRUE(e.inputFault());
         EXPECT_NE(std::string(e.what()).find("carry no motion"), std::string::npos) << e.what();
     }
+}
+
+// Clouds that dissipate through the engine: the frame's arrays are its streamed chunks in
+// order, and once every cloud's decay is over nothing is left.
+TEST_F(MapperNodes, DissipatingCloudsThinThenVanishAndTheirArraysAreTheirChunks)
+{
+    // A primitive of 4 frames (1 s each) grows within 15 frames of 0.2 s at A >= 1; with
+    // decayTime 4 s a cloud is gone at most 20 frames later. The last sources start by
+    // frame 125, so by frame 200 nothing is left.
+    std::string text = kGraph;
+    text.replace(text.find(R"("end": 130)"), 10, R"("end": 200)");
+    text.replace(text.find(R"("frames": 20)"), 12, R"("frames": 4)");
+    Graph g = parseGraph(text, "mapper.json", registry);
+    g.setParam("cloud", "dissipate", true);
+    g.setParam("cloud", "hold", 0.0);
+    g.setParam("cloud", "decayTime", 4.0);
+    Evaluator ev(registry, {});
+    const auto cloudAt = [&](int t) {
+        return std::dynamic_pointer_cast<const CloudParticlesData>(
+            ev.pull(g, "cloud", t)->at("particles"));
+    };
+    const auto streamed = [](const CloudParticlesData& c) {
+        std::map<std::uint64_t, std::vector<float>> chunks;
+        std::mutex mutex;
+        c.forEachChunk(
+            [&](const algo::CloudChunk& k) {
+                const std::lock_guard<std::mutex> lock(mutex);
+                chunks[k.first].assign(k.positions, k.positions + 3 * k.count);
+            },
+            CloudChunkFields{});
+        std::vector<float> all;
+        for (const auto& [first, xyz] : chunks) all.insert(all.end(), xyz.begin(), xyz.end());
+        return all;
+    };
+    std::size_t peak = 0, peakFrame = 0;
+    for (int t = 90; t <= 200; t += 5) {
+        const std::size_t n = cloudAt(t)->size();
+        if (n > peak) peak = n, peakFrame = static_cast<std::size_t>(t);
+    }
+    ASSERT_GT(peak, 1000u);
+    const auto thinning = cloudAt(static_cast<int>(peakFrame) + 10);
+    const std::vector<float> chunks = streamed(*thinning);
+    const auto& arrays = thinning->arrays();
+    ASSERT_EQ(chunks.size(), arrays.positions.size());
+    EXPECT_TRUE(std::equal(chunks.begin(), chunks.end(), arrays.positions.begin()));
+    EXPECT_LT(thinning->size(), peak);
+
+    g.setParam("cloud", "dissipate", false);
+    EXPECT_GT(cloudAt(200)->size(), peak);  // without it the clouds last
+    g.setParam("cloud", "dissipate", true);
+    EXPECT_EQ(cloudAt(200)->size(), 0u);
 }
 
 }  // namespace cg

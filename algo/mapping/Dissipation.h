@@ -1,0 +1,56 @@
+#pragma once
+/// Clouds that dissipate (ours; the paper animates growth only): once a cloud's thermal has
+/// stopped feeding it, dry air entrained at its edges evaporates it from the outside in.
+///
+/// A cloud is a level 1 copy with every copy grown on it (its descendants). Its supply ends
+/// when its own primitive has played to its last frame (the thermal's growth is over); after
+/// `hold` seconds it decays over a time proportional to its size, decayTime R / R0 (R its
+/// scale, R0 the mapper's scaleCoefficient: the largest clouds take decayTime), as the
+/// evaporation time of a cumulus grows with its size (small fair-weather cumulus live
+/// minutes, large ones tens of minutes). At decay fraction f in [0, 1] a particle survives
+/// while its distance from its copy's centre, in units of the copy's radius and jittered
+/// per particle, is below 1 - f: the edges go first, and at f = 1 nothing is left.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "algo/mapping/Evaporation.h"
+#include "algo/mapping/Mapping.h"
+
+namespace cg::algo {
+
+struct DissipationSettings {
+    double hold = 120.0;       ///< s between the end of a cloud's growth and its decay (ours)
+    double decayTime = 600.0;  ///< s for a cloud of scale R0 to evaporate (ours)
+};
+
+/// Throws std::invalid_argument naming the setting that is negative or not finite.
+void checkDissipation(const DissipationSettings& d);
+
+/// Per primitive frame, where a copy's centre is and how far its particles reach, in
+/// primitive units: the centroid and the 95th percentile of the distance from it.
+struct PrimitiveExtent {
+    std::vector<std::array<float, 4>> frames;  ///< x, y, z, radius per frame
+};
+PrimitiveExtent primitiveExtent(const PrimitiveView& p);
+
+/// Per source, the decay fraction f in [0, 1] of the cloud it belongs to at frame t.
+std::vector<float> cloudDecay(const SourceTable& table, int frame, const PrimitiveLibrary& lib,
+                              const MappingSettings& s, const DissipationSettings& d);
+
+/// What chunkSurviving needs for a frame.
+struct DissipationFrame {
+    std::vector<float> decay;              ///< per source (cloudDecay)
+    std::vector<PrimitiveExtent> extents;  ///< per primitive of the library
+    const SourceTable* table = nullptr;
+    const PrimitiveLibrary* library = nullptr;
+    const MappingSettings* settings = nullptr;
+    int frame = 0;
+};
+
+/// The chunk's particles that have not evaporated, in their order, copied into `kept` (as
+/// chunkAbove does). The chunk must carry sources and copy origins.
+CloudChunk chunkSurviving(const CloudChunk& chunk, const DissipationFrame& d, KeptParticles& kept);
+
+}  // namespace cg::algo
