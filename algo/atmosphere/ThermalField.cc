@@ -15,6 +15,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr std::uint64_t kSizeStream = 0x5468657253697a65ull;   // "TherSize"
 constexpr std::uint64_t kPlaceStream = 0x546865725768657eull;  // "TherWhe~"
+constexpr std::uint64_t kStartStream = 0x5468657253746172ull;  // "TherStar"
 
 /// A thermal's disk radius from its diameter (the density >= 0.5 region is 3/4 of the disk).
 double radiusOf(double diameter) { return diameter / 1.5; }
@@ -154,13 +155,36 @@ ThermalField placeThermals(const ThermalFieldSettings& s)
     return field;
 }
 
-std::vector<float> thermalMap(const ThermalFieldSettings& s, const ThermalField& field)
+namespace {
+
+/// The thermals as disks stamped on the map: each cell's density and the thermal it has it
+/// from (-1: none).
+std::vector<std::int32_t> stampThermals(const ThermalFieldSettings& s, const ThermalField& field,
+                                        std::vector<float>& values)
 {
     std::vector<HeroCloud> disks;
     for (const Thermal& t : field.thermals) disks.push_back({t.x, t.y, radiusOf(t.diameter), 0.0});
-    std::vector<float> values(static_cast<std::size_t>(s.nx) * static_cast<std::size_t>(s.ny),
-                              0.0f);
-    stampHeroClouds(s.nx, s.ny, s.cellSize, values, disks);
+    values.assign(static_cast<std::size_t>(s.nx) * static_cast<std::size_t>(s.ny), 0.0f);
+    return stampHeroClouds(s.nx, s.ny, s.cellSize, values, disks);
+}
+
+}  // namespace
+
+std::vector<float> thermalMap(const ThermalFieldSettings& s, const ThermalField& field)
+{
+    std::vector<float> values;
+    stampThermals(s, field, values);
+    return values;
+}
+
+std::vector<float> thermalStartMap(const ThermalFieldSettings& s, const ThermalField& field)
+{
+    std::vector<float> values;
+    const std::vector<std::int32_t> owner = stampThermals(s, field, values);
+    for (std::size_t i = 0; i < values.size(); ++i)
+        values[i] = owner[i] < 0 ? 0.0f
+                                 : static_cast<float>(counterUniform(
+                                       s.seed, kStartStream, static_cast<std::uint64_t>(owner[i])));
     return values;
 }
 

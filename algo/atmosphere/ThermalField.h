@@ -80,4 +80,10 @@ ThermalField placeThermals(const ThermalFieldSettings& s);
 /// highest of their densities at its centre.
 std::vector<float> thermalMap(const ThermalFieldSettings& s, const ThermalField& field);
 
+/// Each thermal's start (ours): a map of the same cells holding, over each thermal's disk, a
+/// value drawn uniformly in [0, 1) for that thermal (counter-based on the seed and its
+/// index), 0 elsewhere. As the VapourEmitter's startDelay, thermals start one by one over
+/// startDelayMax, each all at once, so a field keeps forming new clouds.
+std::vector<float> thermalStartMap(const ThermalFieldSettings& s, const ThermalField& field);
+
 }  // namespace cg::algo

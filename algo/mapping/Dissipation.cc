@@ -112,8 +112,9 @@ CloudChunk chunkSurviving(const CloudChunk& chunk, const DissipationFrame& d, Ke
         const std::uint32_t j = chunk.sources[i];
         if (j != last) {  // particles come in runs of one source
             last = j;
-            f = d.decay[j];
             const Source& src = d.table->sources[j];
+            // A cloud's turrets go before its body: level L decays L times as fast.
+            f = std::min(1.0f, d.decay[j] * static_cast<float>(src.level));
             const std::size_t primitive = primitiveOf(j, s);
             const PrimitiveView& p = d.library->views[primitive];
             const double time =

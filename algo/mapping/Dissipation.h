@@ -9,7 +9,9 @@
 /// evaporation time of a cumulus grows with its size (small fair-weather cumulus live
 /// minutes, large ones tens of minutes). At decay fraction f in [0, 1] a particle survives
 /// while its distance from its copy's centre, in units of the copy's radius and jittered
-/// per particle, is below 1 - f: the edges go first, and at f = 1 nothing is left.
+/// per particle, is below 1 - f: the edges go first, and at f = 1 nothing is left. A copy of
+/// level L counts L f (capped at 1): the turrets grown on a cloud go before its body, which
+/// would otherwise leave small copies floating where the body has gone.
 
 #include <array>
 #include <cstdint>

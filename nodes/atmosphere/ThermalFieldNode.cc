@@ -93,6 +93,8 @@ public:
                 ctx.nodeId(), field.leftOut, field.thermals.size() + field.leftOut, coverOf(map),
                 s.cover);
         ctx.setOutput("map", std::make_shared<Map2DData>(s.nx, s.ny, s.cellSize, std::move(map)));
+        ctx.setOutput("starts", std::make_shared<Map2DData>(s.nx, s.ny, s.cellSize,
+                                                            algo::thermalStartMap(s, field)));
         ctx.setOutput("summary", std::make_shared<TextData>(summaryOf(field)));
     }
 };
@@ -103,6 +105,7 @@ void registerThermalFieldNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "ThermalField";
+    d.version = 2;  // each version's change: CHANGES.md, "Node versions"
     d.category = "atmosphere";
     d.doc =
         "Ours, in place of the paper's single 1/f^beta map for a cumulus field: thermals whose "
@@ -119,6 +122,9 @@ void registerThermalFieldNode(Registry& registry)
         "docs/atmosphere.md.";
     d.outputs = {
         port("map", "Map2D", "the thermals' density in [0, 1], row iy = 0 at y = 0"),
+        port("starts", "Map2D",
+             "each thermal's own uniform draw in [0, 1) over its disk, 0 elsewhere: wired to "
+             "the VapourEmitter's startDelay, thermals start one by one over startDelayMax"),
         port("summary", "Text", "how many thermals, their size range, how many found no room")};
     d.params = {
         intParam("width", 400, "cells", "cells along x", 1, 65536),

@@ -144,3 +144,46 @@ TEST(ThermalField, TheSameSeedGivesTheSameFieldAndBadSettingsAreRefused)
 }
 
 }  // namespace cg
+
+namespace cg::algo {
+
+// The starts map: each thermal's disk holds one value of its own, drawn per thermal, and the
+// ground between them 0, so wired as a start delay every cell of a thermal starts together.
+TEST(ThermalField, EachThermalHasOneStartOverItsDiskAndTheGroundBetweenNone)
+{
+    ThermalFieldSettings s = dayField();
+    s.nx = s.ny = 200;
+    s.cellSize = 50.0;
+    const ThermalField field = placeThermals(s);
+    const std::vector<float> density = thermalMap(s, field);
+    const std::vector<float> starts = thermalStartMap(s, field);
+    ASSERT_EQ(starts.size(), density.size());
+    std::vector<float> perThermal;
+    for (const Thermal& t : field.thermals) {
+        const int ix = static_cast<int>(t.x / s.cellSize), iy = static_cast<int>(t.y / s.cellSize);
+        const float v = starts[static_cast<std::size_t>(iy) * 200 + static_cast<std::size_t>(ix)];
+        EXPECT_GE(v, 0.0f);
+        EXPECT_LT(v, 1.0f);
+        // Every cell within half the thermal's diameter (where its density is 1) has its start.
+        const double r = 0.3 * t.diameter;
+        for (int jy = 0; jy < 200; ++jy)
+            for (int jx = 0; jx < 200; ++jx)
+                if (std::hypot((jx + 0.5) * s.cellSize - t.x, (jy + 0.5) * s.cellSize - t.y) < r) {
+                    ASSERT_EQ(starts[static_cast<std::size_t>(jy) * 200 + jx], v);
+                }
+        perThermal.push_back(v);
+    }
+    for (std::size_t i = 0; i < density.size(); ++i)
+        if (density[i] == 0.0f) {
+            ASSERT_EQ(starts[i], 0.0f) << i;
+        }
+    // Uniform draws: their mean within 4 standard errors of 1/2.
+    ASSERT_GT(perThermal.size(), 30u);
+    double mean = 0.0;
+    for (float v : perThermal) mean += v;
+    mean /= static_cast<double>(perThermal.size());
+    EXPECT_NEAR(mean, 0.5, 4.0 * std::sqrt(1.0 / 12.0 / static_cast<double>(perThermal.size())));
+    EXPECT_EQ(thermalStartMap(s, placeThermals(s)), starts);
+}
+
+}  // namespace cg::algo

@@ -59,6 +59,20 @@ void smallFigure(Graph& g)
     set(g, "render", "height", 64);
 }
 
+/// A thermal field on cells twice as large: the same ground and thermals, a quarter of the
+/// vapour; then the figures' small primitive, coarser voxels and a thumbnail.
+void smallField(Graph& g)
+{
+    const ParamSet& p = paramsOf(g, "thermals");
+    set(g, "thermals", "cellSize", p.getFloat("cellSize") * 2);
+    set(g, "thermals", "width", p.getInt("width") / 2);
+    set(g, "thermals", "height", p.getInt("height") / 2);
+    smallPrimitive(g, "primitive");
+    coarserVoxels(g, "voxelize");
+    set(g, "render", "width", 96);
+    set(g, "render", "height", 64);
+}
+
 std::vector<GoldenSpec> makeSpecs()
 {
     const std::vector<std::string> video = {"video"};  // runs ffmpeg; its MP4 bytes are ffmpeg's
@@ -74,6 +88,9 @@ std::vector<GoldenSpec> makeSpecs()
         // moving camera at frames 150 (the hero alone) and 300 (the arc's clouds, the first
         // camera key); its Retime and video act on frame 491 only (the video is left out).
         {"art_direction", {150, 300}, smallFigure, video},
+        // The hour of cumulus: its field grown (300), and its clouds coming and going (600:
+        // early thermals' clouds evaporating, later ones forming).
+        {"cumulus_day", {300, 600}, smallField, {}},
         {"cumulus_still",
          {0},
          [](Graph& g) {
