@@ -76,6 +76,7 @@ function showParams(id) {
       read = () => select.value;
     } else if (p.type === "float" || p.type === "int") {
       const input = numberInput(value, p.type === "int");
+      if (wantsSlider(p)) inputs.push(sliderFor(p, input));  // first: what the eye finds
       inputs.push(input);
       read = () => Number(input.value);
     } else if (p.type === "vec3") {
@@ -105,6 +106,8 @@ function showParams(id) {
       editor.appendChild(input);
       input.addEventListener("change", () => editParam(id, p.name, read, message));
     }
+    if (isColour(p))
+      editor.appendChild(colourPickerFor(inputs, () => editParam(id, p.name, read, message)));
     label.appendChild(editor);
     form.appendChild(label);
     form.appendChild(message);
@@ -142,21 +145,31 @@ function showInputs(id) {
 // A wiring edit: the edited graph goes to the server, which loads it with the same type
 // checks as a file; on success the page redraws from the server's graph.
 async function editGraph(edit) {
+  const before = JSON.parse(JSON.stringify(state.graph));
   const graph = JSON.parse(JSON.stringify(state.graph));
   edit(graph);
+  if (!(await sendGraph(graph))) {
+    showParams(state.selected);  // back to the graph as it is
+    return;
+  }
+  recordEdit({ kind: "graph", before, after: graph });
+  cook();
+}
+
+// Sends a whole graph; true when the server took it (the page then shows the server's).
+async function sendGraph(graph) {
   state.editing++;
   try {
     await api("/api/graph", { graph });
     markEdited();
     await reload();
+    return true;
   } catch (e) {
     setStatus(e.message, true);
-    showParams(state.selected);  // back to the graph as it is
-    return;
+    return false;
   } finally {
     state.editing--;
   }
-  cook();
 }
 
 // Connects or disconnects inputs in one wiring edit: changes [{node, input, source}], source
@@ -179,6 +192,16 @@ async function editParam(id, name, read, message) {
     message.textContent = `not JSON: ${e.message}`;
     return;
   }
+  const decl = state.types[state.graph.nodes[id].type].params.find((p) => p.name === name);
+  const before = paramValue(id, decl);
+  if (!(await sendParam(id, name, value, message))) return;
+  recordEdit({ kind: "param", node: id, param: name, before, after: value });
+  cook();
+}
+
+// Sets one parameter; true when the server took it. A refusal is the CLI's own message,
+// naming node and parameter, in the status line and `message` when given.
+async function sendParam(id, name, value, message) {
   state.editing++;
   try {
     const reply = await api("/api/param", { node: id, param: name, value });
@@ -186,14 +209,14 @@ async function editParam(id, name, read, message) {
     state.version = reply.version;
     markEdited();
   } catch (e) {
-    message.textContent = e.message;   // the CLI's own message, naming node and parameter
+    if (message) message.textContent = e.message;
     setStatus(e.message, true);
-    return;
+    return false;
   } finally {
     state.editing--;
   }
   setStatus(`${id}.${name} = ${JSON.stringify(value)}`);
-  cook();
+  return true;
 }
 
 function showReport(report, seconds) {

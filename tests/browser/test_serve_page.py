@@ -42,10 +42,31 @@ REPORT = """return [...document.querySelectorAll('#report tbody tr')]
                 .map(r => [r.dataset.node, r.dataset.status]);"""
 SET_INPUTS = """
 const [param, values] = arguments;
-const inputs = [...document.querySelectorAll(`#params [data-param="${param}"]`)];
+const inputs = [...document.querySelectorAll(
+  `#params [data-param="${param}"]:not([type="range"])`)];
 inputs.forEach((input, i) => { input.value = values[i]; });
 inputs[0].dispatchEvent(new Event('change'));
 return inputs.length;"""
+
+SLIDE = """
+const [param, value] = arguments;
+const slider = document.querySelector(`#params input[type="range"][data-param="${param}"]`);
+if (!slider) return false;
+slider.value = value;
+slider.dispatchEvent(new Event('input'));
+slider.dispatchEvent(new Event('change'));
+return true;"""
+PICK = """
+const [param, hex] = arguments;
+const picker = document.querySelector(`#params input[type="color"][data-colour="${param}"]`);
+if (!picker) return false;
+picker.value = hex;
+picker.dispatchEvent(new Event('change'));
+return true;"""
+PARAM = """const node = state.graph.nodes.render;
+const decl = state.types[node.type].params.find((p) => p.name === arguments[0]);
+return JSON.stringify(paramValue('render', decl));"""
+FOV_BOX = """return document.querySelector('#params input[type="number"][data-param="fov"]').value;"""
 
 
 CONFLICT_SHOWN = """return document.getElementById('conflict').open &&
@@ -157,6 +178,31 @@ def main():
         cooks = browser.run(COOKS)
         browser.run(SET_INPUTS, "width", [160])
         wait_for_cook(browser, cooks, "width back to 160")
+
+        # A bounded number has a slider beside its box, and a colour a picker: each edit goes
+        # through as a typed one does; undo sends the old values back, redo the new ones.
+        fov_before = browser.run(PARAM, "fov")
+        colour_before = browser.run(PARAM, "sunColour")
+        cooks = browser.run(COOKS)
+        assert browser.run(SLIDE, "fov", 50), "fov has no slider"
+        wait_for_cook(browser, cooks, "the fov slider")
+        assert browser.run(PARAM, "fov") == "50", browser.run(PARAM, "fov")
+        assert browser.run(FOV_BOX) == "50", browser.run(FOV_BOX)
+        assert not browser.run(SLIDE, "width", 100), "a 1-4096 px width got a slider"
+        cooks = browser.run(COOKS)
+        assert browser.run(PICK, "sunColour", "#808080"), "sunColour has no picker"
+        wait_for_cook(browser, cooks, "the sun colour picker")
+        # sRGB 128/255 is linear 0.2158605.
+        assert json.loads(browser.run(PARAM, "sunColour")) == [0.2159] * 3, \
+            browser.run(PARAM, "sunColour")
+        for expected_fov, expected_colour, button in (
+                ("50", colour_before, "undo"), (fov_before, colour_before, "undo"),
+                ("50", colour_before, "redo")):
+            cooks = browser.run(COOKS)
+            browser.run(f"document.getElementById('{button}').click();")
+            wait_for_cook(browser, cooks, button)
+            assert browser.run(PARAM, "fov") == expected_fov, (button, browser.run(PARAM, "fov"))
+            assert browser.run(PARAM, "sunColour") == expected_colour, button
         if args.screenshot:
             browser.screenshot(args.screenshot)
 
@@ -227,7 +273,9 @@ def main():
         assert "unsaved edits were replaced" in notice, notice
         browser.wait_for("""const i = document.querySelector('#params [data-param="fov"]');
                             return i && i.value === '40';""", timeout=30)
-        print("the page loaded, recooked only the Renderer and its writer after the sun edit,"
+        print("the page loaded, recooked only the Renderer and its writers after the sun edit,"
+              " edited fov by its slider and the sun's colour by its picker, undid and redid"
+              " them,"
               " showed a long cook's progress, refused width 0, saved a graph the CLI loads,"
               " reloaded the file edited outside it, rewired the Renderer by dragging, offered"
               " to overwrite a file changed on disk, and said when a change on disk replaced"
