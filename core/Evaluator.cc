@@ -154,8 +154,10 @@ public:
 
     /// Cooks (or fetches) `closure` for frames first..last as a pipeline (FramePipeline):
     /// each frame without what resolves ahead; onFrame hears of each frame in order.
+    /// `targets`: nodes asked for by name, evaluated even where only a resolved node reads
+    /// them.
     void cookRange(const std::vector<std::size_t>& closure, int first, int last,
-                   const FrameCallback& onFrame)
+                   const FrameCallback& onFrame, const std::vector<std::size_t>& targets = {})
     {
         std::vector<bool> anyOrder;
         for (const GraphNode& node : mGraph.nodes())
@@ -164,7 +166,7 @@ public:
             .run(
                 first, last,
                 [&](int frame, FrameOutputs& results) {
-                    return withoutResolvedAhead(closure, frame, results);
+                    return withoutResolvedAhead(closure, frame, results, targets);
                 },
                 [&](std::size_t idx, int frame, const FrameOutputs& results) {
                     return evaluate(idx, frame, results);
@@ -181,7 +183,8 @@ private:
     /// out, with every node that only they need (resolvedAhead). Returns the nodes of `closure`
     /// left to evaluate, in the same order.
     std::vector<std::size_t> withoutResolvedAhead(const std::vector<std::size_t>& closure,
-                                                  int frame, FrameOutputs& results)
+                                                  int frame, FrameOutputs& results,
+                                                  const std::vector<std::size_t>& targets)
     {
         const std::size_t n = mGraph.nodes().size();
         std::vector<bool> resolved(n, false);
@@ -198,6 +201,7 @@ private:
         std::vector<bool> readInClosure(n, false), readByNeeded(n, false), needed(n, false);
         for (std::size_t idx : closure)
             for (std::size_t up : mGraph.upstream()[idx]) readInClosure[up] = true;
+        for (std::size_t idx : targets) readInClosure[idx] = false;  // asked for: a target
         for (auto it = closure.rbegin(); it != closure.rend(); ++it) {
             const std::size_t idx = *it;
             const bool writer = WrittenFiles::keepsRecords(*mGraph.nodes()[idx].decl);
@@ -212,14 +216,34 @@ private:
         return left;
     }
 
+    /// A writer off its schedule at `frame` (NodeDecl::idleOnFrame), whose outputs are all
+    /// file lists: it writes nothing whatever its inputs.
+    bool idleWriter(const GraphNode& node, int frame) const
+    {
+        const NodeDecl& decl = *node.decl;
+        if (!decl.writesFiles || !decl.idleOnFrame || node.bypass) return false;
+        if (std::any_of(decl.outputs.begin(), decl.outputs.end(),
+                        [](const PortDecl& p) { return p.type != "Text"; }))
+            return false;
+        return decl.idleOnFrame(node.params, frame, mGraph.frames.start);
+    }
+
     /// Whether node idx's outputs at `frame` were put in `results` (and reported) before the
     /// frame cooks, sparing what only it reads: a writer whose files from an earlier run verify
     /// (WrittenFiles), or a cached node that reads a node never stored on disk, which would
     /// otherwise be remade only to be ignored (the Voxelizer's GenerateCloud stream).
     bool resolvedAhead(std::size_t idx, int frame, FrameOutputs& results)
     {
-        const NodeDecl& decl = *mGraph.nodes()[idx].decl;
+        const GraphNode& node = mGraph.nodes()[idx];
+        const NodeDecl& decl = *node.decl;
         const auto t0 = std::chrono::steady_clock::now();
+        if (idleWriter(node, frame)) {
+            OutputMap empty;
+            for (const PortDecl& p : decl.outputs) empty[p.name] = std::make_shared<TextData>("");
+            results[idx] = std::make_shared<const OutputMap>(std::move(empty));
+            report(idx, frame, keyOf(idx, frame), CookStatus::Idle, "", t0, *results[idx]);
+            return true;
+        }
         if (WrittenFiles::keepsRecords(decl)) {
             const Key key = keyOf(idx, frame);
             auto recorded = mWritten.verified(key, decl);
@@ -438,7 +462,7 @@ private:
         const std::vector<std::size_t> nodes = closure({idx});
         if (resume + 1 < frame) {
             addToTotal(nodes.size() * static_cast<std::size_t>(frame - 1 - resume));
-            cookRange(nodes, resume + 1, frame - 1, {});
+            cookRange(nodes, resume + 1, frame - 1, {}, {idx});
         }
         std::lock_guard<std::mutex> lock(mHeldMutex[idx]);
         return mHeld[idx].outputs;
@@ -511,7 +535,7 @@ void Evaluator::cookFrames(const Graph& graph, int first, int last,
     session.addToTotal(nodes.size() * static_cast<std::size_t>(last - first + 1));
     removeOrphansWhereWritersWrite(graph, nodes, mOptions.outDir);
     try {
-        session.cookRange(nodes, first, last, onFrame);
+        session.cookRange(nodes, first, last, onFrame, targetIdx);
     } catch (...) {
         mHistory.commit();
         throw;

@@ -76,6 +76,11 @@ struct NodeDecl {
     /// a #### frame number that would be written on several frames is refused at load, since
     /// each frame would overwrite the last. Unset: not checked (a writer that writes once).
     std::function<int(const ParamSet&, int start, int end)> framesWritten;
+    /// A writer's idle frames: true where it writes nothing whatever its inputs (a frame off
+    /// its `every` schedule). There the evaluator gives each of its outputs (all Text) as an
+    /// empty file list without cooking it or what only it needs, so a VDB written every 100
+    /// frames does not voxelize the 99 between. Unset: the writer cooks on every frame.
+    std::function<bool(const ParamSet&, int frame, int start)> idleOnFrame;
     /// Extra key ingredients, e.g. the content hash of an input file.
     std::function<void(const ParamSet&, Hasher&)> hashExtra;
     /// JSON parameter values that make a quick cook, for tests (the contract test applies them

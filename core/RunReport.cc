@@ -16,6 +16,8 @@ const char* cookStatusName(CookStatus s)
             return "disk-hit";
         case CookStatus::Verified:
             return "verified";
+        case CookStatus::Idle:
+            return "idle";
     }
     return "?";
 }
@@ -57,7 +59,7 @@ nlohmann::json RunReport::toJson() const
 {
     nlohmann::json entries = nlohmann::json::array();
     std::map<std::string, nlohmann::json> perNode;
-    std::size_t cooked = 0, memoryHits = 0, diskHits = 0, verified = 0, bytes = 0;
+    std::size_t cooked = 0, memoryHits = 0, diskHits = 0, verified = 0, idle = 0, bytes = 0;
     double seconds = 0.0;
     for (const CookRecord& r : records()) {
         nlohmann::json e = {{"node", r.node},       {"type", r.type},
@@ -77,6 +79,7 @@ nlohmann::json RunReport::toJson() const
             n["hits"] = n["hits"].get<int>() + 1;
             ++(r.status == CookStatus::MemoryHit ? memoryHits
                : r.status == CookStatus::DiskHit ? diskHits
+               : r.status == CookStatus::Idle    ? idle
                                                  : verified);
         }
         n["seconds"] = n["seconds"].get<double>() + r.seconds;
@@ -90,6 +93,7 @@ nlohmann::json RunReport::toJson() const
               {"memoryHits", memoryHits},
               {"diskHits", diskHits},
               {"verified", verified},
+              {"idle", idle},
               {"nodeSeconds", seconds},
               {"bytes", bytes}}}};
 }

@@ -15,7 +15,8 @@ namespace cg {
 
 /// Verified: a writer whose files from an earlier run still hold its recorded bytes
 /// (WrittenFiles); it neither cooks nor writes.
-enum class CookStatus { Cooked, MemoryHit, DiskHit, Verified };
+/// Idle: a writer off its schedule on this frame (NodeDecl::idleOnFrame), not cooked.
+enum class CookStatus { Cooked, MemoryHit, DiskHit, Verified, Idle };
 
 const char* cookStatusName(CookStatus s);
 

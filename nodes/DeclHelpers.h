@@ -135,6 +135,9 @@ inline NodeDecl writerDecl(std::string type, std::string doc, PortDecl input,
     d.framesWritten = [](const ParamSet& p, int start, int end) {
         return scheduledFrames(start, p.getInt("every"), start, end);
     };
+    d.idleOnFrame = [](const ParamSet& p, int frame, int start) {
+        return !scheduledFrame(start, p.getInt("every"), frame);
+    };
     return d;
 }
 

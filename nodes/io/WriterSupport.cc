@@ -35,6 +35,10 @@ void addSequenceParams(NodeDecl& d)
         const std::int64_t first = p.getInt("firstFrame");
         return scheduledFrames(first < 0 ? start : first, p.getInt("every"), start, end);
     };
+    d.idleOnFrame = [](const ParamSet& p, int frame, int start) {
+        const std::int64_t first = p.getInt("firstFrame");
+        return !scheduledFrame(first < 0 ? start : first, p.getInt("every"), frame);
+    };
 }
 
 bool writesSequenceFrame(CookContext& ctx, bool empty)
