@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "algo/volume/CloudRegions.h"
 #include "algo/volume/OutlineDimension.h"
 
 namespace cg::algo {
@@ -72,46 +73,12 @@ double sideDimension(const Plane& side)
     return outlineDimension(m, 2, maxBox);
 }
 
-/// The 4-connected regions of `m`: area (cells) and perimeter (set/unset edges) of each.
-void regions(const Mask2D& m, std::vector<double>& areas, std::vector<double>& perimeters)
-{
-    std::vector<std::uint8_t> seen(m.set.size(), 0);
-    std::vector<std::pair<int, int>> stack;
-    const auto index = [&](int x, int y) {
-        return static_cast<std::size_t>(y) * static_cast<std::size_t>(m.width) +
-               static_cast<std::size_t>(x);
-    };
-    for (int y = 0; y < m.height; ++y)
-        for (int x = 0; x < m.width; ++x) {
-            if (!m.at(x, y) || seen[index(x, y)]) continue;
-            double area = 0, perimeter = 0;
-            stack.assign(1, {x, y});
-            seen[index(x, y)] = 1;
-            while (!stack.empty()) {
-                const auto [cx, cy] = stack.back();
-                stack.pop_back();
-                ++area;
-                const int nx[4] = {cx + 1, cx - 1, cx, cx};
-                const int ny[4] = {cy, cy, cy + 1, cy - 1};
-                for (int k = 0; k < 4; ++k) {
-                    if (!m.at(nx[k], ny[k])) {
-                        ++perimeter;
-                    } else if (!seen[index(nx[k], ny[k])]) {
-                        seen[index(nx[k], ny[k])] = 1;
-                        stack.emplace_back(nx[k], ny[k]);
-                    }
-                }
-            }
-            areas.push_back(area);
-            perimeters.push_back(perimeter);
-        }
-}
-
 /// 2 x the slope of log P against log A over the clouds of at least kMinCloudPixels.
 double areaPerimeter(const Plane& top, std::size_t& clouds)
 {
-    std::vector<double> areas, perimeters;
-    regions(maskAtLeastOne(top), areas, perimeters);
+    const Regions r = labelRegions(maskAtLeastOne(top));
+    const std::vector<double>& areas = r.area;
+    const std::vector<double>& perimeters = r.perimeter;
     double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0;
     for (std::size_t i = 0; i < areas.size(); ++i) {
         if (areas[i] < static_cast<double>(kMinCloudPixels)) continue;
@@ -217,6 +184,14 @@ SideView sideOpticalDepth(const openvdb::FloatGrid& grid, double extinction)
     if (box.empty()) return {};
     Plane side = project(grid, box, extinction * grid.voxelSize()[0]).side;
     return {side.width, side.height, std::move(side.v)};
+}
+
+TopView topOpticalDepth(const openvdb::FloatGrid& grid, double extinction)
+{
+    const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
+    if (box.empty()) return {};
+    Plane top = project(grid, box, extinction * grid.voxelSize()[0]).top;
+    return {top.x0, top.y0, top.width, top.height, std::move(top.v)};
 }
 
 }  // namespace cg::algo

@@ -57,4 +57,12 @@ struct SideView {
 };
 SideView sideOpticalDepth(const openvdb::FloatGrid& grid, double extinction);
 
+/// The optical depth through the grid along z (seen from above), over the active voxels'
+/// bounding box: cell (i, j) is the column at index (x0 + i, y0 + j), row j = 0 the lowest y.
+struct TopView {
+    int x0 = 0, y0 = 0, width = 0, height = 0;
+    std::vector<double> tau;
+};
+TopView topOpticalDepth(const openvdb::FloatGrid& grid, double extinction);
+
 }  // namespace cg::algo
