@@ -112,6 +112,8 @@ void checkThermalField(const ThermalFieldSettings& s)
         fail(Setting::Exponent, "the exponent must be in [-4, 0] and not -1");
     if (!(s.cover > 0.0 && s.cover <= 0.6)) fail(Setting::Cover, "the cover must be in (0, 0.6]");
     if (!(s.gap >= 0.0 && s.gap <= 4.0)) fail(Setting::Gap, "the gap must be in [0, 4]");
+    if (!(s.fullScaleCloud > 0.0 && std::isfinite(s.fullScaleCloud)))
+        fail(Setting::FullScale, "the full-scale cloud diameter must be > 0");
     // The expected count from the mean area of the law, before drawing any.
     const double k2 = s.exponent + 3.0, k1 = s.exponent + 1.0;
     const double norm = (std::pow(s.largest, k1) - std::pow(s.smallest, k1)) / k1;
@@ -185,6 +187,37 @@ std::vector<float> thermalStartMap(const ThermalFieldSettings& s, const ThermalF
         values[i] = owner[i] < 0 ? 0.0f
                                  : static_cast<float>(counterUniform(
                                        s.seed, kStartStream, static_cast<std::uint64_t>(owner[i])));
+    return values;
+}
+
+std::vector<float> thermalScaleMap(const ThermalFieldSettings& s, const ThermalField& field)
+{
+    std::vector<float> values;
+    std::vector<std::int32_t> owner = stampThermals(s, field, values);
+    // Breadth-first from every stamped cell in row order: each other cell takes the owner
+    // that reaches it in the fewest steps (the first in that order on a tie).
+    std::vector<std::size_t> queue;
+    for (std::size_t i = 0; i < owner.size(); ++i)
+        if (owner[i] >= 0) queue.push_back(i);
+    const auto nx = static_cast<std::size_t>(s.nx), ny = static_cast<std::size_t>(s.ny);
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+        const std::size_t i = queue[head], x = i % nx, y = i / nx;
+        const std::size_t next[4] = {x + 1 < nx ? i + 1 : i, x > 0 ? i - 1 : i,
+                                     y + 1 < ny ? i + nx : i, y > 0 ? i - nx : i};
+        for (const std::size_t j : next)
+            if (owner[j] < 0) {
+                owner[j] = owner[i];
+                queue.push_back(j);
+            }
+    }
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        if (owner[i] < 0) {
+            values[i] = 1.0f;
+            continue;
+        }
+        const double l = field.thermals[static_cast<std::size_t>(owner[i])].diameter;
+        values[i] = static_cast<float>(std::min(1.0, l / s.fullScaleCloud));
+    }
     return values;
 }
 

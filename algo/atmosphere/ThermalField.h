@@ -33,6 +33,8 @@ struct ThermalFieldSettings {
     double largest = 2000.0;  ///< largest cloud diameter l (the scale break), m
     double exponent = -1.7;   ///< b of n(l) ~ l^b, in [-4, -1) or (-1, 0]
     double gap = 0.25;        ///< disks keep this times the larger radius apart
+    /// Diameter from which a thermal's copies take the mapper's full scale (thermalScaleMap).
+    double fullScaleCloud = 300.0;
     std::uint64_t seed = 0;
 };
 
@@ -56,10 +58,11 @@ inline constexpr std::uint64_t kMaxThermals = 1u << 20;
 double powerLawDiameter(double u, double smallest, double largest, double exponent);
 
 /// An unusable setting, and which: the map's size, the cloud sizes, the exponent, the cover
-/// (also a field that would need more than kMaxThermals thermals) or the gap.
+/// (also a field that would need more than kMaxThermals thermals), the gap or the full-scale
+/// diameter.
 class ThermalFieldError : public std::invalid_argument {
 public:
-    enum class Setting { Map, Sizes, Exponent, Cover, Gap };
+    enum class Setting { Map, Sizes, Exponent, Cover, Gap, FullScale };
     ThermalFieldError(Setting setting, const std::string& what)
         : std::invalid_argument(what), mSetting(setting)
     {
@@ -85,5 +88,14 @@ std::vector<float> thermalMap(const ThermalFieldSettings& s, const ThermalField&
 /// index), 0 elsewhere. As the VapourEmitter's startDelay, thermals start one by one over
 /// startDelayMax, each all at once, so a field keeps forming new clouds.
 std::vector<float> thermalStartMap(const ThermalFieldSettings& s, const ThermalField& field);
+
+/// The copies' scale over each thermal (ours): min(1, l / fullScaleCloud) for a thermal of
+/// diameter l, over its disk and over every cell nearer to it than to any other disk (by
+/// 4-connected steps), so a condensation particle the wind has carried off its disk still
+/// reads its own thermal's scale. As the PrimitiveMapper's map (Eq. 16, R = R0 fNoise) a
+/// thermal smaller than one copy's footprint makes one smaller copy, not one copy of the
+/// same size: the clouds keep the thermals' size law below that footprint. A field without
+/// thermals is all 1.
+std::vector<float> thermalScaleMap(const ThermalFieldSettings& s, const ThermalField& field);
 
 }  // namespace cg::algo

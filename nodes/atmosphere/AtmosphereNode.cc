@@ -63,14 +63,14 @@ algo::WindProfile groundWindFrom(const ParamSet& p, const algo::EnvironmentProfi
     return {};
 }
 
-/// The wind in the frame the parameters ask for: the ground's, or the storm's (minus the
-/// 0-6 km mean wind), so a tower fed from a fixed patch of ground stands as a storm carried
-/// by the mean wind does, and only the shear around that mean tilts it.
+/// The wind in the frame the parameters ask for: the ground's, or the storm's (minus the mean
+/// wind below steeringDepth), so a tower or field fed from a fixed patch of ground moves as
+/// one carried by the mean wind does, and only the shear around that mean tilts it.
 algo::WindProfile windFrom(const ParamSet& p, const algo::EnvironmentProfile* profile)
 {
     const algo::WindProfile ground = groundWindFrom(p, profile);
     if (p.getString("windFrame") != "storm") return ground;
-    return ground.relativeTo(ground.meanBelow(algo::kStormSteeringDepthM));
+    return ground.relativeTo(ground.meanBelow(p.getFloat("steeringDepth")));
 }
 
 Atmosphere atmosphereFrom(const ParamSet& p)
@@ -200,10 +200,15 @@ void registerAtmosphereNode(Registry& registry)
                        0.0, 360.0),
         stringParam("windFrame", "ground",
                     "ours: 'ground' (winds as the sounding or layers give them) or 'storm' "
-                    "(minus the 0-6 km mean wind, the usual estimate of an ordinary storm's "
-                    "motion: the emission map moves with the storm, the ground slides beneath "
-                    "it, and only the shear around the mean wind tilts the tower)",
+                    "(minus the mean wind below steeringDepth: the emission map moves with the "
+                    "storm or the cloud field, the ground slides beneath it, and only the shear "
+                    "around the mean wind tilts the clouds)",
                     {"ground", "storm"}),
+        floatParam("steeringDepth", algo::kStormSteeringDepthM, "m",
+                   "ours: windFrame 'storm' moves with the mean wind from the ground to this "
+                   "height: 6 km for an ordinary storm (the usual estimate of its motion); a "
+                   "shallow cumulus field drifts with its cloud layer, about its cloud tops",
+                   10.0, L::kMaxProfileDepth),
     };
     d.validate = validate;
     d.hashExtra = [](const ParamSet& p, Hasher& h) {

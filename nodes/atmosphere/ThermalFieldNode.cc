@@ -33,6 +33,7 @@ algo::ThermalFieldSettings settingsFrom(const ParamSet& p)
     s.largest = p.getFloat("largestCloud");
     s.exponent = p.getFloat("exponent");
     s.gap = p.getFloat("gap");
+    s.fullScaleCloud = p.getFloat("fullScaleCloud");
     s.seed = static_cast<std::uint64_t>(p.getInt("seed"));
     return s;
 }
@@ -74,6 +75,8 @@ const char* paramOf(algo::ThermalFieldError::Setting setting)
             return "cover";
         case Setting::Gap:
             return "gap";
+        case Setting::FullScale:
+            return "fullScaleCloud";
     }
     return "width";
 }
@@ -95,6 +98,8 @@ public:
         ctx.setOutput("map", std::make_shared<Map2DData>(s.nx, s.ny, s.cellSize, std::move(map)));
         ctx.setOutput("starts", std::make_shared<Map2DData>(s.nx, s.ny, s.cellSize,
                                                             algo::thermalStartMap(s, field)));
+        ctx.setOutput("scale", std::make_shared<Map2DData>(s.nx, s.ny, s.cellSize,
+                                                           algo::thermalScaleMap(s, field)));
         ctx.setOutput("summary", std::make_shared<TextData>(summaryOf(field)));
     }
 };
@@ -105,7 +110,7 @@ void registerThermalFieldNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "ThermalField";
-    d.version = 2;  // each version's change: CHANGES.md, "Node versions"
+    d.version = 3;  // each version's change: CHANGES.md, "Node versions"
     d.category = "atmosphere";
     d.doc =
         "Ours, in place of the paper's single 1/f^beta map for a cumulus field: thermals whose "
@@ -125,6 +130,10 @@ void registerThermalFieldNode(Registry& registry)
         port("starts", "Map2D",
              "each thermal's own uniform draw in [0, 1) over its disk, 0 elsewhere: wired to "
              "the VapourEmitter's startDelay, thermals start one by one over startDelayMax"),
+        port("scale", "Map2D",
+             "ours: min(1, l / fullScaleCloud) of the nearest thermal (its own over its disk): "
+             "wired to the PrimitiveMapper's map, a thermal smaller than one copy makes a "
+             "smaller copy (Eq. 16's R = R0 fNoise), so the clouds keep the thermals' sizes"),
         port("summary", "Text", "how many thermals, their size range, how many found no room")};
     d.params = {
         intParam("width", 400, "cells", "cells along x", 1, 65536),
@@ -143,9 +152,16 @@ void registerThermalFieldNode(Registry& registry)
                    0.0),
         floatParam("gap", 0.25, "", "neighbours keep this times the larger disk radius apart", 0.0,
                    4.0),
+        floatParam("fullScaleCloud", 300.0, "m",
+                   "ours: the scale output is l / fullScaleCloud below it, 1 above: about the "
+                   "footprint of one copy of the primitive at the mapper's scaleCoefficient "
+                   "(300 m: the default primitive at 1.5)",
+                   1.0, 1e6),
         intParam("seed", 0, "", "keys every size and position draw", 0)};
     d.validate = [](const ParamSet& p, const ParamChecker& check) {
-        check.checkAllocation("width", {p.getInt("width"), p.getInt("height")}, 2 * sizeof(float));
+        // Three maps, and the scale map's owners and queue.
+        check.checkAllocation("width", {p.getInt("width"), p.getInt("height")},
+                              3 * sizeof(float) + sizeof(std::int32_t) + sizeof(std::size_t));
         try {
             algo::checkThermalField(settingsFrom(p));
         } catch (const algo::ThermalFieldError& e) {

@@ -186,4 +186,32 @@ TEST(ThermalField, EachThermalHasOneStartOverItsDiskAndTheGroundBetweenNone)
     EXPECT_EQ(thermalStartMap(s, placeThermals(s)), starts);
 }
 
+TEST(ThermalField, EachCellTakesTheCopyScaleOfItsNearestThermal)
+{
+    // A 1000 x 100 m map of 10 m cells: a thermal of 150 m (half the full scale of 300 m;
+    // disk radius 100 m) at x 100 m and one of 600 m (full scale; radius 400 m) at x 700 m.
+    ThermalFieldSettings s;
+    s.nx = 100;
+    s.ny = 10;
+    s.cellSize = 10.0;
+    s.fullScaleCloud = 300.0;
+    ThermalField field;
+    field.thermals = {{700.0, 50.0, 600.0}, {100.0, 50.0, 150.0}};
+    const std::vector<float> scale = thermalScaleMap(s, field);
+    ASSERT_EQ(scale.size(), 1000u);
+    const auto at = [&](double x, double y) {
+        return scale[static_cast<std::size_t>(y / 10.0) * 100 + static_cast<std::size_t>(x / 10.0)];
+    };
+    EXPECT_EQ(at(105, 55), 0.5f);  // on the small disk
+    EXPECT_EQ(at(5, 5), 0.5f);     // off every disk, nearest the small one
+    EXPECT_EQ(at(215, 55), 0.5f);  // between the disks, nearer the small one's edge
+    EXPECT_EQ(at(285, 55), 1.0f);  // nearer the large one's
+    EXPECT_EQ(at(705, 55), 1.0f);  // on the large disk
+    for (const float v : scale) EXPECT_TRUE(v == 0.5f || v == 1.0f);
+    // No thermals: every copy at full scale.
+    EXPECT_EQ(thermalScaleMap(s, ThermalField{}), std::vector<float>(1000, 1.0f));
+    s.fullScaleCloud = 0.0;
+    EXPECT_THROW(checkThermalField(s), ThermalFieldError);
+}
+
 }  // namespace cg::algo

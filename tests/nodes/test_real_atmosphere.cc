@@ -304,7 +304,7 @@ TEST_F(RealAtmosphere, LinearShearTiltsTheTowerByTheExpectedAngle)
     EXPECT_NEAR(measured, expected, 0.2 * expected);
 }
 
-TEST_F(RealAtmosphere, StormFrameSubtractsTheMeanWindOfTheLowestSixKilometres)
+TEST_F(RealAtmosphere, StormFrameSubtractsTheMeanWindBelowItsSteeringDepth)
 {
     // Under u = s z the 0-6 km mean wind is s 3000 m: in the storm's frame every particle ends
     // s 3000 t further west than in the ground's, at the same height, whatever its path.
@@ -327,13 +327,20 @@ TEST_F(RealAtmosphere, StormFrameSubtractsTheMeanWindOfTheLowestSixKilometres)
         [&](int, const CondensationData& c) { storm = c.particles; });
     ASSERT_EQ(ground->size(), storm->size());
     EXPECT_EQ(storm->z, ground->z);
-    const double shift = shear * 3000.0 * frames * timeStep;  // 240 m
-    for (std::size_t i = 0; i < storm->size(); ++i) {
-        const float x = ground->xs()[i];
-        const double ulps = 2.0 * frames * (static_cast<double>(std::nextafter(x, 1e9f)) - x);
-        ASSERT_NEAR(storm->xs()[i] - x, -shift, ulps) << "particle " << i;
-        ASSERT_EQ(storm->ys()[i], ground->ys()[i]) << "particle " << i;
-    }
+    const auto expectShift = [&](const VapourParticlesData& moved, double shift) {
+        for (std::size_t i = 0; i < moved.size(); ++i) {
+            const float x = ground->xs()[i];
+            const double ulps = 2.0 * frames * (static_cast<double>(std::nextafter(x, 1e9f)) - x);
+            ASSERT_NEAR(moved.xs()[i] - x, -shift, ulps) << "particle " << i;
+            ASSERT_EQ(moved.ys()[i], ground->ys()[i]) << "particle " << i;
+        }
+    };
+    expectShift(*storm, shear * 3000.0 * frames * timeStep);  // 240 m
+    // A cumulus field's frame: the 0-2.5 km mean, s 1250 m.
+    atmosphere["steeringDepth"] = 2500.0;
+    run(pipeline(frames, timeStep, atmosphere, emitter, thermal),
+        [&](int, const CondensationData& c) { storm = c.particles; });
+    expectShift(*storm, shear * 1250.0 * frames * timeStep);
 }
 
 TEST_F(RealAtmosphere, EmissionDurationReleasesEachParticleAtItsOwnTime)
