@@ -16,10 +16,12 @@
 #include <nlohmann/json.hpp>
 
 #include "algo/render/image/Display.h"
+#include "cli/LastCloudFrame.h"
 #include "cli/PreviewPicture.h"
 #include "core/Error.h"
 #include "core/NodeDeclJson.h"
 #include "formats/PngFile.h"
+#include "nodes/data/CloudParticles.h"
 #include "nodes/render/ImageFile.h"
 
 namespace cg::cli {
@@ -165,6 +167,7 @@ GraphServer::GraphServer(const Registry& registry, ServeOptions options)
     mRoutes["/api/progress"] = {{"GET", &GraphServer::getProgress}};
     mRoutes["/api/cancel"] = {{"POST", &GraphServer::postCancel}};
     mRoutes["/api/preview"] = {{"GET", &GraphServer::getPreview}};
+    mRoutes["/api/lastcloud"] = {{"GET", &GraphServer::getLastCloud}};
     mRoutes["/api/save"] = {{"POST", &GraphServer::postSave}};
 }
 
@@ -455,6 +458,46 @@ Response GraphServer::getPreview(const Request& req)
     res.body = it->second;
     res.headers.emplace_back("Cache-Control", "no-store");
     return res;
+}
+
+// The last frame at which the cloud `node` shows has particles (cli/LastCloudFrame.h), for
+// the page to open on: {"frame": N}, or null when nothing upstream makes cloud particles or
+// none has any. The samples are cooked as the page's cooks are (progress, cancel, cache).
+Response GraphServer::getLastCloud(const Request& req)
+{
+    const auto it = req.query.find("node");
+    if (it == req.query.end()) return errorReply(400, "'node' is missing");
+    Graph graph;
+    try {
+        std::lock_guard<std::mutex> lock(mDocMutex);
+        graph = mDoc->completeGraph();
+    } catch (const InputError& e) {
+        return errorReply(400, e.what());
+    }
+    if (!graph.find(it->second)) return errorReply(400, "no node '" + it->second + "'");
+    const auto source = cloudSourceOf(graph, it->second);
+    if (!source) return jsonReply(200, {{"frame", nullptr}});
+    const auto particlesAt = [&](int frame) -> std::size_t {
+        const DataPtr value = mDoc->cook(graph, source->first, source->second, frame,
+                                         mOptions.cacheDir, mOptions.outDir);
+        const auto cloud = std::dynamic_pointer_cast<const CloudParticlesData>(value);
+        return cloud ? cloud->size() : 0;
+    };
+    std::optional<int> frame;
+    try {
+        frame = lastFrameWithParticles(particlesAt, graph.frames.start, graph.frames.end,
+                                       std::max(1, (graph.frames.end - graph.frames.start) / 16));
+    } catch (const InputError& e) {
+        return errorReply(400, e.what());
+    } catch (const CookError& e) {
+        return errorReply(e.inputFault() ? 400 : 500, e.what());
+    } catch (const Cancelled&) {
+        return errorReply(409, "cancelled; nothing partial was cached");
+    } catch (const CookInProgress& e) {
+        return errorReply(409, e.what());
+    }
+    return jsonReply(200, {{"frame", frame ? nlohmann::json(*frame) : nlohmann::json(nullptr)},
+                           {"node", source->first}});
 }
 
 // Writes the edited graph back to its file, atomically; refuses (409) to replace a file that

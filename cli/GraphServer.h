@@ -70,6 +70,7 @@ private:
     http::Response getProgress(const http::Request& req);
     http::Response postCancel(const http::Request& req);
     http::Response getPreview(const http::Request& req);
+    http::Response getLastCloud(const http::Request& req);
     http::Response postSave(const http::Request& req);
 
     /// Until stop(): reloads the graph when its file changes on disk (a text editor's save),

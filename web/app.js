@@ -300,13 +300,13 @@ async function cook() {
   $("cancel").disabled = false;
   const [node, port] = choice.split(".");
   state.groups[node]?.classList.add("cooking");
-  setStatus(`cooking ${node} at frame ${$("frame").value}…`);
+  const frame = Number($("frame").value);
+  setStatus(`cooking ${node} at frame ${frame}…`);
   const watching = watchProgress(node);
   try {
-    const reply = await api("/api/cook",
-                            { node, port, frame: Number($("frame").value), write: $("write").checked });
+    const reply = await api("/api/cook", { node, port, frame, write: $("write").checked });
     showReport(reply.report, reply.seconds);
-    if (reply.preview) $("preview").src = `${reply.preview}&t=${Date.now()}`;
+    if (reply.preview) $("preview").src = await keepPreview(frame, reply.preview);
     const type = previewOutputs().find((o) => `${o.id}.${o.port}` === choice)?.type;
     $("preview").classList.toggle("cells", type === "Map2D");  // a map's cells stay square
   } catch (e) {
@@ -323,16 +323,8 @@ async function cook() {
     state.again = false;
     cook();
   } else if (state.playing) {
-    nextFrame();
+    playStep();
   }
-}
-
-function nextFrame() {
-  const slider = $("frame");
-  const next = Number(slider.value) + 1;
-  slider.value = next > Number(slider.max) ? slider.min : next;
-  $("frame-value").textContent = slider.value;
-  cook();
 }
 
 // Reads the server's graph and redraws, keeping the frame, the preview choice and the
@@ -413,6 +405,17 @@ $("cancel").addEventListener("click", () => api("/api/cancel", {}).catch(() => {
 $("play").addEventListener("click", () => {
   state.playing = !state.playing;
   $("play").textContent = state.playing ? "Pause" : "Play";
-  if (state.playing && !state.cooking) nextFrame();
+  if (state.playing && !state.cooking) playStep();
 });
-reload().then(() => { cook(); poll(); }).catch((e) => setStatus(e.message, true));
+reload()
+  .then(openingFrame)
+  .then((frame) => {
+    const slider = $("frame");
+    if (frame !== null && frame >= Number(slider.min) && frame <= Number(slider.max)) {
+      slider.value = frame;
+      $("frame-value").textContent = slider.value;
+    }
+    cook();
+    poll();
+  })
+  .catch((e) => setStatus(e.message, true));

@@ -130,8 +130,16 @@ def main():
         line = server.stdout.readline()
         url = line.split(" at ")[1].split(" ")[0]
         browser = Browser(args.chromium, args.chromedriver, os.path.join(args.work, "profile"))
+        # Opened plainly, the page finds the last frame with a cloud (the end, 160, for this
+        # graph, whose cloud only grows) and cooks it.
         browser.open(url)
         wait_for_cook(browser, 0, "the first cook")
+        opened = browser.run("return document.getElementById('frame').value;")
+        assert opened == "160", f"the page opened on frame {opened}, not the last with a cloud"
+        # The rest starts from frame 0, as the address asks.
+        browser.open(url + ("&" if "?" in url else "?") + "frame=0")
+        wait_for_cook(browser, 0, "the cook at frame 0")
+        assert browser.run("return document.getElementById('frame').value;") == "0"
 
         # A long cook shows its progress while it runs: the path tracer, on a frame with a
         # cloud (every node upstream cooks once), then the fast mode again.
@@ -273,6 +281,27 @@ def main():
         assert "unsaved edits were replaced" in notice, notice
         browser.wait_for("""const i = document.querySelector('#params [data-param="fov"]');
                             return i && i.value === '40';""", timeout=30)
+        # Play shows frames already cooked from the browser's own store, at the fps asked,
+        # and cooks only the first it has not seen.
+        for f in (41, 42):
+            cooks = browser.run(COOKS)
+            browser.run(f"""const s = document.getElementById('frame'); s.value = {f};
+                            s.dispatchEvent(new Event('change'));""")
+            wait_for_cook(browser, cooks, f"frame {f}")
+        browser.run("""const s = document.getElementById('frame'); s.value = 40;
+                       document.getElementById('fps').value = 10;""")
+        cooks = browser.run(COOKS)
+        browser.run("document.getElementById('play').click();")
+        # Frame 43, the first not kept, is cooked (Play goes on cooking 44, 45, ... until
+        # paused, so the page is not idle in between).
+        browser.wait_for(f"return {COOKS[7:-1]} > {cooks};", timeout=300)
+        browser.run("document.getElementById('play').click();")
+        browser.wait_for("return document.body.dataset.cooking === undefined;", timeout=300)
+        kept = browser.run("return Number(document.body.dataset.keptShown || 0);")
+        assert kept == 2, f"{kept} kept frames shown: frames 41 and 42 should not be cooked"
+        assert browser.run(COOKS) >= cooks + 1
+        print("the page opened on the last frame with a cloud, played kept frames without"
+              " cooking them,")
         print("the page loaded, recooked only the Renderer and its writers after the sun edit,"
               " edited fov by its slider and the sun's colour by its picker, undid and redid"
               " them,"

@@ -402,6 +402,23 @@ TEST_F(ServePreviewTest, ShowsParticlesAsPoints)
     EXPECT_LT(lit, points.rgb.size() / 3 / 2);  // points, not a wash
 }
 
+// Where the page opens: the last frame with cloud particles upstream of the preview; this
+// graph's cloud is a synthetic volume, with no particles, so the page stays where it is.
+TEST_F(ServeTest, TheLastCloudFrameIsNullWithoutCloudParticlesAndANodeIsRequired)
+{
+    const auto res = client().Get("/api/lastcloud?node=render");
+    ASSERT_TRUE(res);
+    ASSERT_EQ(res->status, 200) << res->body;
+    EXPECT_TRUE(json::parse(res->body)["frame"].is_null());
+    const auto missing = client().Get("/api/lastcloud");
+    ASSERT_TRUE(missing);
+    EXPECT_EQ(missing->status, 400);
+    const auto unknown = client().Get("/api/lastcloud?node=nothing");
+    ASSERT_TRUE(unknown);
+    EXPECT_EQ(unknown->status, 400);
+    EXPECT_NE(unknown->body.find("nothing"), std::string::npos);
+}
+
 TEST_F(ServeTest, StopsOnSigterm)
 {
     server->kill(SIGTERM);
