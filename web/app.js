@@ -371,6 +371,7 @@ async function poll() {
     const reply = await api("/api/version");
     if (reply.version !== state.version && !state.cooking && !state.editing) {
       await reload();
+      forgetEdits();
       fileChanged($("file").textContent, reply.fileError);
       cook();
     }

@@ -31,6 +31,14 @@ async function replayEdit(from, to, side) {
   cook();
 }
 
+// The graph was replaced from its file (changed on disk): the recorded edits refer to a graph
+// that is gone, so none can be undone or redone.
+function forgetEdits() {
+  edits.done.length = 0;
+  edits.undone.length = 0;
+  showUndoButtons();
+}
+
 const undoEdit = () => replayEdit(edits.done, edits.undone, "before");
 const redoEdit = () => replayEdit(edits.undone, edits.done, "after");
 

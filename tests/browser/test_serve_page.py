@@ -234,6 +234,9 @@ def main():
         os.replace(graph_file + ".new", graph_file)
         browser.wait_for("""const i = document.querySelector('#params [data-param="fov"]');
                             return i && i.value === '33';""", timeout=30)
+        # Its edits refer to a graph that is gone: nothing to undo.
+        assert browser.run("return document.getElementById('undo').disabled;"), \
+            "undo stayed enabled after the file was reloaded"
         # Wiring by dragging in the network: the Renderer's input picked up and dropped on
         # nothing disconnects it; dragged from the Voxelizer's output onto it, it connects.
         render_input = 'circle[data-node="render"][data-input="volume"]'
