@@ -8,6 +8,7 @@ screenshot of the page."""
 
 import argparse
 import json
+import math
 import os
 import re
 import shutil
@@ -37,6 +38,17 @@ to.dispatchEvent(new PointerEvent('pointermove', {bubbles: true}));
 to.dispatchEvent(new PointerEvent('pointerup', {bubbles: true}));"""
 WIRE = "return !!document.querySelector('[data-wire=\"voxelize.volume->render.volume\"]');"
 COOKS = "return Number(document.body.dataset.cooks || 0);"
+# A left-button drag across the preview from x = arguments[0] to arguments[1] (px), 30 px
+# from its top.
+POINTER_DRAG = """const img = document.getElementById('preview');
+const r = img.getBoundingClientRect();
+const at = (type, x) => img.dispatchEvent(new PointerEvent(type, {bubbles: true, button: 0,
+    pointerId: 1, clientX: r.left + x, clientY: r.top + 30}));
+at('pointerdown', arguments[0]); at('pointermove', arguments[1]); at('pointerup', arguments[1]);"""
+# arguments[0] wheel notches away from the scene on the preview.
+WHEEL = """const img = document.getElementById('preview');
+for (let i = 0; i < arguments[0]; ++i)
+  img.dispatchEvent(new WheelEvent('wheel', {bubbles: true, cancelable: true, deltaY: 100}));"""
 STATUS = "return document.getElementById('status').textContent;"
 REPORT = """return [...document.querySelectorAll('#report tbody tr')]
                 .map(r => [r.dataset.node, r.dataset.status]);"""
@@ -211,6 +223,33 @@ def main():
             wait_for_cook(browser, cooks, button)
             assert browser.run(PARAM, "fov") == expected_fov, (button, browser.run(PARAM, "fov"))
             assert browser.run(PARAM, "sunColour") == expected_colour, button
+        # Orbit: a drag of 40 px to the right on the preview turns the camera 16 degrees
+        # clockwise seen from above about the look-at point, at the same distance and
+        # height; two wheel notches away move it 1.1^2 as far; Undo takes the dolly back.
+        def camera():
+            return json.loads(browser.run(PARAM, "cameraPosition"))
+        look_at = [3200, 3200, 4000]
+        start = camera()
+        cooks = browser.run(COOKS)
+        browser.run(POINTER_DRAG, 50, 90)
+        wait_for_cook(browser, cooks, "the orbit")
+        turned = camera()
+        rel0 = [a - b for a, b in zip(start, look_at)]
+        rel1 = [a - b for a, b in zip(turned, look_at)]
+        turn = math.degrees(math.atan2(rel1[1], rel1[0]) - math.atan2(rel0[1], rel0[0]))
+        assert abs(turn + 16) < 0.05, f"turned {turn} degrees, not -16"
+        assert abs(math.dist(turned, look_at) - math.dist(start, look_at)) < 0.2
+        assert abs(rel1[2] - rel0[2]) < 0.1, (start, turned)
+        cooks = browser.run(COOKS)
+        browser.run(WHEEL, 2)
+        wait_for_cook(browser, cooks, "the dolly")
+        dollied = camera()
+        assert abs(math.dist(dollied, look_at) / math.dist(turned, look_at) - 1.21) < 1e-3, \
+            (turned, dollied)
+        cooks = browser.run(COOKS)
+        browser.run("document.getElementById('undo').click();")
+        wait_for_cook(browser, cooks, "undo of the dolly")
+        assert camera() == turned, (camera(), turned)
         if args.screenshot:
             browser.screenshot(args.screenshot)
 
@@ -304,7 +343,7 @@ def main():
         assert kept == 2, f"{kept} kept frames shown: frames 41 and 42 should not be cooked"
         assert browser.run(COOKS) >= cooks + 1
         print("the page opened on the last frame with a cloud, played kept frames without"
-              " cooking them,")
+              " cooking them, orbited and dollied the camera,")
         print("the page loaded, recooked only the Renderer and its writers after the sun edit,"
               " edited fov by its slider and the sun's colour by its picker, undid and redid"
               " them,"
