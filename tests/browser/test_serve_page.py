@@ -250,6 +250,22 @@ def main():
         browser.run("document.getElementById('undo').click();")
         wait_for_cook(browser, cooks, "undo of the dolly")
         assert camera() == turned, (camera(), turned)
+        # A keyed camera: the drag moves the key at the slider's frame (150).
+        key = [150, 3200, -6500, 2000, 3200, 3200, 4000, 45]
+        browser.run("sendParam('render', 'cameraKeys', arguments[0]);", key)
+        browser.wait_for("return (state.graph.nodes.render.params.cameraKeys || []).length === 8;",
+                         timeout=30)
+        cooks = browser.run(COOKS)
+        browser.run(POINTER_DRAG, 50, 90)
+        wait_for_cook(browser, cooks, "the orbit of a key")
+        moved = json.loads(browser.run(PARAM, "cameraKeys"))
+        assert moved[0] == 150 and moved[4:] == key[4:], moved
+        rel = [a - b for a, b in zip(moved[1:4], look_at)]
+        turn = math.degrees(math.atan2(rel[1], rel[0]) - math.atan2(key[2] - 3200, key[1] - 3200))
+        assert abs(turn + 16) < 0.05, f"the key turned {turn} degrees, not -16"
+        browser.run("sendParam('render', 'cameraKeys', []);")
+        browser.wait_for("return state.graph.nodes.render.params.cameraKeys.length === 0;",
+                         timeout=30)
         if args.screenshot:
             browser.screenshot(args.screenshot)
 
