@@ -7,6 +7,7 @@
 #include <climits>
 #include <exception>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <random>
 #include <sstream>
@@ -127,6 +128,24 @@ std::vector<std::string> writersBelow(const Graph& graph, const std::string& nod
             writers.push_back(graph.nodes()[i].id);
     }
     return writers;
+}
+
+/// Runs `cook`, turning what a cook throws into the page's reply (400 bad input, 409 cancelled
+/// or another cook under way, 500 a failed cook); nullopt when it succeeded.
+std::optional<Response> cookFailure(const std::function<void()>& cook)
+{
+    try {
+        cook();
+    } catch (const InputError& e) {
+        return errorReply(400, e.what());
+    } catch (const CookError& e) {
+        return errorReply(e.inputFault() ? 400 : 500, e.what());
+    } catch (const Cancelled&) {
+        return errorReply(409, "cancelled; nothing partial was cached");
+    } catch (const CookInProgress& e) {
+        return errorReply(409, e.what());
+    }
+    return std::nullopt;
 }
 
 /// How the page shows `node`'s image output `port`: as the WriteImage it feeds writes its PNG
@@ -396,19 +415,12 @@ Response GraphServer::postCook(const Request& req)
     const int f = frameField(body, graph.frames);
     const auto started = std::chrono::steady_clock::now();
     DataPtr value;
-    try {
-        const bool writes = write && graph.find(node);
-        value = mDoc->cook(graph, node, port, f, mOptions.cacheDir, mOptions.outDir,
-                           writes ? writersBelow(graph, node) : std::vector<std::string>{});
-    } catch (const InputError& e) {
-        return errorReply(400, e.what());
-    } catch (const CookError& e) {
-        return errorReply(e.inputFault() ? 400 : 500, e.what());
-    } catch (const Cancelled&) {
-        return errorReply(409, "cancelled; nothing partial was cached");
-    } catch (const CookInProgress& e) {
-        return errorReply(409, e.what());
-    }
+    if (auto failed = cookFailure([&] {
+            const bool writes = write && graph.find(node);
+            value = mDoc->cook(graph, node, port, f, mOptions.cacheDir, mOptions.outDir,
+                               writes ? writersBelow(graph, node) : std::vector<std::string>{});
+        }))
+        return *failed;
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     nlohmann::json reply = {{"report", nlohmann::json::parse(mDoc->lastReport())},
@@ -484,18 +496,12 @@ Response GraphServer::getLastCloud(const Request& req)
         return cloud ? cloud->size() : 0;
     };
     std::optional<int> frame;
-    try {
-        frame = lastFrameWithParticles(particlesAt, graph.frames.start, graph.frames.end,
+    if (auto failed = cookFailure([&] {
+            frame =
+                lastFrameWithParticles(particlesAt, graph.frames.start, graph.frames.end,
                                        std::max(1, (graph.frames.end - graph.frames.start) / 16));
-    } catch (const InputError& e) {
-        return errorReply(400, e.what());
-    } catch (const CookError& e) {
-        return errorReply(e.inputFault() ? 400 : 500, e.what());
-    } catch (const Cancelled&) {
-        return errorReply(409, "cancelled; nothing partial was cached");
-    } catch (const CookInProgress& e) {
-        return errorReply(409, e.what());
-    }
+        }))
+        return *failed;
     return jsonReply(200, {{"frame", frame ? nlohmann::json(*frame) : nlohmann::json(nullptr)},
                            {"node", source->first}});
 }
