@@ -397,6 +397,19 @@ Response GraphServer::postParam(const Request& req)
     return edit([&](GraphDocument& doc) { doc.setParam(node, param, body.at("value")); });
 }
 
+// The document's complete graph, copied so that edits may go on while it cooks; or the 400
+// reply saying what it lacks.
+std::optional<Response> GraphServer::copyCompleteGraph(Graph& graph)
+{
+    try {
+        std::lock_guard<std::mutex> lock(mDocMutex);
+        graph = mDoc->completeGraph();
+    } catch (const InputError& e) {
+        return errorReply(400, e.what());
+    }
+    return std::nullopt;
+}
+
 // Cooks one output at a frame, with what it needs that the last cooks did not make.
 Response GraphServer::postCook(const Request& req)
 {
@@ -406,12 +419,7 @@ Response GraphServer::postCook(const Request& req)
     // With "write": true the writers below the node write this frame's files too.
     const bool write = boolField(body, "write", false);
     Graph graph;
-    try {
-        std::lock_guard<std::mutex> lock(mDocMutex);
-        graph = mDoc->completeGraph();
-    } catch (const InputError& e) {
-        return errorReply(400, e.what());
-    }
+    if (auto refused = copyCompleteGraph(graph)) return *refused;
     const int f = frameField(body, graph.frames);
     const auto started = std::chrono::steady_clock::now();
     DataPtr value;
@@ -480,12 +488,7 @@ Response GraphServer::getLastCloud(const Request& req)
     const auto it = req.query.find("node");
     if (it == req.query.end()) return errorReply(400, "'node' is missing");
     Graph graph;
-    try {
-        std::lock_guard<std::mutex> lock(mDocMutex);
-        graph = mDoc->completeGraph();
-    } catch (const InputError& e) {
-        return errorReply(400, e.what());
-    }
+    if (auto refused = copyCompleteGraph(graph)) return *refused;
     if (!graph.find(it->second)) return errorReply(400, "no node '" + it->second + "'");
     const auto source = cloudSourceOf(graph, it->second);
     if (!source) return jsonReply(200, {{"frame", nullptr}});

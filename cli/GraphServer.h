@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,7 @@ private:
     http::Response postCancel(const http::Request& req);
     http::Response getPreview(const http::Request& req);
     http::Response getLastCloud(const http::Request& req);
+    std::optional<http::Response> copyCompleteGraph(Graph& graph);
     http::Response postSave(const http::Request& req);
 
     /// Until stop(): reloads the graph when its file changes on disk (a text editor's save),
