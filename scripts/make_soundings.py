@@ -71,11 +71,15 @@ def csv(comment, rows):
     return "\n".join(lines) + "\n"
 
 
+# Fair weather: a moist mixed layer under a subsidence inversion (9.2 C at 2.0 km, 11.0 C at
+# 2.5 km) and a free troposphere above it that is stable for a parcel lifted from the cloud
+# base (its saturated equivalent potential temperature, 336-340 K, above the parcel's 333 K at
+# every level), so the thermals stop at the inversion.
 FAIR = levels(180, 990.0, [
     (180, 24.0, 16.0, 200, 6), (530, 20.4, 14.8, 210, 8), (758, 18.2, 14.0, 215, 10),
     (992, 16.0, 13.2, 220, 12), (1475, 12.6, 10.6, 230, 14), (1980, 9.2, 3.2, 240, 16),
-    (2510, 8.6, -9.4, 245, 18), (3070, 4.6, -12.4, 250, 20), (5760, -12.9, -29.9, 260, 28),
-    (9420, -40.1, None, 270, 40), (11950, -56.3, None, 270, 45)])
+    (2510, 11.0, -9.4, 245, 18), (3070, 8.0, -12.4, 250, 20), (5760, -8.0, -29.9, 260, 28),
+    (9420, -36.0, None, 270, 40), (11950, -53.0, None, 270, 45)])
 
 # Deep convection: a moist boundary layer (30 C over 22 C: LCL ~1 km above the ground), a
 # conditionally unstable troposphere (~6.8 C/km), the tropopause at 11.5 km; the wind veers and
