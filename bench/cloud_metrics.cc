@@ -158,9 +158,9 @@ void reportTurnover(const std::vector<cg::algo::CoverFrame>& frames, double voxe
     const auto t = cg::algo::trackTurnover(frames, kMaxDriftColumns, kMinCloudColumns);
     std::printf("tracked over %zu files:\n", frames.size());
     for (std::size_t k = 0; k < t.drifts.size(); ++k)
-        std::printf("  drift %zu->%zu                  (%.0f, %.0f) m, %zu cloud columns coincide\n",
-                    k, k + 1, t.drifts[k].dx * voxel, t.drifts[k].dy * voxel,
-                    t.drifts[k].overlap);
+        std::printf(
+            "  drift %zu->%zu                  (%.0f, %.0f) m, %zu cloud columns coincide\n", k,
+            k + 1, t.drifts[k].dx * voxel, t.drifts[k].dy * voxel, t.drifts[k].overlap);
     std::printf("  gone                        %zu of the first file's %zu clouds (%.0f%%)\n",
                 t.gone, t.firstClouds,
                 100.0 * static_cast<double>(t.gone) / static_cast<double>(t.firstClouds));

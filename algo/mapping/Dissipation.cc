@@ -76,6 +76,7 @@ PrimitiveExtent primitiveExtent(const PrimitiveView& p)
 std::vector<float> cloudDecay(const SourceTable& table, int frame, const PrimitiveLibrary& lib,
                               const MappingSettings& s, const DissipationSettings& d)
 {
+    checkDissipation(d);
     std::vector<float> decay(table.sources.size(), 0.0f);
     std::vector<std::uint32_t> root(table.sources.size());
     // Parents precede children: a child's cloud is its parent's.

@@ -37,7 +37,8 @@ struct PrimitiveExtent {
 };
 PrimitiveExtent primitiveExtent(const PrimitiveView& p);
 
-/// Per source, the decay fraction f in [0, 1] of the cloud it belongs to at frame t.
+/// Per source, the decay fraction f in [0, 1] of the cloud it belongs to at frame t. Throws
+/// as checkDissipation does for unusable settings.
 std::vector<float> cloudDecay(const SourceTable& table, int frame, const PrimitiveLibrary& lib,
                               const MappingSettings& s, const DissipationSettings& d);
 

@@ -149,6 +149,10 @@ TEST(Dissipation, BadSettingsAreRefusedNamingThem)
     DissipationSettings d;
     d.hold = -1.0;
     EXPECT_NE(refusal(d).find("hold"), std::string::npos);
+    EXPECT_THROW(
+        cloudDecay(SourceTable{}, 0, PrimitiveLibrary(PrimitiveView{}), MappingSettings{}, d),
+        std::invalid_argument)
+        << "the decay checks its settings";
     d.hold = 0.0;
     d.decayTime = NAN;
     EXPECT_NE(refusal(d).find("decayTime"), std::string::npos);
