@@ -43,8 +43,6 @@ double extinctionOf(const openvdb::FloatGrid& grid, double fallback)
     return fallback;
 }
 
-using cg::algo::Regions;
-
 /// "a,b,c" as numbers.
 std::vector<double> parseList(const std::string& text)
 {
@@ -100,21 +98,10 @@ void reportField(const cg::algo::CoverFrame& cover, double voxel, const Options&
         for (const auto& b : fit.bins)
             std::printf("    l %6.0f-%6.0f m  %5zu clouds  n %.3g /m\n", b.lo, b.hi, b.count,
                         b.density);
-    if (o.domain.size() == 4) {
-        std::size_t inside = 0;
-        const Regions& r = cover.regions;
-        for (int j = 0; j < r.height; ++j)
-            for (int i = 0; i < r.width; ++i) {
-                const double x = (cover.x0 + i) * voxel, y = (cover.y0 + j) * voxel;
-                inside += r.at(i, j) >= 0 && x >= o.domain[0] && x < o.domain[2] &&
-                                  y >= o.domain[1] && y < o.domain[3]
-                              ? 1
-                              : 0;
-            }
-        const double area = (o.domain[2] - o.domain[0]) * (o.domain[3] - o.domain[1]);
+    if (o.domain.size() == 4)
         std::printf("  cover                       %.1f%% of the domain\n",
-                    100.0 * static_cast<double>(inside) * voxel * voxel / area);
-    }
+                    100.0 * cg::algo::coverShare(cover, voxel, o.domain[0], o.domain[1],
+                                                 o.domain[2], o.domain[3]));
 }
 
 cg::algo::CoverFrame report(const std::string& path, const Options& o, double& voxel)

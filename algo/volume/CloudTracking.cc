@@ -81,6 +81,19 @@ CoverFrame coverOf(const TopView& top)
     return {top.x0, top.y0, labelRegions(m)};
 }
 
+double coverShare(const CoverFrame& f, double voxel, double x0, double y0, double x1, double y1)
+{
+    if (!(x1 > x0) || !(y1 > y0)) return 0.0;
+    std::size_t inside = 0;
+    for (int j = 0; j < f.regions.height; ++j)
+        for (int i = 0; i < f.regions.width; ++i) {
+            if (f.regions.at(i, j) < 0) continue;
+            const double x = (f.x0 + i + 0.5) * voxel, y = (f.y0 + j + 0.5) * voxel;
+            inside += x >= x0 && y >= y0 && x < x1 && y < y1 ? 1 : 0;
+        }
+    return static_cast<double>(inside) * voxel * voxel / ((x1 - x0) * (y1 - y0));
+}
+
 Drift estimateDrift(const CoverFrame& from, const CoverFrame& to, int maxShift)
 {
     const Drift coarse = bestShift(from, to, 0, 0, maxShift, kCoarseStride);

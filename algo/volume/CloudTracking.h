@@ -25,6 +25,10 @@ struct CoverFrame {
 /// The clouds of a view from above: columns of optical depth >= 1.
 CoverFrame coverOf(const TopView& top);
 
+/// The share of the rectangle [x0, x1) x [y0, y1) (metres) whose columns are cloud, a column
+/// counting where its centre lies (voxel: the grid's voxel size). 0 for an empty rectangle.
+double coverShare(const CoverFrame& f, double voxel, double x0, double y0, double x1, double y1);
+
 /// A shift of whole columns, and the number of cloud columns that coincide under it.
 struct Drift {
     int dx = 0, dy = 0;

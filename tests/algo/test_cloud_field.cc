@@ -142,7 +142,7 @@ TEST(CloudTracking, ACloudTooSmallToCountStillCarriesItsLineage)
     EXPECT_EQ(t.born, 0u);
 }
 
-TEST(CloudTracking, CoverOfAGridLabelsColumnsOfOpticalDepthAtLeastOne)
+TEST(CloudTracking, CoverOfAGridLabelsColumnsOfOpticalDepthAtLeastOneAndMeasuresTheirShare)
 {
     auto grid = openvdb::FloatGrid::create(0.0f);
     grid->setTransform(openvdb::math::Transform::createLinearTransform(10.0));
@@ -158,6 +158,12 @@ TEST(CloudTracking, CoverOfAGridLabelsColumnsOfOpticalDepthAtLeastOne)
     EXPECT_EQ(f.regions.area[0], 25.0);
     EXPECT_EQ(f.regions.area[1], 4.0);
     EXPECT_EQ(f.regions.at(20 - 5, 5 - 5), -1);
+    // Cover by column centres: the first cloud fills [50, 100)^2 m; both are 29 columns of
+    // 100 m^2 in the 400 m square, and the 200 m square holds the first one's 25.
+    EXPECT_DOUBLE_EQ(coverShare(f, 10.0, 50, 50, 100, 100), 1.0);
+    EXPECT_DOUBLE_EQ(coverShare(f, 10.0, 0, 0, 400, 400), 29.0 * 100.0 / 160000.0);
+    EXPECT_DOUBLE_EQ(coverShare(f, 10.0, 0, 0, 200, 200), 25.0 * 100.0 / 40000.0);
+    EXPECT_EQ(coverShare(f, 10.0, 0, 0, 0, 200), 0.0);
 }
 
 }  // namespace cg::algo

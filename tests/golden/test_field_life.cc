@@ -20,22 +20,6 @@
 
 namespace cg::golden {
 
-namespace {
-
-/// The share of the map's columns (x, y in [0, size)) that are cloud.
-double coverOf(const algo::CoverFrame& f, double voxel, double size)
-{
-    std::size_t inside = 0;
-    for (int j = 0; j < f.regions.height; ++j)
-        for (int i = 0; i < f.regions.width; ++i) {
-            const double x = (f.x0 + i + 0.5) * voxel, y = (f.y0 + j + 0.5) * voxel;
-            inside += f.regions.at(i, j) >= 0 && x >= 0 && y >= 0 && x < size && y < size ? 1 : 0;
-        }
-    return static_cast<double>(inside) * voxel * voxel / (size * size);
-}
-
-}  // namespace
-
 TEST(FieldLife, SmallCumulusDayCloudsComeAndGoWhileItsCoverSteadies)
 {
     Registry registry;
@@ -63,7 +47,7 @@ TEST(FieldLife, SmallCumulusDayCloudsComeAndGoWhileItsCoverSteadies)
         const auto extinction = v->grid->getMetadata<openvdb::FloatMetadata>("extinction");
         voxel = v->grid->voxelSize()[0];
         frames.push_back(algo::coverOf(algo::topOpticalDepth(*v->grid, extinction->value())));
-        cover[f] = coverOf(frames.back(), voxel, size);
+        cover[f] = algo::coverShare(frames.back(), voxel, 0, 0, size, size);
     });
     std::filesystem::remove_all(out);
     ASSERT_EQ(frames.size(), static_cast<std::size_t>((last - first) / every + 1));
