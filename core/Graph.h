@@ -2,6 +2,7 @@
 /// A loaded, validated graph: node instances with their parameters and wiring.
 /// Editing goes through setParam(), which validates like loading does.
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -34,6 +35,9 @@ struct GraphNode {
     /// "bypass": true. A writer writes nothing (its file list is empty); any other node passes
     /// its first input through as each of its outputs, which must be of that input's type.
     bool bypass = false;
+    /// "position": [x, y], where the network editor of `serve` draws the node (page pixels,
+    /// integers); absent, the editor lays it out by depth. Kept on save, never cooked.
+    std::optional<std::array<int, 2>> position;
 };
 
 struct FrameRange {

@@ -16,8 +16,10 @@
 //         "params": {"name": value},      optional; unlisted parameters keep their defaults
 //         "inputs": {"port": "up.out"},   optional; input port <- output `out` of node `up`
 //         "comment": "...",               optional string, kept when the graph is saved
-//         "bypass": true                  optional; a writer writes nothing, another node
+//         "bypass": true,                 optional; a writer writes nothing, another node
 //                                         passes its first input through (Graph::checkBypass)
+//         "position": [x, y]              optional; where `serve` draws the node, two integers
+//                                         within +-1000000 (page pixels); not cooked
 //       }
 //     }
 //   }
@@ -36,7 +38,9 @@
 // is cooked.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <system_error>
@@ -58,6 +62,7 @@ constexpr std::int64_t kMaxFrame = 1000000;
 constexpr std::size_t kMaxNodes = 10000;
 constexpr std::size_t kMaxIdLength = 128;
 constexpr double kMaxTimeStep = 86400.0;
+constexpr std::int64_t kMaxPosition = 1000000;
 
 /// Shared by every check of one file: turns a JSON pointer into an error location.
 struct Reader {
@@ -155,6 +160,18 @@ void readHeader(const Json& root, const Reader& r, Graph& graph)
     }
 }
 
+/// A node's "position": two integers within +-kMaxPosition.
+std::array<int, 2> readPosition(const Json& j, const std::string& ptr, const Reader& r)
+{
+    const auto inRange = [](const Json& v) {
+        return v.is_number_integer() && std::llabs(v.get<std::int64_t>()) <= kMaxPosition;
+    };
+    if (!j.is_array() || j.size() != 2 || !inRange(j[0]) || !inRange(j[1]))
+        r.fail(ptr + "/position", "\"position\" must be [x, y], two integers within +-" +
+                                      std::to_string(kMaxPosition) + ", got " + j.dump());
+    return {j[0].get<int>(), j[1].get<int>()};
+}
+
 GraphNode readNode(const std::string& id, const Json& j, const Reader& r, const Registry& registry,
                    const LoadOptions& options)
 {
@@ -164,7 +181,7 @@ GraphNode readNode(const std::string& id, const Json& j, const Reader& r, const 
                "invalid node id '" + printableText(id) +
                    "': ids match [A-Za-z_][A-Za-z0-9_-]* and have at most 128 characters");
     r.object(j, ptr, "a node");
-    r.onlyKeys(j, ptr, {"type", "params", "inputs", "comment", "bypass"});
+    r.onlyKeys(j, ptr, {"type", "params", "inputs", "comment", "bypass", "position"});
 
     auto type = j.find("type");
     if (type == j.end()) r.fail(ptr + "/type", "missing \"type\"");
@@ -187,6 +204,7 @@ GraphNode readNode(const std::string& id, const Json& j, const Reader& r, const 
         if (!b->is_boolean()) r.fail(ptr + "/bypass", "\"bypass\" must be true or false");
         node.bypass = b->get<bool>();
     }
+    if (auto at = j.find("position"); at != j.end()) node.position = readPosition(*at, ptr, r);
     if (auto c = j.find("comment"); c != j.end()) {
         if (!c->is_string()) r.fail(ptr + "/comment", "\"comment\" must be a string");
         node.comment = c->get<std::string>();
@@ -359,6 +377,7 @@ Json graphToJson(const Graph& graph)
         if (!inputs.empty()) n["inputs"] = std::move(inputs);
         if (!node.comment.empty()) n["comment"] = node.comment;
         if (node.bypass) n["bypass"] = true;
+        if (node.position) n["position"] = {(*node.position)[0], (*node.position)[1]};
         nodes[node.id] = std::move(n);
     }
     out["nodes"] = std::move(nodes);

@@ -140,8 +140,8 @@ TEST_F(EvaluatorTest, KeysChangeWithParametersAndIgnoreNodeIds)
     // The same subgraph under other ids has the same key, so it shares cached values.
     Graph other = parse(R"({"cloudgraph": 1, "nodes": {
         "a": {"type": "TestSource", "params": {"value": 1}},
-        "b": {"type": "TestAdd", "inputs": {"values": "a.values"}}}})");
-    EXPECT_EQ(ev.key(other, "b", 0), ev.key(g, "n2", 0));
+        "b": {"type": "TestAdd", "inputs": {"values": "a.values"}, "position": [40, 90]}}})");
+    EXPECT_EQ(ev.key(other, "b", 0), ev.key(g, "n2", 0));  // a position is not cooked
     ev.pull(g, "n2", 0);
     resetCookCounts();
     ev.pull(other, "b", 0);

@@ -2,8 +2,11 @@
 // own key order and spelling are kept, so that saving without an edit changes nothing and
 // an edit changes only its own lines.
 
+#include <algorithm>
 #include <filesystem>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -26,6 +29,27 @@ protected:
     Graph parse(const std::string& text) { return parseGraph(text, "test.json", registry); }
     Registry registry;
 };
+
+/// The lines only in `after` and only in `before` (as multisets, order kept).
+void diffLines(const std::string& before, const std::string& after, std::vector<std::string>& added,
+               std::vector<std::string>& removed)
+{
+    const auto lines = [](const std::string& text) {
+        std::vector<std::string> out;
+        std::istringstream in(text);
+        for (std::string line; std::getline(in, line);) out.push_back(line);
+        return out;
+    };
+    std::vector<std::string> was = lines(before);
+    for (const std::string& line : lines(after)) {
+        const auto it = std::find(was.begin(), was.end(), line);
+        if (it == was.end())
+            added.push_back(line);
+        else
+            was.erase(it);
+    }
+    removed = was;
+}
 
 const char* kGraph = R"({
   "cloudgraph": 1,
@@ -92,6 +116,22 @@ TEST_F(GraphFileTextTest, AnEditChangesOnlyItsOwnValue)
     EXPECT_EQ(saved["nodes"].begin().key(), "render");
     EXPECT_EQ(saved["nodes"]["render"]["params"].begin().key(), "width");
     EXPECT_EQ(saved["nodes"]["render"].begin().key(), "type");
+}
+
+// What `serve` saves after a node was dragged: one new line, the node's position, after
+// its last key (whose closing line gains the comma JSON needs).
+TEST_F(GraphFileTextTest, MovingANodeAddsOnlyItsPositionLine)
+{
+    OrderedJson moved = OrderedJson::parse(kGraph);  // what the page sends after a drag
+    moved["nodes"]["cloud"]["position"] = {120, -36};
+    const Graph graph = parse(moved.dump());
+    const std::string before = graphFileText(parse(kGraph), kGraph);
+    const std::string after = graphFileText(graph, before);
+    std::vector<std::string> added, removed;
+    diffLines(before, after, added, removed);
+    EXPECT_EQ(added, (std::vector<std::string>{"      },", R"(      "position": [120, -36])"}));
+    EXPECT_EQ(removed, (std::vector<std::string>{"      }"}));
+    EXPECT_EQ(parse(after).find("cloud")->position, graph.find("cloud")->position);
 }
 
 TEST_F(GraphFileTextTest, AParameterSetBackToItsDefaultStaysInTheFile)

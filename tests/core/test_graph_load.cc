@@ -346,6 +346,8 @@ TEST(GraphLoad, GraphToJsonRoundTrips)
               Json::parse(R"({"width": 16, "height": 8, "seed": 3, "low": -0.5})"));
     EXPECT_FALSE(j.at("nodes").at("stats").contains("params"));
     EXPECT_EQ(j.at("nodes").at("stats").at("inputs").at("values"), "integrate.state");
+    EXPECT_EQ(j.at("nodes").at("stats").at("position"), Json::parse("[296, -40]"));
+    EXPECT_FALSE(j.at("nodes").at("field").contains("position"));
 
     const Graph back = parseGraph(j.dump(2), "saved.json", testRegistry());
     EXPECT_EQ(graphToJson(back), j);
@@ -359,6 +361,7 @@ TEST(GraphLoad, GraphToJsonRoundTrips)
         EXPECT_EQ(a.id, b.id);
         EXPECT_EQ(a.decl, b.decl);
         EXPECT_EQ(a.comment, b.comment);
+        EXPECT_EQ(a.position, b.position);
         EXPECT_EQ(a.inputs.size(), b.inputs.size());
         for (std::size_t k = 0; k < a.decl->params.size(); ++k)
             EXPECT_EQ(a.params.valueAt(k), b.params.valueAt(k)) << a.id << " param " << k;
