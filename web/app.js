@@ -183,6 +183,11 @@ function rewire(changes) {
   });
 }
 
+// A node dropped at `position` in the network: one edit of its "position".
+function moveNode(id, position) {
+  return editGraph((g) => { g.nodes[id].position = position; });
+}
+
 async function editParam(id, name, read, message) {
   message.textContent = "";
   let value;
@@ -350,6 +355,8 @@ async function reload() {
   if (!state.wiring) {  // once: the svg element stays, its contents are redrawn
     state.wiring = true;
     enableWiring($("network"), () => state.graph.nodes, rewire);
+    enableNetView($("network"), moveNode);
+    fitView($("network"));
   }
   const select = $("preview-node");
   const chosen = select.value;

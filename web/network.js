@@ -1,6 +1,8 @@
 // The node network as SVG, flowing down as Houdini's does: each node a box with its typed
-// ports (inputs on the left edge, outputs on the right), laid out in rows by depth (a node
-// one row below its deepest input), wires as curves from output to input.
+// ports (inputs on the left edge, outputs on the right), at the graph file's `position` of
+// the node or, without one, in rows by depth (a node one row below its deepest input),
+// wires as curves from output to input. Everything is drawn in one group, `g.world`, that
+// netview.js pans and zooms.
 "use strict";
 
 const NODE_WIDTH = 200, PORT_ROW = 15, HEADER = 32, COLUMN_GAP = 36, ROW_GAP = 34;
@@ -16,7 +18,8 @@ function svgElement(tag, attrs, parent) {
   return el;
 }
 
-// { id: {x, y, height} } for graph.nodes, given the declarations of their types.
+// { id: {x, y, height, outputRow} } for graph.nodes, given the declarations of their types:
+// a node's own position where the file gives one, else its place in the rows by depth.
 function layoutNetwork(nodes, types) {
   const depth = {};
   const depthOf = (id, seen = new Set()) => {
@@ -46,6 +49,8 @@ function layoutNetwork(nodes, types) {
     });
     y += tallest + ROW_GAP;
   }
+  for (const [id, node] of Object.entries(nodes))
+    if (node.position) [boxes[id].x, boxes[id].y] = node.position;
   return boxes;
 }
 
@@ -56,10 +61,6 @@ function layoutNetwork(nodes, types) {
 // disconnect). nodesNow() gives the graph's nodes as the page has them now.
 function enableWiring(svg, nodesNow, onWire) {
   let drag = null;  // { source, type, from: {x, y}, line, detach: {node, input} | null }
-  const point = (e) => {
-    const box = svg.getBoundingClientRect();
-    return { x: e.clientX - box.left, y: e.clientY - box.top };
-  };
   const end = (target) => {
     if (!drag) return;
     const { source, type, detach, line } = drag;
@@ -92,16 +93,18 @@ function enableWiring(svg, nodesNow, onWire) {
     const start = svg.querySelector(`circle.port[data-node="${source.split(".")[0]}"]` +
                                     `[data-output="${source.split(".")[1]}"]`);
     if (!start) return;
-    const from = { x: Number(start.getAttribute("cx")), y: Number(start.getAttribute("cy")) };
+    const box = network.boxes[source.split(".")[0]];  // ports are drawn in their node's group
+    const from = { x: box.x + Number(start.getAttribute("cx")),
+                   y: box.y + Number(start.getAttribute("cy")) };
     const line = svgElement("line", { class: "wire dragging", x1: from.x, y1: from.y,
-                                      x2: from.x, y2: from.y }, svg);
+                                      x2: from.x, y2: from.y }, svg.querySelector("g.world"));
     drag = { source, type: start.dataset.type, from, line, detach };
     for (const c of svg.querySelectorAll(`circle.port[data-input][data-type="${drag.type}"]`))
       c.classList.add("can-drop");
   });
   svg.addEventListener("pointermove", (e) => {
     if (!drag) return;
-    const p = point(e);
+    const p = toWorld(svg, e);
     drag.line.setAttribute("x2", p.x);
     drag.line.setAttribute("y2", p.y);
   });
@@ -109,46 +112,11 @@ function enableWiring(svg, nodesNow, onWire) {
   window.addEventListener("pointerup", (e) => { if (drag && !svg.contains(e.target)) end(null); });
 }
 
-// Draws the network into `svg`; onSelect(id) when a node is clicked. Returns the node
-// groups by id, so that the page can mark what cooked.
-function drawNetwork(svg, nodes, types, onSelect) {
-  svg.replaceChildren();
-  const boxes = layoutNetwork(nodes, types);
-  let width = 0, height = 0;
-  const portY = (box, row) => box.y + HEADER + row * PORT_ROW + PORT_ROW / 2 - 2;
-  const groups = {};
-  for (const [id, box] of Object.entries(boxes)) {
-    const node = nodes[id], decl = types[node.type];
-    const g = svgElement("g", { class: "node", "data-node": id }, svg);
-    svgElement("rect", { class: "body", x: box.x, y: box.y, width: NODE_WIDTH, height: box.height,
-                         fill: GROUP_COLOURS[decl.category] || "#eee" }, g);
-    const title = svgElement("text", { x: box.x + 6, y: box.y + 14, "font-weight": "bold" }, g);
-    title.textContent = id;
-    const type = svgElement("text", { x: box.x + 6, y: box.y + 27, fill: "#555" }, g);
-    type.textContent = node.type;
-    type.classList.add("type");
-    const stats = svgElement("text", { x: box.x + NODE_WIDTH - 6, y: box.y + 14,
-                                       "text-anchor": "end", fill: "#d9480f" }, g);
-    stats.classList.add("stats");
-    decl.inputs.forEach((p, i) => {
-      svgElement("circle", { class: "port", cx: box.x, cy: portY(box, i), r: 5,
-                             "data-node": id, "data-input": p.name, "data-type": p.type }, g);
-      const t = svgElement("text", { x: box.x + 8, y: portY(box, i) + 4 }, g);
-      t.textContent = `${p.name}: ${p.type}`;
-    });
-    decl.outputs.forEach((p, i) => {
-      const row = box.outputRow + i;
-      svgElement("circle", { class: "port", cx: box.x + NODE_WIDTH, cy: portY(box, row), r: 5,
-                             "data-node": id, "data-output": p.name, "data-type": p.type }, g);
-      const t = svgElement("text", { x: box.x + NODE_WIDTH - 8, y: portY(box, row) + 4,
-                                     "text-anchor": "end" }, g);
-      t.textContent = `${p.name}: ${p.type}`;
-    });
-    g.addEventListener("click", () => onSelect(id));
-    groups[id] = g;
-    width = Math.max(width, box.x + NODE_WIDTH + 20);
-    height = Math.max(height, box.y + box.height + 20);
-  }
+const portY = (box, row) => box.y + HEADER + row * PORT_ROW + PORT_ROW / 2 - 2;
+
+// The wires between `boxes`, replacing those drawn before (a dragged node's move redraws them).
+function drawWires(world, nodes, types, boxes) {
+  for (const old of world.querySelectorAll("path.wire")) old.remove();
   for (const [id, node] of Object.entries(nodes)) {
     const decl = types[node.type];
     for (const [input, source] of Object.entries(node.inputs || {})) {
@@ -159,11 +127,62 @@ function drawNetwork(svg, nodes, types, onSelect) {
       const x1 = boxes[from].x + NODE_WIDTH, y1 = portY(boxes[from], boxes[from].outputRow + out);
       const x2 = boxes[id].x, y2 = portY(boxes[id], into);
       const bend = Math.min(50, Math.max(30, Math.abs(x2 - x1) / 2));
-      svgElement("path", { class: "wire", d: `M${x1},${y1} C${x1 + bend},${y1} ${x2 - bend},${y2} ${x2},${y2}` },
-                 svg).dataset.wire = `${source}->${id}.${input}`;
+      const d = `M${x1},${y1} C${x1 + bend},${y1} ${x2 - bend},${y2} ${x2},${y2}`;
+      // First in the group, so that wires pass under the nodes.
+      const wire = svgElement("path", { class: "wire", d });
+      wire.dataset.wire = `${source}->${id}.${input}`;
+      world.insertBefore(wire, world.firstChild);
     }
   }
-  svg.setAttribute("width", width);
-  svg.setAttribute("height", height);
+}
+
+// One node's box, title, stats and ports, drawn at the origin and moved to its place by the
+// group's transform (so that a drag moves the group alone).
+function drawNode(world, id, node, decl, box) {
+  const g = svgElement("g", { class: "node", "data-node": id,
+                              transform: `translate(${box.x},${box.y})` }, world);
+  const at = { ...box, x: 0, y: 0 };
+  svgElement("rect", { class: "body", x: 0, y: 0, width: NODE_WIDTH, height: box.height,
+                       fill: GROUP_COLOURS[decl.category] || "#eee" }, g);
+  const title = svgElement("text", { x: 6, y: 14, "font-weight": "bold" }, g);
+  title.textContent = id;
+  const type = svgElement("text", { x: 6, y: 27, fill: "#555" }, g);
+  type.textContent = node.type;
+  type.classList.add("type");
+  const stats = svgElement("text", { x: NODE_WIDTH - 6, y: 14, "text-anchor": "end",
+                                     fill: "#d9480f" }, g);
+  stats.classList.add("stats");
+  decl.inputs.forEach((p, i) => {
+    svgElement("circle", { class: "port", cx: 0, cy: portY(at, i), r: 5,
+                           "data-node": id, "data-input": p.name, "data-type": p.type }, g);
+    const t = svgElement("text", { x: 8, y: portY(at, i) + 4 }, g);
+    t.textContent = `${p.name}: ${p.type}`;
+  });
+  decl.outputs.forEach((p, i) => {
+    const row = box.outputRow + i;
+    svgElement("circle", { class: "port", cx: NODE_WIDTH, cy: portY(at, row), r: 5,
+                           "data-node": id, "data-output": p.name, "data-type": p.type }, g);
+    const t = svgElement("text", { x: NODE_WIDTH - 8, y: portY(at, row) + 4,
+                                   "text-anchor": "end" }, g);
+    t.textContent = `${p.name}: ${p.type}`;
+  });
+  return g;
+}
+
+// Draws the network into `svg`; onSelect(id) when a node is clicked. Returns the node
+// groups by id, so that the page can mark what cooked.
+function drawNetwork(svg, nodes, types, onSelect) {
+  svg.replaceChildren();
+  const world = svgElement("g", { class: "world" }, svg);
+  const boxes = layoutNetwork(nodes, types);
+  const groups = {};
+  for (const [id, box] of Object.entries(boxes)) {
+    groups[id] = drawNode(world, id, nodes[id], types[nodes[id].type], box);
+    groups[id].addEventListener("click", () => { if (!netView.dragged) onSelect(id); });
+  }
+  drawWires(world, nodes, types, boxes);
+  network.boxes = boxes;
+  network.redrawWires = () => drawWires(world, nodes, types, boxes);
+  showView(svg);
   return groups;
 }

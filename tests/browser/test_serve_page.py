@@ -7,6 +7,7 @@ to overwrite it, and a change on disk that replaces unsaved edits is said. Optio
 screenshot of the page."""
 
 import argparse
+import difflib
 import json
 import math
 import os
@@ -50,6 +51,22 @@ WHEEL = """const img = document.getElementById('preview');
 for (let i = 0; i < arguments[0]; ++i)
   img.dispatchEvent(new WheelEvent('wheel', {bubbles: true, cancelable: true, deltaY: 100}));"""
 STATUS = "return document.getElementById('status').textContent;"
+# The render node's box on the page: [left, top, width, height].
+RENDER_BOX = """const r = document.querySelector('g[data-node="render"] rect.body')
+                    .getBoundingClientRect();
+return [r.left, r.top, r.width, r.height];"""
+# A left-button drag in the network from (x, y) by (dx, dy), page pixels, starting on the
+# element `arguments[0]` (the svg for its background).
+NET_DRAG = """const [selector, x, y, dx, dy] = arguments;
+const svg = document.getElementById('network');
+const on = document.querySelector(selector);
+const at = (el, type, px, py) => el.dispatchEvent(new PointerEvent(type, {bubbles: true,
+    button: 0, pointerId: 2, clientX: px, clientY: py}));
+at(on, 'pointerdown', x, y); at(svg, 'pointermove', x + dx / 2, y + dy / 2);
+at(svg, 'pointermove', x + dx, y + dy); at(svg, 'pointerup', x + dx, y + dy);"""
+NET_WHEEL = """const [x, y, deltaY] = arguments;
+document.getElementById('network').dispatchEvent(new WheelEvent('wheel',
+    {bubbles: true, cancelable: true, clientX: x, clientY: y, deltaY}));"""
 REPORT = """return [...document.querySelectorAll('#report tbody tr')]
                 .map(r => [r.dataset.node, r.dataset.status]);"""
 SET_INPUTS = """
@@ -279,6 +296,46 @@ def main():
             saved = json.load(f)["nodes"]["render"]["params"]
         assert saved["sunDirection"] == [0.8, -1, 0.5], saved
         assert saved["width"] == 160, saved
+
+        # The network: the wheel zooms about the pointer (the point under it stays), a drag
+        # of the background pans; neither is an edit of the graph.
+        version = browser.run("return state.version;")
+        box = browser.run(RENDER_BOX)
+        cx, cy = box[0] + box[2] / 2, box[1] + box[3] / 2
+        browser.run(NET_WHEEL, cx + 30, cy, -100)
+        zoomed = browser.run(RENDER_BOX)
+        assert abs(zoomed[2] / box[2] - 1.1) < 1e-3, (box, zoomed)
+        assert abs(zoomed[0] - (cx + 30 - (cx + 30 - box[0]) * 1.1)) < 0.5, (box, zoomed)
+        browser.run(NET_DRAG, "#network", 5, 5, 30, 20)
+        panned = browser.run(RENDER_BOX)
+        assert abs(panned[0] - zoomed[0] - 30) < 0.5 and abs(panned[1] - zoomed[1] - 20) < 0.5
+        assert browser.run("return state.version;") == version, "pan or zoom edited the graph"
+        # Dragging a node moves it: one edit of its position (network units, the drag over
+        # the zoom), undoable, and Save writes that line alone.
+        with open(graph_file) as f:
+            saved_text = f.read()
+        start = browser.run("return [network.boxes.render.x, network.boxes.render.y];")
+        scale = browser.run("return netView.scale;")
+        browser.run(NET_DRAG, 'g[data-node="render"] rect.body', panned[0] + 20, panned[1] + 10,
+                    44, 22)
+        moved_to = [round(start[0] + 44 / scale), round(start[1] + 22 / scale)]
+        browser.wait_for(f"return JSON.stringify(state.graph.nodes.render.position) === "
+                         f"'{json.dumps(moved_to, separators=(',', ':'))}';", timeout=30)
+        moved = browser.run(RENDER_BOX)
+        assert abs(moved[0] - panned[0] - 44) < 0.5 and abs(moved[1] - panned[1] - 22) < 0.5
+        browser.run("document.getElementById('save').click();")
+        browser.wait_for("return document.getElementById('status').textContent"
+                         ".startsWith('saved');", timeout=30)
+        with open(graph_file) as f:
+            after_text = f.read()
+        diff = list(difflib.ndiff(saved_text.splitlines(), after_text.splitlines()))
+        added = [line[2:] for line in diff if line.startswith("+ ")]
+        removed = [line[2:] for line in diff if line.startswith("- ")]
+        assert added == ["      },", f'      "position": [{moved_to[0]}, {moved_to[1]}]'] and \
+            removed == ["      }"], (added, removed)
+        browser.run("document.getElementById('undo').click();")
+        browser.wait_for("return !('position' in state.graph.nodes.render);", timeout=30)
+        assert browser.run("return [network.boxes.render.x, network.boxes.render.y];") == start
 
         # The file edited outside the page (an editor's save): the page reloads it.
         with open(graph_file) as f:
