@@ -44,6 +44,15 @@ std::string stringField(const nlohmann::json& body, const char* key)
     return it->get<std::string>();
 }
 
+long integerField(const nlohmann::json& body, const char* key)
+{
+    const auto it = body.find(key);
+    if (it == body.end() || !it->is_number_integer() || it->get<std::int64_t>() < -(1L << 40) ||
+        it->get<std::int64_t>() > (1L << 40))
+        throw Refused{errorReply(400, std::string("'") + key + "' must be an integer")};
+    return static_cast<long>(it->get<std::int64_t>());
+}
+
 int frameField(const nlohmann::json& body, const FrameRange& frames)
 {
     const auto it = body.find("frame");

@@ -27,6 +27,8 @@ struct Refused {
 nlohmann::json jsonBody(const http::Request& req, int maxDepth);
 /// body[key] as a string.
 std::string stringField(const nlohmann::json& body, const char* key);
+/// body[key] as an integer within +-2^40 (a size, checked further by its reader).
+long integerField(const nlohmann::json& body, const char* key);
 /// body["frame"] as a frame of `frames`, checked before it is narrowed to an int.
 int frameField(const nlohmann::json& body, const FrameRange& frames);
 /// body[key] as a boolean, `fallback` when absent.

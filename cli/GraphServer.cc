@@ -18,6 +18,7 @@
 
 #include "algo/render/image/Display.h"
 #include "cli/LastCloudFrame.h"
+#include "cli/PaintedMap.h"
 #include "cli/PreviewPicture.h"
 #include "core/Error.h"
 #include "core/NodeDeclJson.h"
@@ -188,6 +189,7 @@ GraphServer::GraphServer(const Registry& registry, ServeOptions options)
     mRoutes["/api/preview"] = {{"GET", &GraphServer::getPreview}};
     mRoutes["/api/lastcloud"] = {{"GET", &GraphServer::getLastCloud}};
     mRoutes["/api/save"] = {{"POST", &GraphServer::postSave}};
+    mRoutes["/api/paint"] = {{"POST", &GraphServer::postPaint}};
 }
 
 GraphServer::~GraphServer() = default;
@@ -543,6 +545,28 @@ Response GraphServer::postSave(const Request& req)
         return errorReply(400, e.what());
     }
     return jsonReply(200, {{"saved", mOptions.graphFile.string()}});
+}
+
+// A map painted on the page, for a ReadMap to read: {"node", "width", "height", "grey"} (hex,
+// two digits a pixel, top row first) becomes a new file under --out/paintings named after
+// the node whose map was painted; the reply gives its path. Writes nothing else.
+Response GraphServer::postPaint(const Request& req)
+{
+    const nlohmann::json body = jsonBody(req, mOptions.load.maxJsonDepth);
+    const std::string node = stringField(body, "node");
+    const long width = integerField(body, "width");
+    const long height = integerField(body, "height");
+    const std::string grey = stringField(body, "grey");
+    {
+        std::lock_guard<std::mutex> lock(mDocMutex);
+        if (!mDoc->graph().find(node)) return errorReply(400, "no node '" + node + "'");
+    }
+    try {
+        const auto file = writePaintedMap(mOptions.outDir, node, width, height, grey);
+        return jsonReply(200, {{"file", std::filesystem::absolute(file).lexically_normal().string()}});
+    } catch (const InputError& e) {
+        return errorReply(400, std::string("painting: ") + e.what());
+    }
 }
 
 }  // namespace cg::cli

@@ -3,7 +3,8 @@
 /// GraphDocument (docs/serve.md lists the routes). Edits are checked exactly as the CLI
 /// checks a graph; a cook recooks only what an edit dirtied, since the document keeps its
 /// evaluator (and the --cache) between cooks. Nothing is written but the graph file (on
-/// save) and what writers write under --out. docs/reliability.md states whom it trusts.
+/// save), what writers write under --out and the maps painted on the page (new files under
+/// --out/paintings). docs/reliability.md states whom it trusts.
 
 #include <atomic>
 #include <condition_variable>
@@ -74,6 +75,7 @@ private:
     http::Response getLastCloud(const http::Request& req);
     std::optional<http::Response> copyCompleteGraph(Graph& graph);
     http::Response postSave(const http::Request& req);
+    http::Response postPaint(const http::Request& req);
 
     /// Until stop(): reloads the graph when its file changes on disk (a text editor's save),
     /// through the same checks; a file that does not load is reported and the graph kept.

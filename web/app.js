@@ -364,6 +364,7 @@ async function reload() {
   for (const { id, port, type } of previewOutputs())
     select.add(new Option(type === "Image" ? id : `${id}.${port} (${type})`, `${id}.${port}`));
   if ([...select.options].some((o) => o.value === chosen)) select.value = chosen;
+  showPaintControls();
   const types = $("add-type");
   if (!types.options.length) for (const t of state.registry) types.add(new Option(t, t));
   const ids = Object.keys(state.graph.nodes).sort();

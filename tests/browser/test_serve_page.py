@@ -15,6 +15,8 @@ import re
 import shutil
 import subprocess
 import sys
+import urllib.request
+import zlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from webdriver import Browser  # noqa: E402
@@ -64,6 +66,15 @@ const at = (el, type, px, py) => el.dispatchEvent(new PointerEvent(type, {bubble
     button: 0, pointerId: 2, clientX: px, clientY: py}));
 at(on, 'pointerdown', x, y); at(svg, 'pointermove', x + dx / 2, y + dy / 2);
 at(svg, 'pointermove', x + dx, y + dy); at(svg, 'pointerup', x + dx, y + dy);"""
+# A stroke on the paint canvas from x = arguments[0] to arguments[1] (shares of its width)
+# at the height arguments[2] (share of its height).
+PAINT_STROKE = """const [x0, x1, y] = arguments;
+const c = document.getElementById('paint-canvas');
+const r = c.getBoundingClientRect();
+const at = (type, x) => c.dispatchEvent(new PointerEvent(type, {bubbles: true, button: 0,
+    pointerId: 3, clientX: r.left + x * r.width, clientY: r.top + y * r.height}));
+at('pointerdown', x0); at('pointermove', (x0 + x1) / 2); at('pointermove', x1);
+at('pointerup', x1);"""
 NET_WHEEL = """const [x, y, deltaY] = arguments;
 document.getElementById('network').dispatchEvent(new WheelEvent('wheel',
     {bubbles: true, cancelable: true, clientX: x, clientY: y, deltaY}));"""
@@ -100,6 +111,42 @@ FOV_BOX = """return document.querySelector('#params input[type="number"][data-pa
 
 CONFLICT_SHOWN = """return document.getElementById('conflict').open &&
                           document.getElementById('conflict-text').textContent;"""
+
+
+def png_pixels(data):
+    """(width, height, channels, rows of bytes) of an 8-bit grey or RGB PNG, unfiltered."""
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
+    at, idat, header = 8, b"", None
+    while at < len(data):
+        length = int.from_bytes(data[at:at + 4], "big")
+        kind, body = data[at + 4:at + 8], data[at + 8:at + 8 + length]
+        if kind == b"IHDR":
+            header = body
+        elif kind == b"IDAT":
+            idat += body
+        at += 12 + length
+    width, height = int.from_bytes(header[0:4], "big"), int.from_bytes(header[4:8], "big")
+    assert header[8] == 8 and header[12] == 0, "only 8-bit, non-interlaced PNGs"
+    channels = {0: 1, 2: 3}[header[9]]
+    raw, stride, rows, previous = zlib.decompress(idat), width * channels, [], bytes(width * channels)
+    for y in range(height):
+        kind, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - channels] if i >= channels else 0
+            b, c = previous[i], previous[i - channels] if i >= channels else 0
+            if kind == 1:
+                line[i] = (line[i] + a) & 255
+            elif kind == 2:
+                line[i] = (line[i] + b) & 255
+            elif kind == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(bytes(line))
+        previous = line
+    return width, height, channels, rows
 
 
 def replace_file(path, text):
@@ -336,6 +383,51 @@ def main():
         browser.run("document.getElementById('undo').click();")
         browser.wait_for("return !('position' in state.graph.nodes.render);", timeout=30)
         assert browser.run("return [network.boxes.render.x, network.boxes.render.y];") == start
+
+        # Painting on the noise map's preview: a white stroke across its middle row, used,
+        # is a new PNG under out/paintings that a new ReadMap beside the noise reads; the
+        # file holds the stroke and, away from it, the noise as the preview showed it.
+        cooks = browser.run(COOKS)
+        browser.run("""const s = document.getElementById('preview-node'); s.value = 'noise.map';
+                       s.dispatchEvent(new Event('change'));""")
+        wait_for_cook(browser, cooks, "the noise map's preview")
+        assert browser.run("return !document.getElementById('paint-row').hidden;"), \
+            "no Paint controls on a map's preview"
+        browser.run("""const p = document.getElementById('paint'); p.checked = true;
+                       p.dispatchEvent(new Event('change'));
+                       document.getElementById('brush-value').value = 1;
+                       document.getElementById('brush-radius').value = 2;""")
+        size = browser.run("const c = document.getElementById('paint-canvas');"
+                           "return [c.width, c.height];")
+        browser.run(PAINT_STROKE, 0.2, 0.8, 0.5)
+        cooks = browser.run(COOKS)
+        browser.run("document.getElementById('paint-apply').click();")
+        browser.wait_for("return state.graph.nodes.paint1 && "
+                         "document.getElementById('preview-node').value === 'paint1.map';",
+                         timeout=30)
+        wait_for_cook(browser, cooks, "the painted map")
+        painted_file = os.path.join(args.work, "out", "paintings", "noise.1.png")
+        node = browser.run("return state.graph.nodes.paint1;")
+        assert node["type"] == "ReadMap" and node["params"]["file"] == \
+            os.path.relpath(painted_file, args.work), node
+        with open(painted_file, "rb") as f:
+            width, height, channels, rows = png_pixels(f.read())
+        assert (width, height, channels) == (size[0], size[1], 1), (width, height, channels)
+        with urllib.request.urlopen(url.split("?")[0].rstrip("/") +
+                                    "/api/preview?node=noise&port=map") as reply:
+            _, _, _, noise = png_pixels(reply.read())
+        y = int(0.5 * height)
+        stroke = [rows[y][x] for x in range(int(0.25 * width), int(0.75 * width))]
+        assert all(v == 255 for v in stroke), stroke
+        far = [(x, yy) for yy in range(height) if abs(yy + 0.5 - 0.5 * height) > 3
+               for x in range(width)]
+        assert all(rows[yy][x] == noise[yy][3 * x] for x, yy in far), "the noise was changed"
+        assert browser.run(STATUS).startswith("cooked frame"), browser.run(STATUS)
+        browser.run("document.getElementById('undo').click();")
+        browser.wait_for("return !state.graph.nodes.paint1;", timeout=30)
+        browser.run("document.getElementById('save').click();")
+        browser.wait_for("return document.getElementById('status').textContent"
+                         ".startsWith('saved');", timeout=30)
 
         # The file edited outside the page (an editor's save): the page reloads it.
         with open(graph_file) as f:

@@ -402,6 +402,68 @@ TEST_F(ServePreviewTest, ShowsParticlesAsPoints)
     EXPECT_LT(lit, points.rgb.size() / 3 / 2);  // points, not a wash
 }
 
+/// `grey` as the page sends a painting: two hex digits a pixel.
+std::string hexOf(const std::vector<std::uint8_t>& grey)
+{
+    std::string hex;
+    for (const std::uint8_t g : grey) {
+        constexpr const char* kDigits = "0123456789abcdef";
+        hex += kDigits[g >> 4];
+        hex += kDigits[g & 15];
+    }
+    return hex;
+}
+
+// A painting on the map's preview becomes a new PNG under out/paintings that a ReadMap reads
+// back as the painted cells, bit for bit in the preview; a second never replaces the first;
+// a bad one is refused naming what is wrong, and writes nothing.
+TEST_F(ServePreviewTest, APaintingIsANewPngThatReadMapReadsAsPainted)
+{
+    const formats::Rgb8Image map = preview("noise", "map");
+    std::vector<std::uint8_t> grey(static_cast<std::size_t>(map.width) * map.height);
+    for (std::size_t i = 0; i < grey.size(); ++i) grey[i] = map.rgb[3 * i];
+    for (int y = 2; y < 6; ++y)
+        for (int x = 20; x < 28; ++x) grey[static_cast<std::size_t>(y) * map.width + x] = 255;
+    const json painting = {{"node", "noise"}, {"width", map.width}, {"height", map.height},
+                           {"grey", hexOf(grey)}};
+    const auto first = post("/api/paint", painting);
+    ASSERT_EQ(first->status, 200) << first->body;
+    const std::filesystem::path file = json::parse(first->body)["file"].get<std::string>();
+    EXPECT_EQ(file, std::filesystem::absolute(dir / "out" / "paintings" / "noise.1.png"));
+    const std::string firstBytes = test::readFile(file);
+    const auto second = post("/api/paint", painting);
+    ASSERT_EQ(second->status, 200) << second->body;
+    EXPECT_EQ(std::filesystem::path(json::parse(second->body)["file"].get<std::string>()).filename(),
+              "noise.2.png");
+    EXPECT_EQ(test::readFile(file), firstBytes);
+
+    json graph = json::parse(client().Get("/api/graph")->body)["graph"];
+    graph["nodes"]["painted"] = {{"type", "ReadMap"}, {"params", {{"file", file.string()}}}};
+    ASSERT_EQ(post("/api/graph", {{"graph", graph}})->status, 200);
+    const formats::Rgb8Image back = preview("painted", "map");
+    ASSERT_EQ(back.width, map.width);
+    ASSERT_EQ(back.height, map.height);
+    for (std::size_t i = 0; i < grey.size(); ++i) ASSERT_EQ(back.rgb[3 * i], grey[i]) << i;
+
+    json shortGrey = painting, notHex = painting, huge = painting, nobody = painting;
+    shortGrey["grey"] = hexOf(std::vector<std::uint8_t>(10));
+    notHex["grey"] = std::string(2 * grey.size(), 'g');
+    huge["width"] = 100000;
+    huge["height"] = 100000;
+    nobody["node"] = "nobody";
+    for (const auto& [bad, says] : std::vector<std::pair<json, std::string>>{
+             {shortGrey, "two a pixel"}, {notHex, "not a hexadecimal digit"},
+             {huge, "at most 500000 pixels"}, {nobody, "no node 'nobody'"}}) {
+        const auto reply = post("/api/paint", bad);
+        EXPECT_EQ(reply->status, 400);
+        EXPECT_NE(reply->body.find(says), std::string::npos) << reply->body;
+    }
+    std::size_t files = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir / "out" / "paintings"))
+        files += e.is_regular_file();
+    EXPECT_EQ(files, 2u);
+}
+
 // Where the page opens: the last frame with cloud particles upstream of the preview; this
 // graph's cloud is a synthetic volume, with no particles, so the page stays where it is.
 TEST_F(ServeTest, TheLastCloudFrameIsNullWithoutCloudParticlesAndANodeIsRequired)

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <string>
 
@@ -70,22 +71,27 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     spdlog::set_level(spdlog::level::off);
     if (size == 0) return 0;
     Fixture& f = fixture();
-    static const char* const kPosts[] = {"/api/graph", "/api/param", "/api/cook", "/api/save",
-                                         "/api/cancel"};
-    static const char* const kGets[] = {"/api/preview", "/api/graph", "/api/version", "/"};
-    const unsigned pick = data[0] % 9;
+    // The route by the first byte (seeds name it): POSTs take the rest as their body.
+    struct Route {
+        const char* method;
+        const char* path;
+    };
+    static const Route kRoutes[] = {
+        {"POST", "/api/graph"},  {"POST", "/api/param"}, {"POST", "/api/cook"},
+        {"POST", "/api/save"},   {"POST", "/api/cancel"}, {"GET", "/api/preview"},
+        {"GET", "/api/graph"},   {"GET", "/api/version"}, {"GET", "/"},
+        {"POST", "/api/paint"}};
+    const Route& route = kRoutes[data[0] % std::size(kRoutes)];
     const std::string rest(reinterpret_cast<const char*>(data + 1), size - 1);
     cg::cli::http::Request req;
     req.headers = {{"host", "127.0.0.1:0"},
                    {"content-type", "application/json"},
                    {"x-cloudgraph-token", f.server->token()}};
-    if (pick < 5) {
-        req.method = "POST";
-        req.path = kPosts[pick];
+    req.method = route.method;
+    req.path = route.path;
+    if (req.method == "POST") {
         req.body = rest;
     } else {
-        req.method = "GET";
-        req.path = kGets[pick - 5];
         // The rest as the query's node and port, split at its first NUL.
         const std::size_t nul = rest.find('\0');
         req.query["node"] = rest.substr(0, nul);
