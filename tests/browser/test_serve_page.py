@@ -114,7 +114,7 @@ CONFLICT_SHOWN = """return document.getElementById('conflict').open &&
 
 
 def png_pixels(data):
-    """(width, height, channels, rows of bytes) of an 8-bit grey or RGB PNG, unfiltered."""
+    """(width, height, channels, rows of bytes) of an 8-bit grey, RGB or RGBA PNG, unfiltered."""
     assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
     at, idat, header = 8, b"", None
     while at < len(data):
@@ -127,7 +127,7 @@ def png_pixels(data):
         at += 12 + length
     width, height = int.from_bytes(header[0:4], "big"), int.from_bytes(header[4:8], "big")
     assert header[8] == 8 and header[12] == 0, "only 8-bit, non-interlaced PNGs"
-    channels = {0: 1, 2: 3}[header[9]]
+    channels = {0: 1, 2: 3, 6: 4}[header[9]]
     raw, stride, rows, previous = zlib.decompress(idat), width * channels, [], bytes(width * channels)
     for y in range(height):
         kind, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
@@ -400,6 +400,20 @@ def main():
         size = browser.run("const c = document.getElementById('paint-canvas');"
                            "return [c.width, c.height];")
         browser.run(PAINT_STROKE, 0.2, 0.8, 0.5)
+        # The screenshot shows the stroke on the canvas, white across the noise's greys.
+        shot = browser.screenshot_png()
+        if args.screenshot:
+            with open(os.path.splitext(args.screenshot)[0] + "-paint.png", "wb") as f:
+                f.write(shot)
+        _, _, depth, screen = png_pixels(shot)
+        box = browser.run("const r = document.getElementById('paint-canvas')"
+                          ".getBoundingClientRect(); return [r.left, r.top, r.width, r.height];")
+        row = screen[int(box[1] + 0.5 * box[3])]
+        across = [row[depth * int(box[0] + f * box[2])] for f in (0.3, 0.4, 0.5, 0.6, 0.7)]
+        assert all(v >= 250 for v in across), f"no white stroke on the screen: {across}"
+        below = screen[int(box[1] + 0.75 * box[3])]
+        greys = {below[depth * int(box[0] + f / 20 * box[2])] for f in range(1, 20)}
+        assert len(greys) > 5, f"the canvas does not show the noise: {greys}"
         cooks = browser.run(COOKS)
         browser.run("document.getElementById('paint-apply').click();")
         browser.wait_for("return state.graph.nodes.paint1 && "

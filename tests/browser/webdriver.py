@@ -66,9 +66,13 @@ class Browser:
                 raise TimeoutError(f"waited {timeout} s for: {script}")
             time.sleep(0.1)
 
+    def screenshot_png(self):
+        """The page as the browser shows it now, a PNG's bytes."""
+        return base64.b64decode(self._session("GET", "/screenshot"))
+
     def screenshot(self, path):
         with open(path, "wb") as f:
-            f.write(base64.b64decode(self._session("GET", "/screenshot")))
+            f.write(self.screenshot_png())
 
     def close(self):
         try:
