@@ -563,7 +563,8 @@ Response GraphServer::postPaint(const Request& req)
     }
     try {
         const auto file = writePaintedMap(mOptions.outDir, node, width, height, grey);
-        return jsonReply(200, {{"file", std::filesystem::absolute(file).lexically_normal().string()}});
+        return jsonReply(200,
+                         {{"file", std::filesystem::absolute(file).lexically_normal().string()}});
     } catch (const InputError& e) {
         return errorReply(400, std::string("painting: ") + e.what());
     }

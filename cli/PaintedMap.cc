@@ -1,9 +1,9 @@
 #include "cli/PaintedMap.h"
 
-#include <cerrno>
-#include <cstring>
 #include <fcntl.h>
 #include <unistd.h>
+#include <cerrno>
+#include <cstring>
 #include <vector>
 
 #include "core/Error.h"
@@ -29,8 +29,8 @@ std::vector<unsigned char> decodeHex(const std::string& hex)
     for (std::size_t i = 0; i < bytes.size(); ++i) {
         const int high = hexDigit(hex[2 * i]), low = hexDigit(hex[2 * i + 1]);
         if (high < 0 || low < 0)
-            throw InputError("grey", "character " + std::to_string(2 * i) +
-                                         " is not a hexadecimal digit");
+            throw InputError("grey",
+                             "character " + std::to_string(2 * i) + " is not a hexadecimal digit");
         bytes[i] = static_cast<unsigned char>(high * 16 + low);
     }
     return bytes;

@@ -424,8 +424,8 @@ TEST_F(ServePreviewTest, APaintingIsANewPngThatReadMapReadsAsPainted)
     for (std::size_t i = 0; i < grey.size(); ++i) grey[i] = map.rgb[3 * i];
     for (int y = 2; y < 6; ++y)
         for (int x = 20; x < 28; ++x) grey[static_cast<std::size_t>(y) * map.width + x] = 255;
-    const json painting = {{"node", "noise"}, {"width", map.width}, {"height", map.height},
-                           {"grey", hexOf(grey)}};
+    const json painting = {
+        {"node", "noise"}, {"width", map.width}, {"height", map.height}, {"grey", hexOf(grey)}};
     const auto first = post("/api/paint", painting);
     ASSERT_EQ(first->status, 200) << first->body;
     const std::filesystem::path file = json::parse(first->body)["file"].get<std::string>();
@@ -433,8 +433,9 @@ TEST_F(ServePreviewTest, APaintingIsANewPngThatReadMapReadsAsPainted)
     const std::string firstBytes = test::readFile(file);
     const auto second = post("/api/paint", painting);
     ASSERT_EQ(second->status, 200) << second->body;
-    EXPECT_EQ(std::filesystem::path(json::parse(second->body)["file"].get<std::string>()).filename(),
-              "noise.2.png");
+    EXPECT_EQ(
+        std::filesystem::path(json::parse(second->body)["file"].get<std::string>()).filename(),
+        "noise.2.png");
     EXPECT_EQ(test::readFile(file), firstBytes);
 
     json graph = json::parse(client().Get("/api/graph")->body)["graph"];
@@ -451,9 +452,11 @@ TEST_F(ServePreviewTest, APaintingIsANewPngThatReadMapReadsAsPainted)
     huge["width"] = 100000;
     huge["height"] = 100000;
     nobody["node"] = "nobody";
-    for (const auto& [bad, says] : std::vector<std::pair<json, std::string>>{
-             {shortGrey, "two a pixel"}, {notHex, "not a hexadecimal digit"},
-             {huge, "at most 500000 pixels"}, {nobody, "no node 'nobody'"}}) {
+    for (const auto& [bad, says] :
+         std::vector<std::pair<json, std::string>>{{shortGrey, "two a pixel"},
+                                                   {notHex, "not a hexadecimal digit"},
+                                                   {huge, "at most 500000 pixels"},
+                                                   {nobody, "no node 'nobody'"}}) {
         const auto reply = post("/api/paint", bad);
         EXPECT_EQ(reply->status, 400);
         EXPECT_NE(reply->body.find(says), std::string::npos) << reply->body;

@@ -77,9 +77,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const char* path;
     };
     static const Route kRoutes[] = {
-        {"POST", "/api/graph"},  {"POST", "/api/param"}, {"POST", "/api/cook"},
-        {"POST", "/api/save"},   {"POST", "/api/cancel"}, {"GET", "/api/preview"},
-        {"GET", "/api/graph"},   {"GET", "/api/version"}, {"GET", "/"},
+        {"POST", "/api/graph"}, {"POST", "/api/param"},  {"POST", "/api/cook"},
+        {"POST", "/api/save"},  {"POST", "/api/cancel"}, {"GET", "/api/preview"},
+        {"GET", "/api/graph"},  {"GET", "/api/version"}, {"GET", "/"},
         {"POST", "/api/paint"}};
     const Route& route = kRoutes[data[0] % std::size(kRoutes)];
     const std::string rest(reinterpret_cast<const char*>(data + 1), size - 1);
