@@ -152,6 +152,10 @@ inline constexpr int kDriftFrames = 10;
 /// condensation level).
 inline constexpr double kDriftDecayFrames = 60.0;
 
+/// With a cloudTop, the smallest share of its R0 fNoise a copy keeps (value ours): a copy
+/// that would be smaller is not made, so no dust of tiny copies piles up under the cap.
+inline constexpr double kSmallestCappedScale = 0.1;
+
 struct MappingSettings {
     int maxLevel = 5;                         ///< cap on L_max
     std::vector<double> selectionRatio{0.2};  ///< M[L]; the last value repeats for higher L
@@ -176,6 +180,13 @@ struct MappingSettings {
     /// rather than carrying it (value ours: updrafts rise at 5-20 m/s, a tower's top settles
     /// around its equilibrium level at a few m/s).
     double trailRiseSpeed = 3.0;
+    /// Ours: the height (m above sea level) no copy may rise past, 0 = none (the paper). A copy
+    /// selected with its origin ending up at z gets R = min(R0 fNoise, (cloudTop - z) / top),
+    /// top the primitive's highest point (its drift's rise included); one that would be
+    /// smaller than kSmallestCappedScale of its R0 fNoise is not made (its candidate is
+    /// used up). A sounding's equilibrium level, where thermals stop rising, caps a
+    /// fair-weather cumulus field.
+    double cloudTop = 0.0;
     /// Primitives in the library the table was made with (1..kMaxPrimitives): source j plays
     /// primitive primitiveOf(j), drawn from the seed by j alone.
     std::uint32_t primitiveCount = 1;

@@ -3,6 +3,7 @@
 // streams so that the table does not depend on thread order. Declared in Mapping.h.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -113,6 +114,55 @@ std::vector<std::uint64_t> pickParents(const SourceTable& table, const ParentCan
     return keys;
 }
 
+/// How far a copy's fluid particle `i` ends up above the copy's origin at scale 1, primitive
+/// metres: its height in the last frame plus the rise of the drift past it (Drift).
+double finalFluidHeight(const PrimitiveView& p, std::uint32_t i, const MappingSettings& s,
+                        const std::array<float, 3>& drift)
+{
+    const double rise = s.pastLastFrame == PastLastFrame::Drift
+                            ? kDriftDecayFrames * std::max(0.0f, drift[2])
+                            : 0.0;
+    return p.frames[p.frameCount - 1][3 * static_cast<std::size_t>(i) + 2] + rise;
+}
+
+/// The highest any particle of a copy of `p` ends up above its origin at scale 1.
+double primitiveTop(const PrimitiveView& p, const MappingSettings& s,
+                    const std::array<float, 3>& drift)
+{
+    double top = 0.0;
+    for (std::uint32_t i = 0; p.frameCount > 0 && i < p.counts[p.frameCount - 1]; ++i)
+        top = std::max(top, finalFluidHeight(p, i, s, drift));
+    return top;
+}
+
+/// Where source j's origin ends up (m): a level 1 copy's stays at its condensation height (or
+/// where its particle is now, with the other origins); a deeper one's rises with its parent
+/// particle until the parent's copy has played out.
+double finalOriginHeight(const SourceTable& table, std::size_t j, const CondensationView& c,
+                         const PrimitiveLibrary& lib, const MappingSettings& s,
+                         const Drifts& drift)
+{
+    const Source& src = table.sources[j];
+    if (src.level == 1)
+        return s.level1Origin == Level1Origin::CondensationLevel ? c.condensedZ[src.parent]
+                                                                 : c.z[src.parent];
+    const Source& parent = table.sources[src.parent];
+    const std::size_t primitive = primitiveOf(src.parent, s);
+    return finalOriginHeight(table, src.parent, c, lib, s, drift) +
+           s.metresPerPrimitiveMetre * parent.scale *
+               finalFluidHeight(lib.views[primitive], src.parentFluid, s, drift[primitive]);
+}
+
+/// Ours (MappingSettings::cloudTop): R for a copy whose origin ends up at z, so that its top
+/// stays under the cap; 0 when it would keep less than kSmallestCappedScale of `scale`.
+float cappedScale(float scale, double z, double top, const MappingSettings& s)
+{
+    if (s.cloudTop <= 0.0 || top <= 0.0) return scale;
+    const double fits = (s.cloudTop - z) / (top * s.metresPerPrimitiveMetre);
+    if (fits < kSmallestCappedScale * scale) return 0.0f;
+    return static_cast<float>(std::min<double>(scale, fits));
+}
+
 }  // namespace
 
 SourceTable stepSources(const SourceTable& previous, int frame, int firstCondensation,
@@ -125,6 +175,9 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
             "stepSources: level1Origin trail needs the particles' vertical speeds");
     SourceTable table = previous;
     const Drifts drift = drifts(lib);
+    std::vector<double> tops;
+    for (std::size_t i = 0; i < lib.views.size(); ++i)
+        tops.push_back(primitiveTop(lib.views[i], s, drift[i]));
     table.condensationTaken.resize(c.count, 0);
     table.levelStart.assign(static_cast<std::size_t>(s.maxLevel), -1);
     const int first = s.firstStart >= 0 ? s.firstStart : firstCondensation;
@@ -206,6 +259,14 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
                                            copyStride(s, viewOf(lib, table.sources.size(), s)));
             const double noise = map.at(x, y);  // Eq. 16
             src.scale = static_cast<float>(s.scaleCoefficient * noise);
+            if (s.cloudTop > 0.0) {  // the copy's top stays under cloudTop; too small: none
+                table.sources.push_back(src);  // finalOriginHeight reads it as source j
+                const std::size_t j = table.sources.size() - 1;
+                const double z = finalOriginHeight(table, j, c, lib, s, drift);
+                table.sources.pop_back();
+                src.scale = cappedScale(src.scale, z, tops[primitiveOf(j, s)], s);
+                if (src.scale == 0.0f) continue;
+            }
             src.speed = static_cast<float>(1.0 + s.speedCoefficient * noise);
             if (s.level1Origin == Level1Origin::Trail) {
                 // Deeper copies stand on their parents (zero); a level 1 copy is laid where a

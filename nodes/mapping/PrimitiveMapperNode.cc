@@ -44,6 +44,7 @@ algo::MappingSettings settingsFrom(const CookContext& ctx, std::size_t primitive
                      : origin == "trail"           ? algo::Level1Origin::Trail
                                                    : algo::Level1Origin::Particle;
     s.trailRiseSpeed = p.getFloat("trailRiseSpeed");
+    s.cloudTop = p.getFloat("cloudTop");
     s.primitiveCount = static_cast<std::uint32_t>(primitives);
     return s;
 }
@@ -86,7 +87,7 @@ void registerPrimitiveMapperNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "PrimitiveMapper";
-    d.version = 6;  // each version's change: CHANGES.md, "Node versions"
+    d.version = 7;  // each version's change: CHANGES.md, "Node versions"
     d.category = "mapping";
     d.doc =
         "The recursive mapping of Sec. 5.2 (pseudocode lines 15-28). Each frame t, every active "
@@ -190,6 +191,15 @@ void registerPrimitiveMapperNode(Registry& registry)
                    "rather than carrying it (value ours: updrafts rise at 5-20 m/s, a tower's "
                    "top settles around its equilibrium level at a few m/s)",
                    0.0, L::kMaxTrailRiseSpeed),
+        floatParam("cloudTop", 0.0, "m",
+                   "ours: the height above sea level no copy rises past, 0 = none (the paper). "
+                   "A copy whose origin ends up at z gets R = min(R0 fNoise, (cloudTop - z) / "
+                   "top), top the primitive's highest point (its drift's rise included); one "
+                   "that would keep less than a tenth of its R is not made. Set it to the "
+                   "sounding's equilibrium level (`cloudgraph sounding` prints it), a few "
+                   "hundred metres above for the thermals' overshoot: fair-weather cumulus stop "
+                   "there, under the inversion, instead of growing as deep as the primitive",
+                   0.0, 30000.0),
     };
     d.create = [] { return std::make_unique<PrimitiveMapperNode>(); };
     registry.addNode(std::move(d));

@@ -316,6 +316,48 @@ TEST(Mapping, Level1CopiesCanStandAtTheirCondensationHeight)
     EXPECT_GT(level1, 0);
 }
 
+/// The highest cloud particle of every frame of a run, and of all of them.
+float highestParticle(const Scene& scene, const MappingRun& r)
+{
+    float top = -1e30f;
+    for (std::size_t t = 0; t < r.tables.size(); ++t) {
+        const auto cloud = generateCloudParticles(r.tables[t], static_cast<int>(t),
+                                                  Scene::view(r.frames[t]), scene.primitive(),
+                                                  scene.settings);
+        for (std::size_t q = 2; q < cloud.positions.size(); q += 3)
+            top = std::max(top, cloud.positions[q]);
+    }
+    return top;
+}
+
+// cloudTop: no particle of any level rises past it at any frame, copies whose top would are
+// made smaller (R < R0 fNoise), and without it the same scene's clouds do rise past it.
+TEST(Mapping, NoCopyOfAnyLevelRisesPastTheCloudTop)
+{
+    Scene scene;
+    scene.settings.level1Origin = Level1Origin::CondensationLevel;
+    scene.settings.maxLevel = 3;
+    const MappingRun free = run(scene, 60);
+    const float freeTop = highestParticle(scene, free);
+    scene.settings.cloudTop = 1560.0;
+    ASSERT_GT(freeTop, scene.settings.cloudTop + 40.0f) << "the cap would not bite";
+    const MappingRun capped = run(scene, 60);
+    EXPECT_LE(highestParticle(scene, capped), 1560.0f + 1e-3f);
+    const SourceTable& table = capped.tables.back();
+    int smaller = 0;
+    std::set<int> levels;
+    for (const Source& src : table.sources) {
+        const Scene::Frame& c = capped.frames.back();
+        const double x = src.level == 1 ? c.x[src.parent] : -1.0;
+        levels.insert(src.level);
+        if (src.level == 1 && src.scale < scene.settings.scaleCoefficient *
+                                              scene.mapView().at(x, c.y[src.parent]) - 1e-6)
+            ++smaller;
+    }
+    EXPECT_GT(smaller, 0);
+    EXPECT_EQ(levels, (std::set<int>{1, 2, 3}));  // the cap leaves the recursion room below it
+}
+
 TEST(Mapping, TrailCopiesStayWhereTheirRisingParticleLaidThemAndStoppedParticlesCarryTheirs)
 {
     Scene scene;
