@@ -139,8 +139,7 @@ double primitiveTop(const PrimitiveView& p, const MappingSettings& s,
 /// where its particle is now, with the other origins); a deeper one's rises with its parent
 /// particle until the parent's copy has played out.
 double finalOriginHeight(const SourceTable& table, std::size_t j, const CondensationView& c,
-                         const PrimitiveLibrary& lib, const MappingSettings& s,
-                         const Drifts& drift)
+                         const PrimitiveLibrary& lib, const MappingSettings& s, const Drifts& drift)
 {
     const Source& src = table.sources[j];
     if (src.level == 1)

@@ -321,9 +321,9 @@ float highestParticle(const Scene& scene, const MappingRun& r)
 {
     float top = -1e30f;
     for (std::size_t t = 0; t < r.tables.size(); ++t) {
-        const auto cloud = generateCloudParticles(r.tables[t], static_cast<int>(t),
-                                                  Scene::view(r.frames[t]), scene.primitive(),
-                                                  scene.settings);
+        const auto cloud =
+            generateCloudParticles(r.tables[t], static_cast<int>(t), Scene::view(r.frames[t]),
+                                   scene.primitive(), scene.settings);
         for (std::size_t q = 2; q < cloud.positions.size(); q += 3)
             top = std::max(top, cloud.positions[q]);
     }
@@ -350,8 +350,9 @@ TEST(Mapping, NoCopyOfAnyLevelRisesPastTheCloudTop)
         const Scene::Frame& c = capped.frames.back();
         const double x = src.level == 1 ? c.x[src.parent] : -1.0;
         levels.insert(src.level);
-        if (src.level == 1 && src.scale < scene.settings.scaleCoefficient *
-                                              scene.mapView().at(x, c.y[src.parent]) - 1e-6)
+        if (src.level == 1 &&
+            src.scale <
+                scene.settings.scaleCoefficient * scene.mapView().at(x, c.y[src.parent]) - 1e-6)
             ++smaller;
     }
     EXPECT_GT(smaller, 0);
