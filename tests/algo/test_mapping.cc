@@ -346,14 +346,13 @@ TEST(Mapping, NoCopyOfAnyLevelRisesPastTheCloudTop)
     const SourceTable& table = capped.tables.back();
     int smaller = 0;
     std::set<int> levels;
+    const Scene::Frame& c = capped.frames.back();
     for (const Source& src : table.sources) {
-        const Scene::Frame& c = capped.frames.back();
-        const double x = src.level == 1 ? c.x[src.parent] : -1.0;
         levels.insert(src.level);
-        if (src.level == 1 &&
-            src.scale <
-                scene.settings.scaleCoefficient * scene.mapView().at(x, c.y[src.parent]) - 1e-6)
-            ++smaller;
+        if (src.level != 1) continue;
+        const double r = scene.settings.scaleCoefficient *
+                         scene.mapView().at(c.x[src.parent], c.y[src.parent]);  // Eq. 16
+        smaller += src.scale < r - 1e-6;
     }
     EXPECT_GT(smaller, 0);
     EXPECT_EQ(levels, (std::set<int>{1, 2, 3}));  // the cap leaves the recursion room below it
