@@ -88,6 +88,8 @@ std::vector<GoldenSpec> makeSpecs()
         // moving camera at frames 150 (the hero alone) and 300 (the arc's clouds, the first
         // camera key); its Retime and video act on frame 491 only (the video is left out).
         {"art_direction", {150, 300}, smallFigure, video},
+        // A storm's hour: grown (150), mature with its anvil (300), decaying (450).
+        {"cumulonimbus_life", {150, 300, 450}, smallFigure, video},
         // The hour of cumulus: its field grown (300), and its clouds coming and going (600:
         // early thermals' clouds evaporating, later ones forming).
         {"cumulus_day", {300, 600}, smallField, {}},

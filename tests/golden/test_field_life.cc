@@ -1,7 +1,7 @@
 // A cumulus field that lives (issue 54), on the reduced cumulus_day of the golden harness: its
-// clouds come and go, its cover steadies, and most of its clouds are small. Measured from above on the fog volume as
-// bench/cloud_metrics does (algo/volume/CloudTracking.h). A golden statistic on a reduced
-// graph, not a timed test.
+// clouds come and go, its cover steadies, and most of its clouds are small. Measured from above on
+// the fog volume as bench/cloud_metrics does (algo/volume/CloudTracking.h). A golden statistic on a
+// reduced graph, not a timed test.
 
 #include <gtest/gtest.h>
 
