@@ -107,7 +107,8 @@ CloudChunk chunkSurviving(const CloudChunk& chunk, const DissipationFrame& d, Ke
     kept.ids.clear();
     const MappingSettings& s = *d.settings;
     std::uint32_t last = 0xFFFFFFFFu;
-    float f = 0.0f, r = 1.0f;
+    float f = 0.0f;
+    CopyScale r{1.0f, 1.0f};
     std::array<float, 4> extent{};
     for (std::uint64_t i = 0; i < chunk.count; ++i) {
         const std::uint32_t j = chunk.sources[i];
@@ -121,14 +122,15 @@ CloudChunk chunkSurviving(const CloudChunk& chunk, const DissipationFrame& d, Ke
             const double time =
                 std::min(std::floor(primitiveTime(src, d.frame, s, p)), p.frameCount - 1.0);
             extent = d.extents[primitive].frames[static_cast<std::size_t>(std::max(time, 0.0))];
-            r = static_cast<float>(s.metresPerPrimitiveMetre * src.scale);
+            r = copyScale(src, s);
         }
         if (f >= 1.0f) continue;
         if (f > 0.0f) {
             const float* o = chunk.copyOrigins + 3 * std::size_t{j};
             const float* x = chunk.positions + 3 * i;
-            const double dx = (x[0] - o[0]) / r - extent[0], dy = (x[1] - o[1]) / r - extent[1],
-                         dz = (x[2] - o[2]) / r - extent[2];
+            const double dx = (x[0] - o[0]) / r.across - extent[0],
+                         dy = (x[1] - o[1]) / r.across - extent[1],
+                         dz = (x[2] - o[2]) / r.up - extent[2];
             const double edge = std::sqrt(dx * dx + dy * dy + dz * dz) / extent[3];
             const double jitter =
                 1.0 + kJitter * (2.0 * counterUniform(s.seed, kJitterStream, chunk.ids[i]) - 1.0);

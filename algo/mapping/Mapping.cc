@@ -71,6 +71,13 @@ std::size_t primitiveOf(std::size_t j, const MappingSettings& s)
                                     s.primitiveCount);
 }
 
+CopyScale copyScale(const Source& src, const MappingSettings& s)
+{
+    const double r = s.metresPerPrimitiveMetre * src.scale;
+    const double flatten = src.flatten > 0.0f ? src.flatten : 1.0;
+    return {static_cast<float>(r / std::sqrt(flatten)), static_cast<float>(r * flatten)};
+}
+
 double primitiveTime(const Source& src, int frame, const MappingSettings& s, const PrimitiveView& p)
 {
     return src.speed * static_cast<double>(frame - src.startFrame) * s.timeStep / p.frameTime;
@@ -143,10 +150,11 @@ namespace {
 void copyOrigin(const Source& src, const float* sourceOrigin, double time, const PrimitiveView& p,
                 const MappingSettings& s, const float drift[3], float out[3])
 {
-    const auto scale = static_cast<float>(s.metresPerPrimitiveMetre * src.scale);
+    const CopyScale scale = copyScale(src, s);
     float shift[3];
     copyShift(p, s, drift, time, shift);
-    for (int k = 0; k < 3; ++k) out[k] = sourceOrigin[k] + scale * shift[k];
+    for (int k = 0; k < 3; ++k)
+        out[k] = sourceOrigin[k] + (k < 2 ? scale.across : scale.up) * shift[k];
 }
 
 }  // namespace
@@ -158,8 +166,8 @@ void cloudParticlePosition(const Source& src, const float* copyAt, std::uint32_t
 {
     float f[3];
     primitivePosition(p, i, primitiveTime(src, frame, s, p), f);
-    const auto r = static_cast<float>(s.metresPerPrimitiveMetre * src.scale);
-    for (int k = 0; k < 3; ++k) out[k] = copyAt[k] + r * f[k];
+    const CopyScale r = copyScale(src, s);
+    for (int k = 0; k < 3; ++k) out[k] = copyAt[k] + (k < 2 ? r.across : r.up) * f[k];
 }
 
 Origins originsWithDrift(const SourceTable& table, int frame, const CondensationView& c,

@@ -38,9 +38,19 @@ struct Source {
     std::int32_t startFrame = 0;  ///< t0[L, j]
     float speed = 1.0f;           ///< A[L, j] = 1 + A0 fNoise (Eq. 16)
     float scale = 0.0f;           ///< R[L, j] = R0 fNoise (Eq. 16)
+    /// Ours (cloudTop 'spread'): the copy's height over the paper's, <= 1; it is as much wider,
+    /// 1 / sqrt(flatten), so it keeps its volume. 1: the paper's copy.
+    float flatten = 1.0f;
 };
 
-static_assert(sizeof(Source) == 24, "the source record stays 24 bytes (docs/mapper.md)");
+static_assert(sizeof(Source) == 28, "the source record stays 28 bytes (docs/mapper.md)");
+
+/// The metres a primitive metre of a copy spans across (x, y) and up (z): R times the global
+/// scale, spread by the source's flatten.
+struct CopyScale {
+    float across = 0.0f;
+    float up = 0.0f;
+};
 
 /// The mapper's whole state at one frame.
 struct SourceTable {
@@ -152,6 +162,8 @@ inline constexpr int kDriftFrames = 10;
 /// condensation level).
 inline constexpr double kDriftDecayFrames = 60.0;
 
+enum class CloudTopRule { Shrink, Spread };
+
 /// With a cloudTop, the smallest share of its R0 fNoise a copy keeps (value ours): a copy
 /// that would be smaller is not made, so no dust of tiny copies piles up under the cap.
 inline constexpr double kSmallestCappedScale = 0.1;
@@ -187,10 +199,17 @@ struct MappingSettings {
     /// used up). A sounding's equilibrium level, where thermals stop rising, caps a
     /// fair-weather cumulus field.
     double cloudTop = 0.0;
+    /// What a copy that would rise past cloudTop becomes: smaller (CloudTopRule::Shrink), or
+    /// as wide and flatter, spreading under the cap as air does under an inversion or the
+    /// tropopause (CloudTopRule::Spread, an anvil's way).
+    CloudTopRule cloudTopRule = CloudTopRule::Shrink;
     /// Primitives in the library the table was made with (1..kMaxPrimitives): source j plays
     /// primitive primitiveOf(j), drawn from the seed by j alone.
     std::uint32_t primitiveCount = 1;
 };
+
+/// Source src's CopyScale (Source::flatten).
+CopyScale copyScale(const Source& src, const MappingSettings& s);
 
 /// The primitive source j plays: a draw from the seed keyed by j, so it depends on neither the
 /// frame nor the thread order; 0 with one primitive (the paper).

@@ -58,26 +58,27 @@ FramePlan planFrame(const SourceTable& table, int frame, const CondensationView&
 /// loop the compiler vectorises), 0 when it is `stride`.
 template <std::uint32_t K>
 void copySlice(const float* __restrict a, const float* __restrict b, float w, bool lerp,
-               std::size_t stride, const float* origin, float scale, std::uint64_t n,
+               std::size_t stride, const float* origin, CopyScale scale, std::uint64_t n,
                float* __restrict out)
 {
     const std::size_t step = 3 * (K != 0 ? K : stride);
     const float ox = origin[0], oy = origin[1], oz = origin[2];
+    const float across = scale.across, up = scale.up;
     if (!lerp) {
         for (std::uint64_t i = 0; i < n; ++i) {
             const float* q = a + i * step;
-            out[3 * i] = ox + scale * q[0];
-            out[3 * i + 1] = oy + scale * q[1];
-            out[3 * i + 2] = oz + scale * q[2];
+            out[3 * i] = ox + across * q[0];
+            out[3 * i + 1] = oy + across * q[1];
+            out[3 * i + 2] = oz + up * q[2];
         }
         return;
     }
     for (std::uint64_t i = 0; i < n; ++i) {
         const float* qa = a + i * step;
         const float* qb = b + i * step;
-        out[3 * i] = ox + scale * (qa[0] + w * (qb[0] - qa[0]));
-        out[3 * i + 1] = oy + scale * (qa[1] + w * (qb[1] - qa[1]));
-        out[3 * i + 2] = oz + scale * (qa[2] + w * (qb[2] - qa[2]));
+        out[3 * i] = ox + across * (qa[0] + w * (qb[0] - qa[0]));
+        out[3 * i + 1] = oy + across * (qa[1] + w * (qb[1] - qa[1]));
+        out[3 * i + 2] = oz + up * (qa[2] + w * (qb[2] - qa[2]));
     }
 }
 
@@ -87,7 +88,7 @@ void sourceSlice(const Source& src, const float* origin, int frame, const Primit
                  float* __restrict out)
 {
     const double time = primitiveTime(src, frame, s, p);
-    const auto scale = static_cast<float>(s.metresPerPrimitiveMetre * src.scale);
+    const CopyScale scale = copyScale(src, s);
     const double whole = std::floor(time);
     const bool past = whole >= p.frameCount - 1;
     const int f = past ? p.frameCount - 1 : static_cast<int>(whole);

@@ -38,10 +38,11 @@ void driftVelocity(const Source& src, const PrimitiveView& p, const MappingSetti
 {
     const double past = primitiveTime(src, frame, s, p) - (p.frameCount - 1);
     const bool drifting = s.pastLastFrame == PastLastFrame::Drift && past > 0.0;
-    const double rate = drifting ? std::exp(-past / kDriftDecayFrames) * primitiveRate(src, p) *
-                                       s.metresPerPrimitiveMetre * src.scale
-                                 : 0.0;
-    for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(rate * drift[k]);
+    const double rate =
+        drifting ? std::exp(-past / kDriftDecayFrames) * primitiveRate(src, p) : 0.0;
+    const CopyScale r = copyScale(src, s);
+    for (int k = 0; k < 3; ++k)
+        out[k] = static_cast<float>(rate * (k < 2 ? r.across : r.up) * drift[k]);
 }
 
 }  // namespace
@@ -56,9 +57,9 @@ void particleVelocity(const Source& src, const float* copyVelocity, std::uint32_
     const int f = static_cast<int>(whole);
     const float* a = p.frames[f] + 3 * static_cast<std::size_t>(i);
     const float* b = p.frames[f + 1] + 3 * static_cast<std::size_t>(i);
-    const auto rate =
-        static_cast<float>(s.metresPerPrimitiveMetre * src.scale * primitiveRate(src, p));
-    for (int k = 0; k < 3; ++k) out[k] += rate * (b[k] - a[k]);
+    const auto rate = static_cast<float>(primitiveRate(src, p));
+    const CopyScale r = copyScale(src, s);
+    for (int k = 0; k < 3; ++k) out[k] += rate * (k < 2 ? r.across : r.up) * (b[k] - a[k]);
 }
 
 std::vector<float> copyVelocities(const SourceTable& table, int frame, const CondensationView& c,

@@ -148,18 +148,18 @@ double finalOriginHeight(const SourceTable& table, std::size_t j, const Condensa
     const Source& parent = table.sources[src.parent];
     const std::size_t primitive = primitiveOf(src.parent, s);
     return finalOriginHeight(table, src.parent, c, lib, s, drift) +
-           s.metresPerPrimitiveMetre * parent.scale *
+           copyScale(parent, s).up *
                finalFluidHeight(lib.views[primitive], src.parentFluid, s, drift[primitive]);
 }
 
-/// Ours (MappingSettings::cloudTop): R for a copy whose origin ends up at z, so that its top
-/// stays under the cap; 0 when it would keep less than kSmallestCappedScale of `scale`.
-float cappedScale(float scale, double z, double top, const MappingSettings& s)
+/// Ours (MappingSettings::cloudTop): how much of its height a copy whose origin ends up at z
+/// may keep so that its top stays under the cap (1: all, it fits); 0 when it would keep less
+/// than kSmallestCappedScale.
+double capShare(float scale, double z, double top, const MappingSettings& s)
 {
-    if (s.cloudTop <= 0.0 || top <= 0.0) return scale;
-    const double fits = (s.cloudTop - z) / (top * s.metresPerPrimitiveMetre);
-    if (fits < kSmallestCappedScale * scale) return 0.0f;
-    return static_cast<float>(std::min<double>(scale, fits));
+    if (s.cloudTop <= 0.0 || top <= 0.0 || scale <= 0.0f) return 1.0;
+    const double share = (s.cloudTop - z) / (top * s.metresPerPrimitiveMetre * scale);
+    return share < kSmallestCappedScale ? 0.0 : std::min(1.0, share);
 }
 
 }  // namespace
@@ -263,8 +263,12 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
                 const std::size_t j = table.sources.size() - 1;
                 const double z = finalOriginHeight(table, j, c, lib, s, drift);
                 table.sources.pop_back();
-                src.scale = cappedScale(src.scale, z, tops[primitiveOf(j, s)], s);
-                if (src.scale == 0.0f) continue;
+                const double share = capShare(src.scale, z, tops[primitiveOf(j, s)], s);
+                if (share == 0.0) continue;
+                if (s.cloudTopRule == CloudTopRule::Spread)
+                    src.flatten = static_cast<float>(share);
+                else
+                    src.scale = static_cast<float>(src.scale * share);
             }
             src.speed = static_cast<float>(1.0 + s.speedCoefficient * noise);
             if (s.level1Origin == Level1Origin::Trail) {

@@ -29,6 +29,7 @@ algo::Source readSource(ByteReader& in)
     const double inf = std::numeric_limits<double>::infinity();
     src.speed = checks::floatIn(in.f64(), -inf, inf, kType, "speed");
     src.scale = checks::floatIn(in.f64(), -inf, inf, kType, "scale");
+    src.flatten = checks::floatIn(in.f64(), -inf, inf, kType, "flatten");
     return src;
 }
 
@@ -108,6 +109,7 @@ bool CloudSourcesData::serialize(ByteWriter& out) const
         out.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(src.startFrame)));
         out.f64(src.speed);
         out.f64(src.scale);
+        out.f64(src.flatten);
     }
     out.u64(static_cast<std::uint64_t>(table.topLevel));
     out.podVector(table.levelStart);

@@ -73,6 +73,11 @@ void checkRecord(const algo::SourceTable& t, const algo::MappingSettings& s, std
     if (!(src.scale >= 0.0f && src.scale <= maxScale))
         checks::refuse(kType, record(j) + "scale " + std::to_string(src.scale) +
                                   " is outside [0, " + std::to_string(maxScale) + "]");
+    // cloudTop 'spread' flattens a copy to at least kSmallestCappedScale of its height.
+    if (!(src.flatten >= static_cast<float>(algo::kSmallestCappedScale) && src.flatten <= 1.0f))
+        checks::refuse(kType, record(j) + "flatten " + std::to_string(src.flatten) +
+                                  " is outside [" + std::to_string(algo::kSmallestCappedScale) +
+                                  ", 1]");
     // Unthinned copies carry every fluid id: no phase.
     if (s.particlesPerCopy == 0 && src.phase != 0)
         checks::refuse(kType, record(j) + "has a phase but copies are not thinned");

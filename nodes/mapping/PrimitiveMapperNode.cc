@@ -45,6 +45,8 @@ algo::MappingSettings settingsFrom(const CookContext& ctx, std::size_t primitive
                                                    : algo::Level1Origin::Particle;
     s.trailRiseSpeed = p.getFloat("trailRiseSpeed");
     s.cloudTop = p.getFloat("cloudTop");
+    s.cloudTopRule = p.getString("cloudTopRule") == "spread" ? algo::CloudTopRule::Spread
+                                                             : algo::CloudTopRule::Shrink;
     s.primitiveCount = static_cast<std::uint32_t>(primitives);
     return s;
 }
@@ -87,7 +89,7 @@ void registerPrimitiveMapperNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "PrimitiveMapper";
-    d.version = 7;  // each version's change: CHANGES.md, "Node versions"
+    d.version = 8;  // each version's change: CHANGES.md, "Node versions"
     d.category = "mapping";
     d.doc =
         "The recursive mapping of Sec. 5.2 (pseudocode lines 15-28). Each frame t, every active "
@@ -200,6 +202,12 @@ void registerPrimitiveMapperNode(Registry& registry)
                    "hundred metres above for the thermals' overshoot: fair-weather cumulus stop "
                    "there, under the inversion, instead of growing as deep as the primitive",
                    0.0, 30000.0),
+        stringParam("cloudTopRule", "shrink",
+                    "ours: what a copy that would rise past cloudTop becomes: 'shrink' (R made "
+                    "smaller, the copy keeps its shape) or 'spread' (R kept, the copy made as "
+                    "much flatter as it must and wider by 1 / sqrt of that, keeping its volume: "
+                    "air spreading under an inversion or the tropopause, an anvil's way)",
+                    {"shrink", "spread"}),
     };
     d.create = [] { return std::make_unique<PrimitiveMapperNode>(); };
     registry.addNode(std::move(d));

@@ -159,8 +159,10 @@ void expectedCloudParticle(const Scene& scene, const SourceTable& table, const S
     }
     double f[3];
     expectedFluid(scene, i, src.speed * (t - src.startFrame) * scene.settings.timeStep / 0.25, f);
+    // A flattened copy (cloudTop 'spread') is flatten as high and 1 / sqrt(flatten) as wide.
     const double r = scene.settings.metresPerPrimitiveMetre * src.scale;
-    for (int k = 0; k < 3; ++k) out[k] = origin[k] + r * f[k];
+    const double across = r / std::sqrt(double{src.flatten}), up = r * src.flatten;
+    for (int k = 0; k < 3; ++k) out[k] = origin[k] + (k < 2 ? across : up) * f[k];
 }
 
 struct MappingRun {
@@ -330,32 +332,44 @@ float highestParticle(const Scene& scene, const MappingRun& r)
     return top;
 }
 
-// cloudTop: no particle of any level rises past it at any frame, copies whose top would are
-// made smaller (R < R0 fNoise), and without it the same scene's clouds do rise past it.
+// cloudTop: no particle of any level rises past it at any frame, whether copies that would
+// are made smaller (R < R0 fNoise, 'shrink') or flatter and wider ('spread': R = R0 fNoise,
+// flatten < 1, positions as the recursive formula spreads them); without it the same scene's
+// clouds do rise past it.
 TEST(Mapping, NoCopyOfAnyLevelRisesPastTheCloudTop)
 {
     Scene scene;
     scene.settings.level1Origin = Level1Origin::CondensationLevel;
     scene.settings.maxLevel = 3;
-    const MappingRun free = run(scene, 60);
-    const float freeTop = highestParticle(scene, free);
+    const float freeTop = highestParticle(scene, run(scene, 60));
     scene.settings.cloudTop = 1560.0;
     ASSERT_GT(freeTop, scene.settings.cloudTop + 40.0f) << "the cap would not bite";
-    const MappingRun capped = run(scene, 60);
-    EXPECT_LE(highestParticle(scene, capped), 1560.0f + 1e-3f);
-    const SourceTable& table = capped.tables.back();
-    int smaller = 0;
-    std::set<int> levels;
-    const Scene::Frame& c = capped.frames.back();
-    for (const Source& src : table.sources) {
-        levels.insert(src.level);
-        if (src.level != 1) continue;
-        const double r = scene.settings.scaleCoefficient *
-                         scene.mapView().at(c.x[src.parent], c.y[src.parent]);  // Eq. 16
-        smaller += src.scale < r - 1e-6;
+    for (const CloudTopRule rule : {CloudTopRule::Shrink, CloudTopRule::Spread}) {
+        scene.settings.cloudTopRule = rule;
+        const MappingRun capped = run(scene, 60);
+        EXPECT_LE(highestParticle(scene, capped), 1560.0f + 1e-3f);
+        const SourceTable& table = capped.tables.back();
+        int smaller = 0, flatter = 0;
+        std::set<int> levels;
+        const Scene::Frame& c = capped.frames.back();
+        for (const Source& src : table.sources) {
+            levels.insert(src.level);
+            flatter += src.flatten < 1.0f;
+            if (src.level != 1) continue;
+            const double r = scene.settings.scaleCoefficient *
+                             scene.mapView().at(c.x[src.parent], c.y[src.parent]);  // Eq. 16
+            smaller += src.scale < r - 1e-6;
+        }
+        const bool spread = rule == CloudTopRule::Spread;
+        EXPECT_EQ(smaller > 0, !spread);
+        EXPECT_EQ(flatter > 0, spread);
+        EXPECT_EQ(levels, (std::set<int>{1, 2, 3}));  // the cap leaves the recursion room
     }
-    EXPECT_GT(smaller, 0);
-    EXPECT_EQ(levels, (std::set<int>{1, 2, 3}));  // the cap leaves the recursion room below it
+    const MappingRun early = run(scene, 30);  // what the formula check below sees
+    const std::vector<Source>& sources = early.tables.back().sources;
+    ASSERT_TRUE(std::any_of(sources.begin(), sources.end(),
+                            [](const Source& src) { return src.flatten < 1.0f; }));
+    expectPositionsMatchTheRecursiveFormula(scene);  // with the spread copies
 }
 
 TEST(Mapping, TrailCopiesStayWhereTheirRisingParticleLaidThemAndStoppedParticlesCarryTheirs)

@@ -156,9 +156,9 @@ bool reachesEndAround(const MovingScene& scene, const SourceTable& table, std::s
 
 }  // namespace
 
-TEST(MappingMotion, VelocitiesMatchCentralDifferencesOfPositionsById)
+/// Every particle's velocity against the central difference of its positions by id.
+void expectVelocitiesMatchCentralDifferences(const MovingScene& scene)
 {
-    const MovingScene scene;
     // Frames where level 1 copies grow, level 2 and 3 ride them, and early copies drift on
     // past the primitive's end (s advances 0.2 A a frame: 60 frames in 100-300).
     for (const int t : {40, 160, 400}) {
@@ -201,6 +201,23 @@ TEST(MappingMotion, VelocitiesMatchCentralDifferencesOfPositionsById)
         // part: a velocity without it would fail the bound above.
         EXPECT_GT(shapeShare, t < 400 ? 0.5 : 0.2) << "frame " << t;
     }
+}
+
+TEST(MappingMotion, VelocitiesMatchCentralDifferencesOfPositionsById)
+{
+    expectVelocitiesMatchCentralDifferences(MovingScene());
+}
+
+// Copies made flatter and wider under a cloud top (cloudTop 'spread') move as they stand.
+TEST(MappingMotion, SpreadCopiesVelocitiesMatchTheirPositionsToo)
+{
+    MovingScene scene;
+    scene.settings.cloudTop = 1600.0;
+    scene.settings.cloudTopRule = CloudTopRule::Spread;
+    const SourceTable table = tableAt(scene, 401);
+    ASSERT_TRUE(std::any_of(table.sources.begin(), table.sources.end(),
+                            [](const Source& src) { return src.flatten < 1.0f; }));
+    expectVelocitiesMatchCentralDifferences(scene);
 }
 
 TEST(MappingMotion, IdsAreStableAcrossFramesAndUniqueWithinOne)

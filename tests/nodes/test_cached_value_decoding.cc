@@ -721,8 +721,9 @@ struct MapperScene {
     Bytes bytes() const { return encode(CloudSourcesData(table, settings)); }
 };
 
-/// Byte offset of field `field` (0 level .. 6 scale) of record j in CloudSources' bytes.
-std::size_t fieldAt(std::size_t j, std::size_t field) { return 8 + 56 * j + 8 * field; }
+/// Byte offset of field `field` (0 level .. 6 scale, 7 flatten) of record j in CloudSources'
+/// bytes.
+std::size_t fieldAt(std::size_t j, std::size_t field) { return 8 + 64 * j + 8 * field; }
 
 void patchU64(Bytes& b, std::size_t at, std::uint64_t v)
 {
@@ -877,6 +878,7 @@ TEST(CachedValueDecoding, CloudSourcesRefuseFieldsThatDoNotFit)
     std::uint64_t bits;
     std::memcpy(&bits, &speed, 8);
     expectRefused("CloudSources", patched(5, bits), "speed 1.100000 is not a 32-bit float");
+    expectRefused("CloudSources", patched(7, bits), "flatten 1.100000 is not a 32-bit float");
     Bytes count = scene.bytes();
     patchU64(count, 0, scene.table.sources.size() + 1000);
     expectRefused("CloudSources", count, "record count runs past the end");
@@ -896,6 +898,10 @@ TEST(CachedValueDecoding, CloudSourcesRefuseInconsistentRecords)
     expectSourcesRefused([](S& s) { s.table.sources[s.first(2)].level = 0; },
                          "level 0 is outside 1..3");
     expectSourcesRefused([](S& s) { s.table.topLevel = 2; }, "level 3 is outside 1..2");
+    expectSourcesRefused([](S& s) { s.table.sources[s.first(2)].flatten = 0.05f; },
+                         "flatten 0.050000 is outside [0.100000, 1]");
+    expectSourcesRefused([](S& s) { s.table.sources[s.first(2)].flatten = 1.5f; },
+                         "flatten 1.500000 is outside");
     expectSourcesRefused([](S& s) { s.table.sources.back().startFrame = 0; },
                          "starts before the record above it");
     expectSourcesRefused([](S& s) { s.table.sources[s.first(2)].speed = 0.5f; },
