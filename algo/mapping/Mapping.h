@@ -193,11 +193,11 @@ struct MappingSettings {
     /// around its equilibrium level at a few m/s).
     double trailRiseSpeed = 3.0;
     /// Ours: the height (m above sea level) no copy may rise past, 0 = none (the paper). A copy
-    /// selected with its origin ending up at z gets R = min(R0 fNoise, (cloudTop - z) / top),
-    /// top the primitive's highest point (its drift's rise included); one that would be
-    /// smaller than kSmallestCappedScale of its R0 fNoise is not made (its candidate is
-    /// used up). A sounding's equilibrium level, where thermals stop rising, caps a
-    /// fair-weather cumulus field.
+    /// selected with its origin ending up at z may keep the share v = (cloudTop - z) /
+    /// (R0 fNoise top) of its height, top the primitive's highest point (its drift's rise
+    /// included); one that would keep less than kSmallestCappedScale is not made (its
+    /// candidate is used up), the others become what cloudTopRule says. A sounding's
+    /// equilibrium level, where thermals stop rising, caps a fair-weather cumulus field.
     double cloudTop = 0.0;
     /// What a copy that would rise past cloudTop becomes: smaller (CloudTopRule::Shrink), or
     /// as wide and flatter, spreading under the cap as air does under an inversion or the
