@@ -94,11 +94,30 @@ double extinctionPerUnitValue(const DropletPopulation& droplets)
     return extinctionFromWater(1.0, droplets);
 }
 
+namespace {
+
+/// The value a voxel of splatted value v holds h metres above its base: the extinction of its
+/// water, liquid and frozen, over that of 1 g/m^3 of liquid (`perUnit`).
+double waterValue(double v, double h, const CloudWaterSettings& s, double perUnit)
+{
+    const double condensate = s.adiabaticFraction * v * s.water->at(h);
+    const double ice = s.ice ? iceFraction(s.water->temperature(h), *s.ice) : 0.0;
+    if (ice == 0.0) return std::cbrt(condensate * condensate);  // (LWC / 1 g m^-3)^(2/3)
+    const double liquid = extinctionFromWater((1.0 - ice) * condensate, s.droplets);
+    const double frozen =
+        extinctionFromIce(ice * s.ice->retention * condensate, s.ice->effectiveRadius);
+    return (liquid + frozen) / perUnit;
+}
+
+}  // namespace
+
 void shapeCloudWater(openvdb::FloatGrid& grid, const CloudBaseField& base,
                      const CloudWaterSettings& s, const std::function<void()>& checkCancelled)
 {
     if (!(s.transition > 0.0) || !(s.adiabaticFraction > 0.0))
         throw std::invalid_argument("cloud water: transition and adiabatic fraction must be > 0");
+    if (s.ice) checkGlaciation(*s.ice);
+    const double perUnit = extinctionPerUnitValue(s.droplets);
     const double voxel = grid.voxelSize()[0];
     openvdb::tree::LeafManager<openvdb::FloatTree> leaves(grid.tree());
     leaves.foreach ([&](LeafT& leaf, std::size_t) {
@@ -117,10 +136,7 @@ void shapeCloudWater(openvdb::FloatGrid& grid, const CloudBaseField& base,
             const int k = static_cast<int>(n & (kDim - 1));
             const double h = (corner.z() + k) * voxel - columnBase[i][j];
             double v = values[n] * smoothstep(h / s.transition);
-            if (s.water) {
-                const double lwc = s.adiabaticFraction * v * s.water->at(h);
-                v = std::cbrt(lwc * lwc);  // (LWC / 1 g m^-3)^(2/3)
-            }
+            if (s.water) v = waterValue(v, h, s, perUnit);
             storeOrSwitchOff(leaf, values, n, static_cast<float>(v));
         }
     });

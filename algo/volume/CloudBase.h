@@ -17,6 +17,12 @@
 /// real cumulus. The value stored is (LWC / 1 g m^-3)^(2/3), so extinction = value x
 /// extinctionFromWater(1 g/m^3): the grid's value scales linearly to extinction, which is what
 /// renderers (ours, Blender, Houdini, Karma) multiply by one density scale.
+///
+/// Ice: with settings.ice, the share iceFraction(T) of the condensate freezes at the parcel's
+/// temperature T there (algo/atmosphere/CloudIce.h); the liquid keeps its droplets' optics,
+/// the ice its retention's share with the crystals' optics, and the value stored is their
+/// summed extinction over extinctionFromWater(1 g/m^3), so where there is no ice it is the
+/// liquid's (LWC / 1 g m^-3)^(2/3) as before.
 
 #include <cstddef>
 #include <functional>
@@ -24,6 +30,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include "algo/atmosphere/CloudIce.h"
 #include "algo/atmosphere/CloudWater.h"
 
 namespace cg::algo {
@@ -57,6 +64,8 @@ struct CloudWaterSettings {
     const AdiabaticWater* water = nullptr;
     double adiabaticFraction = 0.6;
     DropletPopulation droplets;
+    /// Null: the condensate stays liquid at any temperature; else it freezes (with water).
+    const Glaciation* ice = nullptr;
 };
 
 /// Cuts `grid` at `base` and, with settings.water, turns its values into the water's

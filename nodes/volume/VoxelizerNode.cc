@@ -116,77 +116,6 @@ void addDetail(Voxelized& v, const DetailSettings& detail, CookContext& ctx)
     algo::erodeSurface(*v.grid, copies ? &*v.origins : nullptr, detail.erosion, cancelled);
 }
 
-/// The droplets the parameters ask for: the air mass's k, and its typical number unless
-/// dropletConcentration is set.
-algo::DropletPopulation dropletsFrom(const ParamSet& p)
-{
-    algo::DropletPopulation d =
-        p.getString("airMass") == "maritime" ? algo::kMaritimeDroplets : algo::kContinentalDroplets;
-    if (p.getFloat("dropletConcentration") > 0.0)
-        d.concentrationPerCm3 = p.getFloat("dropletConcentration");
-    return d;
-}
-
-/// What a renderer needs to read a water grid: one number turns its values into extinction
-/// (1/m); the rest describes the droplets.
-void writeWaterMetadata(openvdb::FloatGrid& grid, const algo::DropletPopulation& droplets)
-{
-    const double extinction = algo::extinctionPerUnitValue(droplets);
-    const double radius = algo::effectiveRadius(1.0, droplets);
-    grid.insertMeta("extinction", openvdb::FloatMetadata(static_cast<float>(extinction)));
-    grid.insertMeta("albedo", openvdb::FloatMetadata(1.0f));
-    grid.insertMeta("phase_asymmetry",
-                    openvdb::FloatMetadata(static_cast<float>(algo::dropletAsymmetry(radius))));
-    grid.insertMeta("droplet_concentration_cm3",
-                    openvdb::DoubleMetadata(droplets.concentrationPerCm3));
-    grid.insertMeta("value_meaning",
-                    openvdb::StringMetadata("extinction / 'extinction'; liquid water content "
-                                            "= value^1.5 g/m^3"));
-}
-
-/// Flat bases and, with optics 'water', the cloud's water (algo/volume/CloudBase.h); writes
-/// what a renderer needs into the grid's metadata.
-void shapeBaseAndWater(openvdb::FloatGrid& grid, CookContext& ctx)
-{
-    const ParamSet& p = ctx.params();
-    const bool water = p.getString("optics") == "water";
-    if (!water && !p.getBool("flatBase")) return;
-    const auto condensation = ctx.input<CondensationData>("condensation");
-    if (!condensation)
-        throw InputError(ctx.nodeId() + "/inputs/condensation",
-                         "flatBase and optics 'water' need the condensation input (the "
-                         "condensation levels)");
-    std::shared_ptr<const AtmosphereData> atmosphere;
-    if (water) {
-        atmosphere = ctx.input<AtmosphereData>("atmosphere");
-        if (!atmosphere)
-            throw InputError(ctx.nodeId() + "/inputs/atmosphere",
-                             "optics 'water' needs the atmosphere input (the temperature and "
-                             "pressure at the cloud base)");
-    }
-    algo::CloudWaterSettings s;
-    s.transition = p.getFloat("baseTransition");
-    s.adiabaticFraction = p.getFloat("adiabaticFraction");
-    s.droplets = dropletsFrom(p);
-    const auto base = cloudBaseOf(*condensation, p.getFloat("baseCellSize"));
-    if (!base) {
-        // Nothing has condensed yet: no cloud base, and no liquid water anywhere.
-        if (water) {
-            grid.clear();
-            writeWaterMetadata(grid, s.droplets);
-        }
-        return;
-    }
-    std::optional<algo::AdiabaticWater> adiabatic;
-    if (water) {
-        adiabatic.emplace(adiabaticWaterAt(atmosphere->atmosphere, base->overall()));
-        s.water = &*adiabatic;
-    }
-    algo::shapeCloudWater(grid, *base, s, [&] { ctx.checkCancelled(); });
-    grid.insertMeta("cloud_base_m", openvdb::DoubleMetadata(base->overall()));
-    if (water) writeWaterMetadata(grid, s.droplets);
-}
-
 /// The detail the parameters ask for; the erosion's frequency is per particle radius.
 DetailSettings detailFrom(const ParamSet& p, double radius)
 {
@@ -253,7 +182,7 @@ void registerVoxelizerNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "Voxelizer";
-    d.version = 6;
+    d.version = 7;
     d.category = "volume";
     d.doc =
         "Splats cloud particles into a sparse OpenVDB fog volume (Sec. 6.3: volume data with "
@@ -285,7 +214,10 @@ void registerVoxelizerNode(Registry& registry)
         "cloud's liquid water as extinction: (LWC / 1 g m^-3)^(2/3), with LWC the share "
         "adiabaticFraction x value of the moist-adiabatic water above the base, and writes "
         "'extinction' (1/m per unit value, sigma of 1 g/m^3 for the droplets), 'albedo', "
-        "'phase_asymmetry' and 'droplet_concentration_cm3' into the metadata. Only leaves that "
+        "'phase_asymmetry' and 'droplet_concentration_cm3' into the metadata; with ice (ours) the "
+        "condensate colder than glaciationStart freezes, all of it by glaciationEnd, the cloud "
+        "keeps iceRetention of the frozen part as crystals of iceEffectiveRadius, and the value "
+        "is the liquid's and the ice's summed extinction over 'extinction'. Only leaves that "
         "particles touch are allocated; the grid is identical for any thread count. Metadata: "
         "frame, units ('metres'), voxel_size_m, particle_radius_m, kernel, particle_count, and "
         "cloud_base_m with a flat base. See docs/voxelizer.md.";
@@ -367,12 +299,32 @@ void registerVoxelizerNode(Registry& registry)
                     {"continental", "maritime"}),
         floatParam("dropletConcentration", 0.0, "1/cm^3",
                    "water: droplet number N; 0 = the air mass's typical value", 0.0, 10000.0),
+        boolParam("ice", true,
+                  "water: the condensate freezes where the parcel is colder than "
+                  "glaciationStart, all of it below glaciationEnd (ours; docs/voxelizer.md, "
+                  "'Ice')"),
+        floatParam("glaciationStart", -10.0, "C",
+                   "water: first ice, heterogeneous freezing (Pruppacher and Klett 1997)",
+                   -100.0, 0.0),
+        floatParam("glaciationEnd", -38.0, "C",
+                   "water: all ice, homogeneous freezing (Pruppacher and Klett 1997)", -100.0,
+                   0.0),
+        floatParam("iceRetention", 0.1, "",
+                   "water: share of the frozen condensate the cloud keeps as ice, the rest "
+                   "falls as snow (value ours: anvils hold about 0.1 g/m^3)",
+                   0.001, 1.0),
+        floatParam("iceEffectiveRadius", 30.0, "um",
+                   "water: ice crystals' effective radius; sigma = 3 IWC / (2 rho_ice r_eff) "
+                   "(Fu 1996; anvils 20-60 um)",
+                   1.0, 1000.0),
         stringParam("filter", "none", "OpenVDB smoothing of the active voxels after splatting",
                     {"none", "mean", "gaussian", "median"}),
         intParam("filterWidth", 1, "voxels", "filter half-width: the stencil is (2 w + 1)^3", 1, 8),
         intParam("filterIterations", 1, "", "filter passes", 1, 16),
     };
     d.validate = [](const ParamSet& p, const ParamChecker& check) {
+        if (!(p.getFloat("glaciationEnd") < p.getFloat("glaciationStart")))
+            check.fail("glaciationEnd", "glaciationEnd must be colder than glaciationStart");
         if (p.getFloat("radius") > 32.0 * p.getFloat("voxelSize"))
             check.fail("radius", "radius must be at most 32 voxel sizes");
         // The warp grows the active voxels by its reach: bounded before anything is allocated.

@@ -106,6 +106,48 @@ TEST(CloudBase, WaterValuesAreTheAdiabaticShareToTheTwoThirds)
               2.0f * acc.getValue(openvdb::Coord(5, 5, 110)));
 }
 
+TEST(CloudBase, AboveTheFirstIceTheValueIsTheLiquidsAndTheKeptIcesExtinction)
+{
+    const TwoLevels p;
+    const CloudBaseField base(p.x.data(), p.y.data(), p.z.data(), p.x.size(), 100.0);
+    const AdiabaticWater water(16.0, 880.0);
+    const Glaciation ice;
+    auto liquidOnly = block(4, 10, 130, 0.5f, 100.0);  // 1 km to 13 km
+    auto glaciated = liquidOnly->deepCopy();
+    CloudWaterSettings s;
+    s.water = &water;
+    shapeCloudWater(*liquidOnly, base, s);
+    s.ice = &ice;
+    shapeCloudWater(*glaciated, base, s);
+    const double perUnit = extinctionPerUnitValue(s.droplets);
+    auto liquidAcc = liquidOnly->getConstAccessor();
+    auto acc = glaciated->getConstAccessor();
+    int warm = 0, mixed = 0, frozen = 0;
+    for (int k = 12; k <= 130; ++k) {
+        const openvdb::Coord c(1, 1, k);
+        const openvdb::Vec3d w = glaciated->indexToWorld(c);
+        const double h = w.z() - base.at(w.x(), w.y());
+        const double t = water.temperature(h), condensate = 0.6 * 0.5 * water.at(h);
+        const double f = t >= -10.0 ? 0.0 : t <= -38.0 ? 1.0 : (-10.0 - t) / 28.0;
+        const double sigma = extinctionFromWater((1.0 - f) * condensate, s.droplets) +
+                             extinctionFromIce(f * 0.1 * condensate, 30e-6);
+        EXPECT_NEAR(acc.getValue(c), sigma / perUnit, 1e-5 * sigma / perUnit) << c;
+        if (f == 0.0) {
+            EXPECT_EQ(acc.getValue(c), liquidAcc.getValue(c)) << "warm voxels are unchanged";
+            ++warm;
+        } else if (f == 1.0) {
+            // A tenth of the water as crystals five times larger: far thinner than droplets.
+            EXPECT_LT(acc.getValue(c), 0.05f * liquidAcc.getValue(c)) << c;
+            ++frozen;
+        } else {
+            ++mixed;
+        }
+    }
+    EXPECT_GT(warm, 10);
+    EXPECT_GT(mixed, 10);
+    EXPECT_GT(frozen, 10);
+}
+
 TEST(CloudBase, RefusesAFieldWithoutCondensation)
 {
     const float nan = std::nanf("");

@@ -156,6 +156,26 @@ TEST_F(VoxelizerNodeTest, AWarpReachingBeyond64VoxelsIsRefusedAtLoadNamingIt)
     }
 }
 
+TEST_F(VoxelizerNodeTest, AllIceNoColderThanFirstIceIsRefusedAtLoadNamingIt)
+{
+    const auto graph = [](const char* end) {
+        return std::string(R"({"cloudgraph": 1, "nodes": {
+            "cloud": {"type": "TestCloudSource"},
+            "vox": {"type": "Voxelizer", "inputs": {"particles": "cloud.particles"},
+                    "params": {"voxelSize": 1, "radius": 4.0, "glaciationStart": -20,
+                               "glaciationEnd": )") +
+               end + "}}}}";
+    };
+    EXPECT_NO_THROW(parse(graph("-21")));
+    try {
+        parse(graph("-20"));
+        ADD_FAILURE() << "all ice at the first ice's temperature was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("vox/params/glaciationEnd"), std::string::npos)
+            << e.what();
+    }
+}
+
 TEST_F(VoxelizerNodeTest, WaterAndFlatBasesWithoutTheirInputsAreRefusedNamingTheInput)
 {
     for (const char* params : {R"("optics": "water")", R"("flatBase": true)"}) {
