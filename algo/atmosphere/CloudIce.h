@@ -29,7 +29,7 @@ inline constexpr double kIceDensity = 917.0;  ///< rho_ice, kg/m^3
 struct Glaciation {
     double startC = -10.0;           ///< first ice, C
     double endC = -38.0;             ///< all ice, C (below startC)
-    double retention = 0.1;          ///< share of the frozen condensate kept as cloud ice
+    double retention = 0.05;         ///< share of the frozen condensate kept as cloud ice
     double effectiveRadius = 30e-6;  ///< ice crystals' r_eff, m
 };
 

@@ -6,9 +6,12 @@
 #include <vector>
 
 #include "core/Error.h"
+#include "algo/atmosphere/Parcel.h"
+#include "algo/volume/IceSpread.h"
 #include "core/Node.h"
 #include "nodes/data/AtmosphereData.h"
 #include "nodes/data/VapourParticles.h"
+#include "util/SystemMemory.h"
 
 namespace cg {
 
@@ -64,6 +67,35 @@ void writeWaterMetadata(openvdb::FloatGrid& grid, const algo::CloudWaterSettings
                     openvdb::StringMetadata("extinction / 'extinction'; where the cloud is "
                                             "warmer than glaciation_start_c, liquid water "
                                             "content = value^1.5 g/m^3"));
+}
+
+/// Where the outflow starts, m above the ground: `depth` under the equilibrium level of a
+/// parcel lifted from the ground with the air's temperature and dew point there; NaN when
+/// that parcel never rises freely.
+double outflowBottom(const Atmosphere& a, double depth)
+{
+    const algo::EnvironmentProfile profile = environmentProfileOf(a);
+    const algo::ParcelAscent parcel = algo::liftParcel(profile, profile.groundHeight());
+    return parcel.elM - depth - profile.groundHeight();
+}
+
+/// The glaciated layers spread into a sheet (algo/volume/IceSpread.h), within the node's
+/// memory limit.
+void spreadTheIce(openvdb::FloatGrid& grid, const algo::CloudBaseField& base,
+                  const algo::AdiabaticWater& water, const algo::Glaciation& ice,
+                  const Atmosphere& atmosphere, CookContext& ctx)
+{
+    algo::IceSpreadSettings spread;
+    spread.spread = ctx.params().getFloat("iceSpread");
+    const double bottom = outflowBottom(atmosphere, ctx.params().getFloat("anvilDepth"));
+    if (std::isnan(bottom)) return;  // no parcel rises freely: no anvil
+    spread.outflowBottom = bottom;
+    spread.maxBytes = util::nodeAllocationLimitBytes();
+    try {
+        algo::spreadIce(grid, base, water, ice, spread, [&] { ctx.checkCancelled(); });
+    } catch (const algo::IceSpreadTooLarge& e) {
+        throw InputError(ctx.nodeId() + "/params/iceSpread", e.what());
+    }
 }
 
 }  // namespace
@@ -127,6 +159,7 @@ void shapeBaseAndWater(openvdb::FloatGrid& grid, CookContext& ctx)
         s.water = &*adiabatic;
     }
     algo::shapeCloudWater(grid, *base, s, [&] { ctx.checkCancelled(); });
+    if (s.ice) spreadTheIce(grid, *base, *adiabatic, *s.ice, atmosphere->atmosphere, ctx);
     grid.insertMeta("cloud_base_m", openvdb::DoubleMetadata(base->overall()));
     if (water) writeWaterMetadata(grid, s);
 }

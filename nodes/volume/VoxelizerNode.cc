@@ -217,7 +217,9 @@ void registerVoxelizerNode(Registry& registry)
         "'phase_asymmetry' and 'droplet_concentration_cm3' into the metadata; with ice (ours) the "
         "condensate colder than glaciationStart freezes, all of it by glaciationEnd, the cloud "
         "keeps iceRetention of the frozen part as crystals of iceEffectiveRadius, and the value "
-        "is the liquid's and the ice's summed extinction over 'extinction'. Only leaves that "
+        "is the liquid's and the ice's summed extinction over 'extinction'; each horizontal layer "
+        "of it is blurred by iceSpread and every voxel takes its ice share of the blurred "
+        "value, so the glaciated anvil is a sheet. Only leaves that "
         "particles touch are allocated; the grid is identical for any thread count. Metadata: "
         "frame, units ('metres'), voxel_size_m, particle_radius_m, kernel, particle_count, and "
         "cloud_base_m with a flat base. See docs/voxelizer.md.";
@@ -309,7 +311,7 @@ void registerVoxelizerNode(Registry& registry)
         floatParam("glaciationEnd", -38.0, "C",
                    "water: all ice, homogeneous freezing (Pruppacher and Klett 1997)", -100.0,
                    0.0),
-        floatParam("iceRetention", 0.1, "",
+        floatParam("iceRetention", 0.05, "",
                    "water: share of the frozen condensate the cloud keeps as ice, the rest "
                    "falls as snow (value ours: anvils hold about 0.1 g/m^3)",
                    0.001, 1.0),
@@ -317,6 +319,16 @@ void registerVoxelizerNode(Registry& registry)
                    "water: ice crystals' effective radius; sigma = 3 IWC / (2 rho_ice r_eff) "
                    "(Fu 1996; anvils 20-60 um)",
                    1.0, 1000.0),
+        floatParam("iceSpread", 1500.0, "m",
+                   "water: standard deviation of the sideways spreading of the glaciated "
+                   "layers into a sheet (ours: an anvil's outflow; docs/voxelizer.md, 'Ice'); "
+                   "0: none",
+                   0.0, 100000.0),
+        floatParam("anvilDepth", 2000.0, "m",
+                   "water: the spreading starts this far under the equilibrium level of a "
+                   "parcel lifted from the ground, full a kilometre higher (value ours: "
+                   "outflows are 1-3 km deep)",
+                   0.0, 20000.0),
         stringParam("filter", "none", "OpenVDB smoothing of the active voxels after splatting",
                     {"none", "mean", "gaussian", "median"}),
         intParam("filterWidth", 1, "voxels", "filter half-width: the stencil is (2 w + 1)^3", 1, 8),

@@ -130,13 +130,13 @@ TEST(CloudBase, AboveTheFirstIceTheValueIsTheLiquidsAndTheKeptIcesExtinction)
         const double t = water.temperature(h), condensate = 0.6 * 0.5 * water.at(h);
         const double f = t >= -10.0 ? 0.0 : t <= -38.0 ? 1.0 : (-10.0 - t) / 28.0;
         const double sigma = extinctionFromWater((1.0 - f) * condensate, s.droplets) +
-                             extinctionFromIce(f * 0.1 * condensate, 30e-6);
+                             extinctionFromIce(f * ice.retention * condensate, 30e-6);
         EXPECT_NEAR(acc.getValue(c), sigma / perUnit, 1e-5 * sigma / perUnit) << c;
         if (f == 0.0) {
             EXPECT_EQ(acc.getValue(c), liquidAcc.getValue(c)) << "warm voxels are unchanged";
             ++warm;
         } else if (f == 1.0) {
-            // A tenth of the water as crystals five times larger: far thinner than droplets.
+            // A twentieth of the water as crystals: far thinner than droplets.
             EXPECT_LT(acc.getValue(c), 0.05f * liquidAcc.getValue(c)) << c;
             ++frozen;
         } else {
