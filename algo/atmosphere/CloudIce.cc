@@ -7,8 +7,9 @@ namespace cg::algo {
 void checkGlaciation(const Glaciation& g)
 {
     if (!(g.endC < g.startC))
-        throw std::invalid_argument("glaciation: the all-ice temperature must be below the "
-                                    "first-ice one");
+        throw std::invalid_argument(
+            "glaciation: the all-ice temperature must be below the "
+            "first-ice one");
     if (!(g.retention > 0.0 && g.retention <= 1.0))
         throw std::invalid_argument("glaciation: ice retention must be in (0, 1]");
     if (!(g.effectiveRadius > 0.0 && g.effectiveRadius <= 1e-3))

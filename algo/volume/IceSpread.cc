@@ -71,18 +71,18 @@ void spreadIce(openvdb::FloatGrid& grid, const CloudBaseField& base, const Adiab
             columnBase[static_cast<std::size_t>(j * nx + i)] =
                 base.at((low.x() + i) * voxel, (low.y() + j) * voxel);
     const double lowestBase = *std::min_element(columnBase.begin(), columnBase.end());
-    const int k0 = std::max(
-        active.min().z(), static_cast<int>(std::floor(
-                              std::max(s.outflowBottom, lowestBase + firstIceHeight(water, ice)) /
-                              voxel)));
+    const int k0 =
+        std::max(active.min().z(),
+                 static_cast<int>(std::floor(
+                     std::max(s.outflowBottom, lowestBase + firstIceHeight(water, ice)) / voxel)));
     if (k0 > active.max().z()) return;
-    const openvdb::CoordBBox slab(openvdb::Coord(low.x(), low.y(), k0),
-                                  openvdb::Coord(low.x() + static_cast<int>(nx) - 1,
-                                                 low.y() + static_cast<int>(ny) - 1,
-                                                 active.max().z()));
+    const openvdb::CoordBBox slab(
+        openvdb::Coord(low.x(), low.y(), k0),
+        openvdb::Coord(low.x() + static_cast<int>(nx) - 1, low.y() + static_cast<int>(ny) - 1,
+                       active.max().z()));
     const long nz = slab.dim().z();
-    const double bytes = 2.0 * sizeof(float) * static_cast<double>(nx) *
-                         static_cast<double>(ny) * static_cast<double>(nz);
+    const double bytes = 2.0 * sizeof(float) * static_cast<double>(nx) * static_cast<double>(ny) *
+                         static_cast<double>(nz);
     if (s.maxBytes > 0 && bytes > static_cast<double>(s.maxBytes))
         throw IceSpreadTooLarge("ice spread: the glaciated layers (" + std::to_string(nx) + " x " +
                                 std::to_string(ny) + " x " + std::to_string(nz) +

@@ -26,7 +26,7 @@
 namespace cg::algo {
 
 struct IceSpreadSettings {
-    double spread = 1500.0;  ///< m, the Gaussian's standard deviation; 0: nothing
+    double spread = 1500.0;      ///< m, the Gaussian's standard deviation; 0: nothing
     double outflowBottom = 0.0;  ///< m, the grid's z where the spreading starts
     /// Refuse (IceSpreadTooLarge) when the dense layers would need more; 0: no limit.
     std::uint64_t maxBytes = 0;

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "core/Error.h"
 #include "algo/atmosphere/Parcel.h"
 #include "algo/volume/IceSpread.h"
+#include "core/Error.h"
 #include "core/Node.h"
 #include "nodes/data/AtmosphereData.h"
 #include "nodes/data/VapourParticles.h"
@@ -163,6 +163,5 @@ void shapeBaseAndWater(openvdb::FloatGrid& grid, CookContext& ctx)
     grid.insertMeta("cloud_base_m", openvdb::DoubleMetadata(base->overall()));
     if (water) writeWaterMetadata(grid, s);
 }
-
 
 }  // namespace cg

@@ -306,11 +306,10 @@ void registerVoxelizerNode(Registry& registry)
                   "glaciationStart, all of it below glaciationEnd (ours; docs/voxelizer.md, "
                   "'Ice')"),
         floatParam("glaciationStart", -10.0, "C",
-                   "water: first ice, heterogeneous freezing (Pruppacher and Klett 1997)",
-                   -100.0, 0.0),
-        floatParam("glaciationEnd", -38.0, "C",
-                   "water: all ice, homogeneous freezing (Pruppacher and Klett 1997)", -100.0,
+                   "water: first ice, heterogeneous freezing (Pruppacher and Klett 1997)", -100.0,
                    0.0),
+        floatParam("glaciationEnd", -38.0, "C",
+                   "water: all ice, homogeneous freezing (Pruppacher and Klett 1997)", -100.0, 0.0),
         floatParam("iceRetention", 0.05, "",
                    "water: share of the frozen condensate the cloud keeps as ice, the rest "
                    "falls as snow (value ours: anvils hold about 0.1 g/m^3)",

@@ -79,8 +79,8 @@ TEST(IceSpread, WarmCloudAndTheGlaciatedTowerUnderTheOutflowKeepTheirShape)
     s.settings.outflowBottom = 11500.0;
     ASSERT_LT(s.water.temperature(10000.0 - 1000.0), s.ice.endC) << "ice, but under the outflow";
     // A warm puff at 3 km, an icy one at 10 km under the outflow, one in the outflow.
-    auto grid = puffs({openvdb::Coord(0, 0, 30), openvdb::Coord(0, 0, 100),
-                       openvdb::Coord(0, 0, 125)});
+    auto grid =
+        puffs({openvdb::Coord(0, 0, 30), openvdb::Coord(0, 0, 100), openvdb::Coord(0, 0, 125)});
     const auto before = grid->deepCopy();
     spreadIce(*grid, s.base, s.water, s.ice, s.settings);
     auto acc = grid->getConstAccessor(), was = before->getConstAccessor();
