@@ -14,30 +14,52 @@ namespace {
 
 using Dense = openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ>;
 
-/// Box blur of half-width r along a line of n values spaced `stride` apart, zero outside.
-void boxLine(float* v, long n, long stride, long r, std::vector<double>& line)
+/// Box blur of half-width r over the n values at `index` (a line through the layer), zero
+/// beyond its ends.
+void boxLine(float* layer, const std::vector<long>& index, long r, std::vector<double>& line)
 {
-    line.assign(static_cast<std::size_t>(n), 0.0);
-    for (long i = 0; i < n; ++i) line[static_cast<std::size_t>(i)] = v[i * stride];
+    const long n = static_cast<long>(index.size());
+    line.resize(index.size());
+    for (long i = 0; i < n; ++i) line[static_cast<std::size_t>(i)] = layer[index[i]];
     const double w = 1.0 / static_cast<double>(2 * r + 1);
     double sum = 0.0;
     for (long i = 0; i < std::min(r, n); ++i) sum += line[static_cast<std::size_t>(i)];
     for (long i = 0; i < n; ++i) {
         if (i + r < n) sum += line[static_cast<std::size_t>(i + r)];
         if (i - r - 1 >= 0) sum -= line[static_cast<std::size_t>(i - r - 1)];
-        v[i * stride] = static_cast<float>(sum * w);
+        layer[index[static_cast<std::size_t>(i)]] = static_cast<float>(sum * w);
     }
 }
 
-/// Three box passes along x and along y of one layer (nx x ny, x fastest): a Gaussian of
-/// variance 3 ((2r + 1)^2 - 1) / 12 voxels^2.
-void blurLayer(float* layer, long nx, long ny, long r)
+/// The half-width of three box passes whose variance is sigma^2 (in steps).
+long boxHalfWidth(double sigma)
 {
+    return std::max(1L, std::lround(0.5 * (std::sqrt(4.0 * sigma * sigma + 1.0) - 1.0)));
+}
+
+/// Three box passes of a Gaussian of `sigma` voxels along the direction (dx, dy) of a layer
+/// (nx x ny, x fastest). The layer is cut into parallel lines, each voxel on one: along the
+/// major axis one voxel a step, the minor coordinate rounded from the slope, so a step is
+/// sqrt(1 + slope^2) voxels long.
+void blurAlong(float* layer, long nx, long ny, double dx, double dy, double sigma)
+{
+    const bool alongX = std::abs(dx) >= std::abs(dy);
+    const long major = alongX ? nx : ny, minor = alongX ? ny : nx;
+    const double slope = alongX ? dy / dx : dx / dy;
+    const long r = boxHalfWidth(sigma / std::sqrt(1.0 + slope * slope));
+    const long reach = std::lround(slope * static_cast<double>(major - 1));
+    std::vector<long> index;
     std::vector<double> line;
-    for (int pass = 0; pass < 3; ++pass) {
-        for (long j = 0; j < ny; ++j) boxLine(layer + j * nx, nx, 1, r, line);
-        for (long i = 0; i < nx; ++i) boxLine(layer + i, ny, nx, r, line);
-    }
+    for (int pass = 0; pass < 3; ++pass)
+        for (long start = std::min(0L, -reach); start < minor + std::max(0L, -reach); ++start) {
+            index.clear();
+            for (long m = 0; m < major; ++m) {
+                const long o = start + std::lround(slope * static_cast<double>(m));
+                if (o < 0 || o >= minor) continue;
+                index.push_back(alongX ? o * nx + m : m * nx + o);
+            }
+            if (!index.empty()) boxLine(layer, index, r, line);
+        }
 }
 
 /// The height above the base from which the parcel is colder than the first ice.
@@ -56,10 +78,14 @@ void spreadIce(openvdb::FloatGrid& grid, const CloudBaseField& base, const Adiab
 {
     if (!(s.spread > 0.0) || grid.activeVoxelCount() == 0) return;
     const double voxel = grid.voxelSize()[0];
-    // Half-width of three box passes whose variance is spread^2.
-    const double sigma = s.spread / voxel;
-    const long r = std::max(1L, std::lround(0.5 * (std::sqrt(4.0 * sigma * sigma + 1.0) - 1.0)));
-    const long pad = 3 * r;
+    // Along the outflow's direction and across it; isotropic without one.
+    const double speed = std::hypot(s.directionEast, s.directionNorth);
+    const double dx = speed > 0.0 ? s.directionEast / speed : 1.0;
+    const double dy = speed > 0.0 ? s.directionNorth / speed : 0.0;
+    const double along = s.spread / voxel;
+    const double across = (speed > 0.0 ? s.across : s.spread) / voxel;
+    // Three passes reach three half-widths, each at most the larger sigma's.
+    const long pad = 3 * boxHalfWidth(std::max(along, across)) + 2;
     const openvdb::CoordBBox active = grid.evalActiveVoxelBoundingBox();
     const openvdb::Coord low(active.min().x() - static_cast<int>(pad),
                              active.min().y() - static_cast<int>(pad), active.min().z());
@@ -93,7 +119,8 @@ void spreadIce(openvdb::FloatGrid& grid, const CloudBaseField& base, const Adiab
     tbb::parallel_for(0L, nz, [&](long k) {
         float* layer = spread.data() + k * nx * ny;
         const float* mine = own.data() + k * nx * ny;
-        blurLayer(layer, nx, ny, r);
+        blurAlong(layer, nx, ny, dx, dy, along);
+        if (across > 0.0) blurAlong(layer, nx, ny, -dy, dx, across);
         const double z = (slab.min().z() + k) * voxel;
         const double outflow = std::clamp((z - s.outflowBottom) / 1000.0, 0.0, 1.0);
         for (long n = 0; n < nx * ny; ++n) {

@@ -6,7 +6,10 @@
 /// out the rising turrets' lumps, so an anvil is a smooth sheet thinning at its edges, not a
 /// row of cauliflower puffs. Each horizontal layer of the grid's values (extinction, the
 /// Voxelizer's optics 'water') is blurred with a Gaussian of standard deviation `spread`
-/// metres (three box passes), which keeps the layer's summed extinction, and every voxel
+/// metres along the outflow's wind and `across` across it (three box passes each way, along
+/// lines rasterized through the layer), which keeps the layer's summed extinction: crystals
+/// drift far downwind and little sideways, so the puffs smear into streaks along the wind,
+/// the fibres of a real anvil. Every voxel
 /// takes w = iceFraction(T) x outflow(z) of the blurred value and the rest of its own. The
 /// outflow share rises from 0 at `outflowBottom` to 1 a kilometre higher: the air spreads
 /// where it has lost its buoyancy, near the equilibrium level, while the glaciated tower
@@ -26,7 +29,11 @@
 namespace cg::algo {
 
 struct IceSpreadSettings {
-    double spread = 1500.0;      ///< m, the Gaussian's standard deviation; 0: nothing
+    double spread = 3000.0;  ///< m, the Gaussian's standard deviation along; 0: nothing
+    double across = 500.0;   ///< m, its standard deviation across the direction; 0: none
+    /// The outflow's direction (any length; the wind there): zero for none, and then the
+    /// spread is `spread` every way.
+    double directionEast = 0.0, directionNorth = 0.0;
     double outflowBottom = 0.0;  ///< m, the grid's z where the spreading starts
     /// Refuse (IceSpreadTooLarge) when the dense layers would need more; 0: no limit.
     std::uint64_t maxBytes = 0;

@@ -90,6 +90,11 @@ void spreadTheIce(openvdb::FloatGrid& grid, const algo::CloudBaseField& base,
     const double bottom = outflowBottom(atmosphere, ctx.params().getFloat("anvilDepth"));
     if (std::isnan(bottom)) return;  // no parcel rises freely: no anvil
     spread.outflowBottom = bottom;
+    // The crystals drift with the wind where the outflow is full.
+    const algo::Wind wind = atmosphere.wind.at(bottom + 1000.0);
+    spread.across = ctx.params().getFloat("iceSpreadAcross");
+    spread.directionEast = wind.east;
+    spread.directionNorth = wind.north;
     spread.maxBytes = util::nodeAllocationLimitBytes();
     try {
         algo::spreadIce(grid, base, water, ice, spread, [&] { ctx.checkCancelled(); });

@@ -218,7 +218,8 @@ void registerVoxelizerNode(Registry& registry)
         "condensate colder than glaciationStart freezes, all of it by glaciationEnd, the cloud "
         "keeps iceRetention of the frozen part as crystals of iceEffectiveRadius, and the value "
         "is the liquid's and the ice's summed extinction over 'extinction'; each horizontal layer "
-        "of it is blurred by iceSpread and every voxel takes its ice share of the blurred "
+        "of it is blurred by iceSpread along the outflow's wind and iceSpreadAcross across it, "
+        "and every voxel takes its ice share of the blurred "
         "value, so the glaciated anvil is a sheet. Only leaves that "
         "particles touch are allocated; the grid is identical for any thread count. Metadata: "
         "frame, units ('metres'), voxel_size_m, particle_radius_m, kernel, particle_count, and "
@@ -318,10 +319,14 @@ void registerVoxelizerNode(Registry& registry)
                    "water: ice crystals' effective radius; sigma = 3 IWC / (2 rho_ice r_eff) "
                    "(Fu 1996; anvils 20-60 um)",
                    1.0, 1000.0),
-        floatParam("iceSpread", 1500.0, "m",
-                   "water: standard deviation of the sideways spreading of the glaciated "
-                   "layers into a sheet (ours: an anvil's outflow; docs/voxelizer.md, 'Ice'); "
-                   "0: none",
+        floatParam("iceSpread", 3000.0, "m",
+                   "water: standard deviation of the spreading of the glaciated outflow into a "
+                   "sheet along its wind (every way in calm air; ours: docs/voxelizer.md, "
+                   "'Ice'); 0: none",
+                   0.0, 100000.0),
+        floatParam("iceSpreadAcross", 500.0, "m",
+                   "water: the same across the outflow's wind, so the sheet is streaked along "
+                   "it (value ours)",
                    0.0, 100000.0),
         floatParam("anvilDepth", 2000.0, "m",
                    "water: the spreading starts this far under the equilibrium level of a "

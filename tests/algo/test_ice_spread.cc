@@ -41,7 +41,11 @@ struct Storm {
     AdiabaticWater water{16.0, 880.0};
     Glaciation ice;
     IceSpreadSettings settings;
-    Storm() { settings.outflowBottom = 9000.0; }
+    Storm()
+    {
+        settings.spread = 1500.0;  // calm: every way
+        settings.outflowBottom = 9000.0;
+    }
 };
 
 }  // namespace
@@ -73,6 +77,29 @@ TEST(IceSpread, TheOutflowsIceSpreadsIntoASheetKeepingEachLayersExtinction)
     EXPECT_FALSE(acc.isValueOn(openvdb::Coord(1, 1, 113)));
 }
 
+TEST(IceSpread, InTheOutflowsWindTheIceStreaksAlongItKeepingItsExtinction)
+{
+    Storm s;
+    s.settings.across = 300.0;
+    for (const openvdb::Vec2d wind : {openvdb::Vec2d(12.0, 0.0), openvdb::Vec2d(-5.0, -5.0)}) {
+        s.settings.directionEast = wind.x();
+        s.settings.directionNorth = wind.y();
+        auto grid = puffs({openvdb::Coord(0, 0, 110)});
+        const double before = layerSum(*grid, 111);
+        spreadIce(*grid, s.base, s.water, s.ice, s.settings);
+        EXPECT_NEAR(layerSum(*grid, 111), before, 0.01 * before) << wind;
+        // 20 voxels from the puff's centre along the wind and across it.
+        const openvdb::Vec2d along = wind.unit() * 20.0, across(-along.y(), along.x());
+        const auto at = [&](const openvdb::Vec2d& d) {
+            return grid->getConstAccessor().getValue(
+                openvdb::Coord(1 + static_cast<int>(std::lround(d.x())),
+                               1 + static_cast<int>(std::lround(d.y())), 111));
+        };
+        EXPECT_GT(at(along), 5.0f * at(across)) << wind;
+        EXPECT_NEAR(at(along), at(-along), 0.05f * at(along)) << "both ways along " << wind;
+    }
+}
+
 TEST(IceSpread, WarmCloudAndTheGlaciatedTowerUnderTheOutflowKeepTheirShape)
 {
     Storm s;
@@ -96,6 +123,8 @@ TEST(IceSpread, WarmCloudAndTheGlaciatedTowerUnderTheOutflowKeepTheirShape)
 TEST(IceSpread, TheSheetIsTheSameForAnyThreadCount)
 {
     Storm s;
+    s.settings.directionEast = 3.0;  // streaked along lines slanting through the layer
+    s.settings.directionNorth = -2.0;
     std::vector<openvdb::FloatGrid::Ptr> grids;
     for (int threads : {1, 2, 4}) {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
