@@ -65,20 +65,9 @@ std::vector<std::uint64_t> pickParents(const SourceTable& table, const ParentCan
         takenNow.insert(key);
         keys.push_back(key);
     };
-    if (s.parentRule == ParentRule::PerParticle) {
-        auto keyOf = [&](std::uint64_t v) {
-            const auto at = std::upper_bound(c.parentOffset.begin(), c.parentOffset.end(), v) - 1;
-            const auto slot = static_cast<std::size_t>(at - c.parentOffset.begin());
-            return (static_cast<std::uint64_t>(c.parents[slot]) << 32) | (v - *at);
-        };
-        for (std::uint64_t k = 0; k < fresh; ++k)
-            take(keyOf(pickCandidate(s, c.level, c.frame, k, c.count,
-                                     [&](std::uint64_t v) { return taken(keyOf(v)); })));
-        return keys;
-    }
-    // The paper's rule: r_j uniformly among the sources that have particles, then r_i
-    // uniformly among r_j's particles that are still free. A parent whose particles are all
-    // taken is drawn again, so r_j stays uniform over the parents that can give one.
+    // The parents that have particles, and how many of each are taken: a particle drawn
+    // for a copy the cloud top refused stays taken without a record, so the free ones, not
+    // the fresh count, bound the draws.
     std::vector<std::uint32_t> eligible;
     std::vector<std::uint64_t> sizes, takenIn;
     for (std::size_t n = 0; n < c.parents.size(); ++n) {
@@ -94,6 +83,20 @@ std::vector<std::uint64_t> pickParents(const SourceTable& table, const ParentCan
     }
     std::uint64_t freeLeft = 0;
     for (std::size_t n = 0; n < eligible.size(); ++n) freeLeft += sizes[n] - takenIn[n];
+    if (s.parentRule == ParentRule::PerParticle) {
+        auto keyOf = [&](std::uint64_t v) {
+            const auto at = std::upper_bound(c.parentOffset.begin(), c.parentOffset.end(), v) - 1;
+            const auto slot = static_cast<std::size_t>(at - c.parentOffset.begin());
+            return (static_cast<std::uint64_t>(c.parents[slot]) << 32) | (v - *at);
+        };
+        for (std::uint64_t k = 0; k < std::min(fresh, freeLeft); ++k)
+            take(keyOf(pickCandidate(s, c.level, c.frame, k, c.count,
+                                     [&](std::uint64_t v) { return taken(keyOf(v)); })));
+        return keys;
+    }
+    // The paper's rule: r_j uniformly among the sources that have particles, then r_i
+    // uniformly among r_j's particles that are still free. A parent whose particles are all
+    // taken is drawn again, so r_j stays uniform over the parents that can give one.
     const std::uint64_t key =
         (static_cast<std::uint64_t>(c.level) << 32) | static_cast<std::uint32_t>(c.frame);
     std::uint64_t parentDraw = 0, particleDraw = 0;
@@ -213,6 +216,13 @@ SourceTable stepSources(const SourceTable& previous, int frame, int firstCondens
         std::uint64_t fresh = target > existing ? target - existing : 0;
         fresh = std::min<std::uint64_t>(
             fresh, s.maxSources > table.sources.size() ? s.maxSources - table.sources.size() : 0);
+        if (level == 1) {
+            // A condensation particle drawn for a copy the cloud top refused stays taken
+            // without a record: never draw more than are free.
+            std::uint64_t free = 0;
+            for (std::uint32_t v : condensed) free += table.condensationTaken[v] == 0;
+            fresh = std::min(fresh, free);
+        }
         if (fresh == 0) continue;
 
         const std::vector<float> copies =

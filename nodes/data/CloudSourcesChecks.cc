@@ -96,8 +96,9 @@ void checkRecord(const algo::SourceTable& t, const algo::MappingSettings& s, std
         checks::refuse(kType, record(j) + "parent is not one level below");
 }
 
-/// The condensation particles taken are exactly the level-1 parents, each once, so the
-/// selection's probing always finds a free candidate when it needs one.
+/// Every level-1 parent is a taken condensation particle, each once; a taken particle without
+/// a record is one the cloud top refused a copy (the selection bounds its draws by the free
+/// particles, so their number does not matter).
 void checkCondensationTaken(const algo::SourceTable& t)
 {
     std::vector<std::uint8_t> seen(t.condensationTaken.size(), 0);
@@ -117,13 +118,13 @@ void checkCondensationTaken(const algo::SourceTable& t)
         if (seen[src.parent]++ != 0)
             checks::refuse(kType, record(j) + "its condensation particle is taken twice");
     }
-    if (taken != levelOne)
+    if (taken < levelOne)
         checks::refuse(kType, std::to_string(taken) + " condensation particles taken for " +
                                   std::to_string(levelOne) + " level-1 records");
 }
 
-/// The cloud particles taken (j' << 32 | q, sorted, each once) are exactly one per deeper
-/// record, on that record's parent j'.
+/// The cloud particles taken (j' << 32 | q, sorted, each once) name records, at least one per
+/// deeper record on that record's parent j' (more where the cloud top refused copies).
 void checkCloudTaken(const algo::SourceTable& t)
 {
     const std::size_t n = t.sources.size();
@@ -131,7 +132,7 @@ void checkCloudTaken(const algo::SourceTable& t)
     std::size_t deeper = 0;
     for (const algo::Source& src : t.sources)
         if (src.level >= 2) ++deeper, ++balance[src.parent];
-    if (t.cloudTaken.size() != deeper)
+    if (t.cloudTaken.size() < deeper)
         checks::refuse(kType, std::to_string(t.cloudTaken.size()) + " cloud particles taken for " +
                                   std::to_string(deeper) + " records of level 2 or more");
     for (std::size_t i = 0; i < t.cloudTaken.size(); ++i) {
@@ -139,10 +140,16 @@ void checkCloudTaken(const algo::SourceTable& t)
         if (i > 0 && key <= t.cloudTaken[i - 1])
             checks::refuse(kType, "taken cloud particles are not sorted and distinct");
         const std::uint64_t owner = key >> 32;
-        if (owner >= n || balance[owner]-- == 0)
+        if (owner >= n)
             checks::refuse(kType, "taken cloud particle of record " + std::to_string(owner) +
-                                      " has no record on it");
+                                      " names no record");
+        --balance[owner];
     }
+    for (std::size_t j = 0; j < n; ++j)
+        if (balance[j] > 0)
+            checks::refuse(kType, "record " + std::to_string(j) + " has " +
+                                      std::to_string(balance[j]) +
+                                      " children on cloud particles not marked taken");
 }
 
 /// Trail copies' anchors: 3 floats per record with Level1Origin::Trail, none otherwise, so an
