@@ -62,6 +62,10 @@ void checkDissipation(const DissipationSettings& d)
         throw std::invalid_argument("dissipation: hold must be a finite time >= 0");
     if (!(d.decayTime >= 0.0) || !std::isfinite(d.decayTime))
         throw std::invalid_argument("dissipation: decayTime must be a finite time >= 0");
+    if (!(d.anvilBase >= 0.0) || !std::isfinite(d.anvilBase))
+        throw std::invalid_argument("dissipation: anvilBase must be a finite height >= 0");
+    if (!(d.anvilLife >= 1.0) || !std::isfinite(d.anvilLife))
+        throw std::invalid_argument("dissipation: anvilLife must be a finite factor >= 1");
 }
 
 PrimitiveExtent primitiveExtent(const PrimitiveView& p)
@@ -89,9 +93,9 @@ std::vector<float> cloudDecay(const SourceTable& table, int frame, const Primiti
         }
         const Decay c = rootDecay(src, lib.views[primitiveOf(j, s)], s, d);
         const double past = frame - c.start;
-        decay[j] = past <= 0.0        ? 0.0f
-                   : past >= c.frames ? 1.0f
-                                      : static_cast<float>(past / c.frames);
+        decay[j] = past <= 0.0         ? 0.0f
+                   : !(c.frames > 0.0) ? 1e9f  // decays at once
+                                       : static_cast<float>(past / c.frames);
     }
     return decay;
 }
@@ -110,13 +114,18 @@ CloudChunk chunkSurviving(const CloudChunk& chunk, const DissipationFrame& d, Ke
     float f = 0.0f;
     CopyScale r{1.0f, 1.0f};
     std::array<float, 4> extent{};
+    const float* o = nullptr;  // the run's copy origin
     for (std::uint64_t i = 0; i < chunk.count; ++i) {
         const std::uint32_t j = chunk.sources[i];
         if (j != last) {  // particles come in runs of one source
             last = j;
             const Source& src = d.table->sources[j];
-            // A cloud's turrets go before its body: level L decays L times as fast.
-            f = std::min(1.0f, d.decay[j] * static_cast<float>(src.level));
+            // A cloud's turrets go before its body: level L decays L times as fast; the
+            // anvil's ice lasts anvilLife times longer.
+            o = chunk.copyOrigins + 3 * std::size_t{j};
+            const bool anvil = d.dissipation.anvilBase > 0.0 && o[2] >= d.dissipation.anvilBase;
+            const double life = anvil ? d.dissipation.anvilLife : 1.0;
+            f = static_cast<float>(std::min(1.0, d.decay[j] * src.level / life));
             const std::size_t primitive = primitiveOf(j, s);
             const PrimitiveView& p = d.library->views[primitive];
             const double time =
@@ -126,7 +135,6 @@ CloudChunk chunkSurviving(const CloudChunk& chunk, const DissipationFrame& d, Ke
         }
         if (f >= 1.0f) continue;
         if (f > 0.0f) {
-            const float* o = chunk.copyOrigins + 3 * std::size_t{j};
             const float* x = chunk.positions + 3 * i;
             const double dx = (x[0] - o[0]) / r.across - extent[0],
                          dy = (x[1] - o[1]) / r.across - extent[1],

@@ -12,6 +12,12 @@
 /// per particle, is below 1 - f: the edges go first, and at f = 1 nothing is left. A copy of
 /// level L counts L f (capped at 1): the turrets grown on a cloud go before its body, which
 /// would otherwise leave small copies floating where the body has gone.
+///
+/// Ice lasts: with anvilBase > 0 a copy whose origin lies at or above anvilBase (the anvil's
+/// glaciated outflow) counts L f / anvilLife instead, so the anvil outlives the tower that fed
+/// it. Ice crystals in the dry air of the upper troposphere sublimate slowly and settle, so
+/// anvils persist as cirrus for hours after their storm (Garrett et al. 2005 followed one for
+/// three hours); the factor is ours.
 
 #include <array>
 #include <cstdint>
@@ -25,6 +31,8 @@ namespace cg::algo {
 struct DissipationSettings {
     double hold = 120.0;       ///< s between the end of a cloud's growth and its decay (ours)
     double decayTime = 600.0;  ///< s for a cloud of scale R0 to evaporate (ours)
+    double anvilBase = 0.0;    ///< m above the ground: copies from here up last longer; 0: none
+    double anvilLife = 4.0;    ///< how many times longer they take (>= 1; ours)
 };
 
 /// Throws std::invalid_argument naming the setting that is negative or not finite.
@@ -37,8 +45,10 @@ struct PrimitiveExtent {
 };
 PrimitiveExtent primitiveExtent(const PrimitiveView& p);
 
-/// Per source, the decay fraction f in [0, 1] of the cloud it belongs to at frame t. Throws
-/// as checkDissipation does for unusable settings.
+/// Per source, the decay fraction f >= 0 of the cloud it belongs to at frame t: the share of
+/// its decay time gone, 0 before it starts, 1 at its end and more after (a copy above the
+/// anvil base reads it divided by anvilLife). Throws as checkDissipation does for unusable
+/// settings.
 std::vector<float> cloudDecay(const SourceTable& table, int frame, const PrimitiveLibrary& lib,
                               const MappingSettings& s, const DissipationSettings& d);
 
@@ -49,6 +59,7 @@ struct DissipationFrame {
     const SourceTable* table = nullptr;
     const PrimitiveLibrary* library = nullptr;
     const MappingSettings* settings = nullptr;
+    DissipationSettings dissipation;  ///< for the anvil's slower decay
     int frame = 0;
 };
 

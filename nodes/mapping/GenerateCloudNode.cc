@@ -107,6 +107,7 @@ private:
         f.table = &mSources->table;
         f.library = &mPrim.library;
         f.settings = &mSources->settings;
+        f.dissipation = d;
         f.frame = mFrame;
         return f;
     }
@@ -169,6 +170,8 @@ public:
             dissipation.emplace();
             dissipation->hold = ctx.params().getFloat("hold");
             dissipation->decayTime = ctx.params().getFloat("decayTime");
+            dissipation->anvilBase = ctx.params().getFloat("anvilBase");
+            dissipation->anvilLife = ctx.params().getFloat("anvilLife");
         }
         auto cloud = std::make_shared<GeneratedCloud>(
             sources, condensation, primitives, ctx.frame(),
@@ -192,7 +195,7 @@ void registerGenerateCloudNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "GenerateCloud";
-    d.version = 3;  // each version's change: CHANGES.md, "Node versions"
+    d.version = 4;  // each version's change: CHANGES.md, "Node versions"
     d.category = "mapping";
     // A frame's particles take longer to store and read back than to generate (and would
     // keep every frame's particles on disk, which the mapper's memory model rules out).
@@ -239,7 +242,14 @@ void registerGenerateCloudNode(Registry& registry)
                    "scaleCoefficient) takes to evaporate; smaller clouds take "
                    "proportionally less (small cumulus live minutes, large ones tens "
                    "of minutes)",
-                   0.0, 1e6)};
+                   0.0, 1e6),
+        floatParam("anvilBase", 0.0, "m",
+                   "ours: copies whose origin lies at or above this height (the anvil's "
+                   "glaciated outflow) take anvilLife times longer to evaporate, as anvils "
+                   "outlive their storms as cirrus; 0: none",
+                   0.0, 1e5),
+        floatParam("anvilLife", 4.0, "",
+                   "ours: how many times longer the anvil's copies take to evaporate", 1.0, 1e3)};
     d.create = [] { return std::make_unique<GenerateCloudNode>(); };
     registry.addNode(std::move(d));
 }
