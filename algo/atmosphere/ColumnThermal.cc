@@ -37,6 +37,7 @@ void columnThermalStep(const ColumnThermalSettings& s, const ParticleStart& m,
     const float kelvin = static_cast<float>(thermo::kKelvin);
     const float divergence = static_cast<float>(s.outflowDivergence);
     const float outflowBottom = static_cast<float>(s.outflowBottom);
+    const float maxSpeed = static_cast<float>(s.outflowMaxSpeed);
     const float floorHeight = p.groundStops ? 0.0f : -std::numeric_limits<float>::infinity();
     const float time = static_cast<float>(s.time);
     for (std::size_t i = begin; i < end; ++i) {
@@ -78,8 +79,14 @@ void columnThermalStep(const ColumnThermalSettings& s, const ParticleStart& m,
         float vx = windy ? c.at(c.windEast, z) : 0.0f;
         float vy = windy ? c.at(c.windNorth, z) : 0.0f;
         if (outflow && saturated && t < environment && z >= outflowBottom) {
-            vx += divergence * (in.x[i] - axes.x[i]);
-            vy += divergence * (in.y[i] - axes.y[i]);
+            float ox = divergence * (in.x[i] - axes.x[i]), oy = divergence * (in.y[i] - axes.y[i]);
+            const float speed = std::hypot(ox, oy);
+            if (maxSpeed > 0.0f && speed > maxSpeed) {  // a gravity current's speed, not more
+                ox *= maxSpeed / speed;
+                oy *= maxSpeed / speed;
+            }
+            vx += ox;
+            vy += oy;
         }
         out.x[i] = in.x[i] + dt * vx;
         out.y[i] = in.y[i] + dt * vy;

@@ -31,6 +31,7 @@ struct ColumnThermalSettings {
     /// Outflow (ours): a saturated particle colder than its environment above this height
     /// (m above the ground) moves away from its tower's axis at divergence * distance.
     double outflowDivergence = 0.0;  ///< 1/s; 0 = no outflow
+    double outflowMaxSpeed = 0.0;    ///< m/s the outflow moves a particle at most; 0 = no cap
     double outflowBottom = 0.0;      ///< m above the ground
     /// Seconds from t0 to the state being stepped, for the particles' release times.
     double time = 0.0;

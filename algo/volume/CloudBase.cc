@@ -89,6 +89,13 @@ double CloudBaseField::at(double x, double y) const
            wv * ((1 - wu) * cell(i, j + 1) + wu * cell(i + 1, j + 1));
 }
 
+double CloudBaseField::lowest() const
+{
+    double low = mOverall;
+    for (double c : mCells) low = std::min(low, c);
+    return low;
+}
+
 double extinctionPerUnitValue(const DropletPopulation& droplets)
 {
     return extinctionFromWater(1.0, droplets);

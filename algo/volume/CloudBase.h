@@ -48,6 +48,8 @@ public:
     /// The 10th percentile of all the heights: cells without particles, and what a
     /// condensation level for a whole cloud reads.
     double overall() const { return mOverall; }
+    /// The lowest base over any column (bilinear values lie between their cells').
+    double lowest() const;
 
 private:
     double mCell;

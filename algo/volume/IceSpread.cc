@@ -70,6 +70,134 @@ double firstIceHeight(const AdiabaticWater& water, const Glaciation& ice)
     return 16000.0;
 }
 
+/// How each layer is blurred: along (dx, dy) and across it, sigmas in voxels, and the margin
+/// three box passes reach.
+struct Blur {
+    double dx = 1.0, dy = 0.0, along = 0.0, across = 0.0;
+    long pad = 0;
+};
+
+/// What spreads where: the grid's layers from k0 up, and which ice each voxel holds.
+struct Layers {
+    const CloudBaseField& base;
+    const AdiabaticWater& water;
+    const Glaciation& ice;
+    const IceSpreadSettings& settings;
+    int k0 = 0, k1 = 0;
+};
+
+/// Spreads the layers inside the columns of `box` (x, y; its margin included), which holds
+/// every voxel the blur moves there: nothing outside it is read or written.
+void spreadBox(openvdb::FloatGrid& grid, const openvdb::CoordBBox& box, const Blur& b,
+               const Layers& l)
+{
+    const double voxel = grid.voxelSize()[0];
+    const long nx = box.dim().x(), ny = box.dim().y(), nz = l.k1 - l.k0 + 1;
+    const double bytes = 2.0 * sizeof(float) * static_cast<double>(nx) * static_cast<double>(ny) *
+                         static_cast<double>(nz);
+    if (l.settings.maxBytes > 0 && bytes > static_cast<double>(l.settings.maxBytes))
+        throw IceSpreadTooLarge("ice spread: the glaciated layers (" + std::to_string(nx) + " x " +
+                                std::to_string(ny) + " x " + std::to_string(nz) +
+                                " voxels with the spread's margin) need more memory than allowed");
+    const openvdb::CoordBBox slab(openvdb::Coord(box.min().x(), box.min().y(), l.k0),
+                                  openvdb::Coord(box.max().x(), box.max().y(), l.k1));
+    std::vector<double> columnBase(static_cast<std::size_t>(nx * ny));  // once per column
+    for (long j = 0; j < ny; ++j)
+        for (long i = 0; i < nx; ++i)
+            columnBase[static_cast<std::size_t>(j * nx + i)] =
+                l.base.at((slab.min().x() + i) * voxel, (slab.min().y() + j) * voxel);
+    Dense own(slab, 0.0f), spread(slab, 0.0f);
+    openvdb::tools::copyToDense(grid, own);
+    std::copy(own.data(), own.data() + own.valueCount(), spread.data());
+    tbb::parallel_for(0L, nz, [&](long k) {
+        float* layer = spread.data() + k * nx * ny;
+        const float* mine = own.data() + k * nx * ny;
+        blurAlong(layer, nx, ny, b.dx, b.dy, b.along);
+        if (b.across > 0.0) blurAlong(layer, nx, ny, -b.dy, b.dx, b.across);
+        const double z = (slab.min().z() + k) * voxel;
+        const double outflow = std::clamp((z - l.settings.outflowBottom) / 1000.0, 0.0, 1.0);
+        for (long n = 0; n < nx * ny; ++n) {
+            const double t = l.water.temperature(z - columnBase[static_cast<std::size_t>(n)]);
+            const double w = outflow * iceFraction(t, l.ice);
+            layer[n] = static_cast<float>((1.0 - w) * mine[n] + w * layer[n]);
+        }
+    });
+    openvdb::tools::copyFromDense(spread, grid, 2e-5f);
+}
+
+/// Tiles of kTile x kTile columns: the unit in which separate clouds are found.
+constexpr int kTile = 16;
+
+/// The boxes (x, y in voxels) to spread separately: the tiles holding cloud in layers k0 and
+/// up, grown by the blur's margin, in connected groups, each group's bounding box, boxes that
+/// overlap merged. Clouds farther apart than the margin never meet in the blur, so spreading
+/// each box alone is spreading the whole layer, without a dense layer over the empty sky
+/// between scattered anvil remnants.
+std::vector<openvdb::CoordBBox> cloudBoxes(const openvdb::FloatGrid& grid, int k0, long pad)
+{
+    const openvdb::CoordBBox active = grid.evalActiveVoxelBoundingBox();
+    const int grow = static_cast<int>((pad + kTile - 1) / kTile) + 1;
+    const int x0 = active.min().x() - grow * kTile, y0 = active.min().y() - grow * kTile;
+    const int tx = active.dim().x() / kTile + 2 * grow + 2;
+    const int ty = active.dim().y() / kTile + 2 * grow + 2;
+    std::vector<std::uint8_t> cloud(static_cast<std::size_t>(tx) * ty, 0);
+    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
+        if (leaf->origin().z() + 7 < k0 || leaf->isEmpty()) continue;
+        for (int cx : {leaf->origin().x(), leaf->origin().x() + 7})
+            for (int cy : {leaf->origin().y(), leaf->origin().y() + 7})
+                cloud[static_cast<std::size_t>((cy - y0) / kTile) * tx + (cx - x0) / kTile] = 1;
+    }
+    // Grown by the margin (separably), then grouped 4-connected.
+    std::vector<std::uint8_t> grown(cloud.size(), 0), rows(cloud.size(), 0);
+    for (int j = 0; j < ty; ++j)
+        for (int i = 0; i < tx; ++i)
+            for (int d = -grow; d <= grow && !rows[static_cast<std::size_t>(j) * tx + i]; ++d)
+                if (i + d >= 0 && i + d < tx && cloud[static_cast<std::size_t>(j) * tx + i + d])
+                    rows[static_cast<std::size_t>(j) * tx + i] = 1;
+    for (int j = 0; j < ty; ++j)
+        for (int i = 0; i < tx; ++i)
+            for (int d = -grow; d <= grow && !grown[static_cast<std::size_t>(j) * tx + i]; ++d)
+                if (j + d >= 0 && j + d < ty && rows[static_cast<std::size_t>(j + d) * tx + i])
+                    grown[static_cast<std::size_t>(j) * tx + i] = 1;
+    std::vector<openvdb::CoordBBox> boxes;
+    std::vector<std::uint8_t> seen(grown.size(), 0);
+    std::vector<std::pair<int, int>> stack;
+    for (int j = 0; j < ty; ++j)
+        for (int i = 0; i < tx; ++i) {
+            const std::size_t at = static_cast<std::size_t>(j) * tx + i;
+            if (!grown[at] || seen[at]) continue;
+            openvdb::CoordBBox box;
+            seen[at] = 1;
+            stack.emplace_back(i, j);
+            while (!stack.empty()) {
+                const auto [a, c] = stack.back();
+                stack.pop_back();
+                box.expand(openvdb::CoordBBox(
+                    openvdb::Coord(x0 + a * kTile, y0 + c * kTile, 0),
+                    openvdb::Coord(x0 + (a + 1) * kTile - 1, y0 + (c + 1) * kTile - 1, 0)));
+                for (const auto& [na, nc] : {std::pair{a - 1, c}, std::pair{a + 1, c},
+                                             std::pair{a, c - 1}, std::pair{a, c + 1}}) {
+                    const std::size_t n = static_cast<std::size_t>(nc) * tx + na;
+                    if (na < 0 || nc < 0 || na >= tx || nc >= ty || !grown[n] || seen[n]) continue;
+                    seen[n] = 1;
+                    stack.emplace_back(na, nc);
+                }
+            }
+            boxes.push_back(box);
+        }
+    for (bool merged = true; merged;) {  // bounding boxes of L-shaped groups may overlap
+        merged = false;
+        for (std::size_t a = 0; a < boxes.size() && !merged; ++a)
+            for (std::size_t c = a + 1; c < boxes.size() && !merged; ++c)
+                if (boxes[a].hasOverlap(boxes[c])) {
+                    boxes[a].expand(boxes[c]);
+                    boxes.erase(boxes.begin() + static_cast<std::ptrdiff_t>(c));
+                    merged = true;
+                }
+    }
+    return boxes;
+}
+
 }  // namespace
 
 void spreadIce(openvdb::FloatGrid& grid, const CloudBaseField& base, const AdiabaticWater& water,
@@ -79,60 +207,27 @@ void spreadIce(openvdb::FloatGrid& grid, const CloudBaseField& base, const Adiab
     if (!(s.spread > 0.0) || grid.activeVoxelCount() == 0) return;
     const double voxel = grid.voxelSize()[0];
     // Along the outflow's direction and across it; isotropic without one.
+    Blur b;
     const double speed = std::hypot(s.directionEast, s.directionNorth);
-    const double dx = speed > 0.0 ? s.directionEast / speed : 1.0;
-    const double dy = speed > 0.0 ? s.directionNorth / speed : 0.0;
-    const double along = s.spread / voxel;
-    const double across = (speed > 0.0 ? s.across : s.spread) / voxel;
+    if (speed > 0.0) b.dx = s.directionEast / speed, b.dy = s.directionNorth / speed;
+    b.along = s.spread / voxel;
+    b.across = (speed > 0.0 ? s.across : s.spread) / voxel;
     // Three passes reach three half-widths, each at most the larger sigma's.
-    const long pad = 3 * boxHalfWidth(std::max(along, across)) + 2;
+    b.pad = 3 * boxHalfWidth(std::max(b.along, b.across)) + 2;
+    // Only layers where some column could hold ice are spread.
     const openvdb::CoordBBox active = grid.evalActiveVoxelBoundingBox();
-    const openvdb::Coord low(active.min().x() - static_cast<int>(pad),
-                             active.min().y() - static_cast<int>(pad), active.min().z());
-    const long nx = active.dim().x() + 2 * pad, ny = active.dim().y() + 2 * pad;
-    // Each column's base, found once; only layers where some column could hold ice are spread.
-    std::vector<double> columnBase(static_cast<std::size_t>(nx * ny));
-    for (long j = 0; j < ny; ++j)
-        for (long i = 0; i < nx; ++i)
-            columnBase[static_cast<std::size_t>(j * nx + i)] =
-                base.at((low.x() + i) * voxel, (low.y() + j) * voxel);
-    const double lowestBase = *std::min_element(columnBase.begin(), columnBase.end());
-    const int k0 =
-        std::max(active.min().z(),
-                 static_cast<int>(std::floor(
-                     std::max(s.outflowBottom, lowestBase + firstIceHeight(water, ice)) / voxel)));
-    if (k0 > active.max().z()) return;
-    const openvdb::CoordBBox slab(
-        openvdb::Coord(low.x(), low.y(), k0),
-        openvdb::Coord(low.x() + static_cast<int>(nx) - 1, low.y() + static_cast<int>(ny) - 1,
-                       active.max().z()));
-    const long nz = slab.dim().z();
-    const double bytes = 2.0 * sizeof(float) * static_cast<double>(nx) * static_cast<double>(ny) *
-                         static_cast<double>(nz);
-    if (s.maxBytes > 0 && bytes > static_cast<double>(s.maxBytes))
-        throw IceSpreadTooLarge("ice spread: the glaciated layers (" + std::to_string(nx) + " x " +
-                                std::to_string(ny) + " x " + std::to_string(nz) +
-                                " voxels with the spread's margin) need more memory than allowed");
-    Dense own(slab, 0.0f), spread(slab, 0.0f);
-    openvdb::tools::copyToDense(grid, own);
-    std::copy(own.data(), own.data() + own.valueCount(), spread.data());
-    tbb::parallel_for(0L, nz, [&](long k) {
-        float* layer = spread.data() + k * nx * ny;
-        const float* mine = own.data() + k * nx * ny;
-        blurAlong(layer, nx, ny, dx, dy, along);
-        if (across > 0.0) blurAlong(layer, nx, ny, -dy, dx, across);
-        const double z = (slab.min().z() + k) * voxel;
-        const double outflow = std::clamp((z - s.outflowBottom) / 1000.0, 0.0, 1.0);
-        for (long n = 0; n < nx * ny; ++n) {
-            const double w =
-                outflow *
-                iceFraction(water.temperature(z - columnBase[static_cast<std::size_t>(n)]), ice);
-            layer[n] = static_cast<float>((1.0 - w) * mine[n] + w * layer[n]);
-        }
-    });
-    if (checkCancelled) checkCancelled();
-    openvdb::tools::copyFromDense(spread, grid, 2e-5f);
-    if (checkCancelled) checkCancelled();
+    Layers l{base, water, ice, s};
+    l.k0 = std::max(
+        active.min().z(),
+        static_cast<int>(std::floor(
+            std::max(s.outflowBottom, base.lowest() + firstIceHeight(water, ice)) / voxel)));
+    l.k1 = active.max().z();
+    if (l.k0 > l.k1) return;
+    const std::vector<openvdb::CoordBBox> boxes = cloudBoxes(grid, l.k0, b.pad);
+    for (const openvdb::CoordBBox& box : boxes) {  // disjoint: any order gives the same grid
+        spreadBox(grid, box, b, l);
+        if (checkCancelled) checkCancelled();
+    }
 }
 
 }  // namespace cg::algo

@@ -98,6 +98,7 @@ private:
         s.column = &data.column;
         s.moistAdiabat = atmosphere.moistAdiabat;
         s.outflowDivergence = p.getFloat("outflowDivergence");
+        s.outflowMaxSpeed = p.getFloat("outflowMaxSpeed");
         s.time = (ctx.frame() - 1 - ctx.startFrame()) * paper.timeStep;  // the previous frame's
 
         const VapourStatics& st = *previous.statics;
@@ -142,7 +143,7 @@ void registerThermalIntegratorNode(Registry& registry)
 {
     NodeDecl d;
     d.type = "ThermalIntegrator";
-    d.version = 2;  // each version's change: CHANGES.md, "Node versions"
+    d.version = 3;  // each version's change: CHANGES.md, "Node versions"
     d.category = "atmosphere";
     d.doc =
         "Vapour particles rising under the thermal effect (Sec. 5.1, pseudocode lines 29-35). "
@@ -184,6 +185,11 @@ void registerThermalIntegratorNode(Registry& registry)
                    "free convection (the top of a tower) move away from their tower's axis at "
                    "this rate times their distance from it: the anvil (0: none, the paper's)",
                    0.0, 1.0),
+        floatParam("outflowMaxSpeed", 0.0, "m/s",
+                   "ours: the outflow moves a particle at most this fast, as an anvil spreads "
+                   "as a gravity current of 10-20 m/s rather than ever faster with its size "
+                   "(0: no cap)",
+                   0.0, 200.0),
     };
     d.create = [] { return std::make_unique<ThermalIntegratorNode>(); };
     registry.addNode(std::move(d));

@@ -139,11 +139,32 @@ TEST(IceSpread, TheSheetIsTheSameForAnyThreadCount)
     }
 }
 
+TEST(IceSpread, FarApartCloudsSpreadAloneWithoutADenseLayerBetweenThem)
+{
+    Storm s;
+    s.settings.maxBytes = 1 << 20;  // less than a layer spanning both
+    auto both = puffs({openvdb::Coord(0, 0, 110), openvdb::Coord(400, 400, 110)});
+    ASSERT_NO_THROW(spreadIce(*both, s.base, s.water, s.ice, s.settings));
+    auto first = puffs({openvdb::Coord(0, 0, 110)}),
+         second = puffs({openvdb::Coord(400, 400, 110)});
+    spreadIce(*first, s.base, s.water, s.ice, s.settings);
+    spreadIce(*second, s.base, s.water, s.ice, s.settings);
+    EXPECT_EQ(both->activeVoxelCount(), first->activeVoxelCount() + second->activeVoxelCount());
+    auto acc = both->getConstAccessor();
+    for (const auto& alone : {first, second})
+        for (auto it = alone->cbeginValueOn(); it; ++it)
+            ASSERT_EQ(acc.getValue(it.getCoord()), *it) << it.getCoord();
+}
+
 TEST(IceSpread, RefusesLayersBeyondItsMemoryBeforeAllocatingThem)
 {
     Storm s;
     s.settings.maxBytes = 1 << 20;
-    auto grid = puffs({openvdb::Coord(0, 0, 110), openvdb::Coord(400, 400, 110)});
+    // One sheet 600 voxels long: its layers with the margin need about 3 MB.
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(kVoxel));
+    grid->denseFill(openvdb::CoordBBox(openvdb::Coord(0, 0, 110), openvdb::Coord(599, 2, 112)),
+                    1.0f, true);
     const auto before = grid->activeVoxelCount();
     EXPECT_THROW(spreadIce(*grid, s.base, s.water, s.ice, s.settings), IceSpreadTooLarge);
     EXPECT_EQ(grid->activeVoxelCount(), before) << "nothing changed";

@@ -243,6 +243,31 @@ TEST_F(RealAtmosphere, OutflowSpreadsTheTopIntoAnAnvil)
     EXPECT_GE(topWidth, 2.0 * midWidth) << "mid " << midWidth << " m, top " << topWidth << " m";
 }
 
+TEST_F(RealAtmosphere, TheOutflowMovesNoParticleFasterThanItsCap)
+{
+    json emit = uniformEmission(31.0);
+    emit["maxParticlesPerCell"] = 4;
+    const json noise = {{"width", 20}, {"height", 20}, {"cellSize", 100.0}};
+    const auto fastest = [&](double cap) {
+        double top = 0.0;
+        run(pipeline(300, 5.0, soundingAtmosphere(), emit,
+                     {{"buoyancy", "parcel"},
+                      {"drag", 1e-3},
+                      {"outflowDivergence", 2e-3},
+                      {"outflowMaxSpeed", cap}},
+                     noise),
+            [&](int, const CondensationData& c) {
+                const VapourParticlesData& p = *c.particles;
+                for (std::size_t i = 0; i < p.vxs().size(); ++i)  // calm air: outflow alone
+                    top = std::max(top, std::hypot(double(p.vxs()[i]), double(p.vys()[i])));
+            });
+        return top;
+    };
+    const double uncapped = fastest(0.0);
+    ASSERT_GT(uncapped, 3.0) << "the outflow never ran faster than the cap to test";
+    EXPECT_LE(fastest(3.0), 3.0 + 1e-4);
+}
+
 TEST_F(RealAtmosphere, ConstantWindMovesEveryParticleByUTAndNothingElse)
 {
     const int frames = 100;
