@@ -14,22 +14,14 @@ namespace {
 
 using Dense = openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ>;
 
-/// Box blur of half-width r over the n values at `index` (a line through the layer), zero
-/// beyond its ends.
-void boxLine(float* layer, const std::vector<long>& index, long r, std::vector<double>& line)
-{
-    const long n = static_cast<long>(index.size());
-    line.resize(index.size());
-    for (long i = 0; i < n; ++i) line[static_cast<std::size_t>(i)] = layer[index[i]];
-    const double w = 1.0 / static_cast<double>(2 * r + 1);
-    double sum = 0.0;
-    for (long i = 0; i < std::min(r, n); ++i) sum += line[static_cast<std::size_t>(i)];
-    for (long i = 0; i < n; ++i) {
-        if (i + r < n) sum += line[static_cast<std::size_t>(i + r)];
-        if (i - r - 1 >= 0) sum -= line[static_cast<std::size_t>(i - r - 1)];
-        layer[index[static_cast<std::size_t>(i)]] = static_cast<float>(sum * w);
-    }
-}
+/// The lines a layer (nx x ny, x fastest) is cut into along a direction, every voxel on one:
+/// along the major axis one voxel a step, the minor coordinate rounded from the slope, so a
+/// step is sqrt(1 + slope^2) voxels long. The same for every layer, so found once.
+struct Lines {
+    std::vector<long> index;         ///< voxels, line after line
+    std::vector<std::size_t> begin;  ///< where each line starts in `index`, and its end
+    long halfWidth = 1;              ///< of three box passes of the blur's sigma, in steps
+};
 
 /// The half-width of three box passes whose variance is sigma^2 (in steps).
 long boxHalfWidth(double sigma)
@@ -37,28 +29,46 @@ long boxHalfWidth(double sigma)
     return std::max(1L, std::lround(0.5 * (std::sqrt(4.0 * sigma * sigma + 1.0) - 1.0)));
 }
 
-/// Three box passes of a Gaussian of `sigma` voxels along the direction (dx, dy) of a layer
-/// (nx x ny, x fastest). The layer is cut into parallel lines, each voxel on one: along the
-/// major axis one voxel a step, the minor coordinate rounded from the slope, so a step is
-/// sqrt(1 + slope^2) voxels long.
-void blurAlong(float* layer, long nx, long ny, double dx, double dy, double sigma)
+/// The lines along (dx, dy) through a layer, for a Gaussian of `sigma` voxels.
+Lines linesAlong(long nx, long ny, double dx, double dy, double sigma)
 {
     const bool alongX = std::abs(dx) >= std::abs(dy);
     const long major = alongX ? nx : ny, minor = alongX ? ny : nx;
     const double slope = alongX ? dy / dx : dx / dy;
-    const long r = boxHalfWidth(sigma / std::sqrt(1.0 + slope * slope));
     const long reach = std::lround(slope * static_cast<double>(major - 1));
-    std::vector<long> index;
-    std::vector<double> line;
+    Lines lines;
+    lines.halfWidth = boxHalfWidth(sigma / std::sqrt(1.0 + slope * slope));
+    lines.index.reserve(static_cast<std::size_t>(nx * ny));
+    for (long start = std::min(0L, -reach); start < minor + std::max(0L, -reach); ++start) {
+        const std::size_t first = lines.index.size();
+        for (long m = 0; m < major; ++m) {
+            const long o = start + std::lround(slope * static_cast<double>(m));
+            if (o >= 0 && o < minor) lines.index.push_back(alongX ? o * nx + m : m * nx + o);
+        }
+        if (lines.index.size() > first) lines.begin.push_back(first);
+    }
+    lines.begin.push_back(lines.index.size());
+    return lines;
+}
+
+/// Three box passes along every line of `lines` through `layer`, zero beyond a line's ends.
+void blurAlong(float* layer, const Lines& lines, std::vector<double>& line)
+{
+    const long r = lines.halfWidth;
+    const double w = 1.0 / static_cast<double>(2 * r + 1);
     for (int pass = 0; pass < 3; ++pass)
-        for (long start = std::min(0L, -reach); start < minor + std::max(0L, -reach); ++start) {
-            index.clear();
-            for (long m = 0; m < major; ++m) {
-                const long o = start + std::lround(slope * static_cast<double>(m));
-                if (o < 0 || o >= minor) continue;
-                index.push_back(alongX ? o * nx + m : m * nx + o);
+        for (std::size_t l = 0; l + 1 < lines.begin.size(); ++l) {
+            const long* at = lines.index.data() + lines.begin[l];
+            const long n = static_cast<long>(lines.begin[l + 1] - lines.begin[l]);
+            line.resize(static_cast<std::size_t>(n));
+            for (long i = 0; i < n; ++i) line[static_cast<std::size_t>(i)] = layer[at[i]];
+            double sum = 0.0;
+            for (long i = 0; i < std::min(r, n); ++i) sum += line[static_cast<std::size_t>(i)];
+            for (long i = 0; i < n; ++i) {
+                if (i + r < n) sum += line[static_cast<std::size_t>(i + r)];
+                if (i - r - 1 >= 0) sum -= line[static_cast<std::size_t>(i - r - 1)];
+                layer[at[i]] = static_cast<float>(sum * w);
             }
-            if (!index.empty()) boxLine(layer, index, r, line);
         }
 }
 
@@ -93,8 +103,9 @@ void spreadBox(openvdb::FloatGrid& grid, const openvdb::CoordBBox& box, const Bl
 {
     const double voxel = grid.voxelSize()[0];
     const long nx = box.dim().x(), ny = box.dim().y(), nz = l.k1 - l.k0 + 1;
-    const double bytes = 2.0 * sizeof(float) * static_cast<double>(nx) * static_cast<double>(ny) *
-                         static_cast<double>(nz);
+    // Two dense blocks, and the two directions' lines through one layer.
+    const double bytes = (2.0 * sizeof(float) * static_cast<double>(nz) + 2.0 * sizeof(long)) *
+                         static_cast<double>(nx) * static_cast<double>(ny);
     if (l.settings.maxBytes > 0 && bytes > static_cast<double>(l.settings.maxBytes))
         throw IceSpreadTooLarge("ice spread: the glaciated layers (" + std::to_string(nx) + " x " +
                                 std::to_string(ny) + " x " + std::to_string(nz) +
@@ -109,11 +120,14 @@ void spreadBox(openvdb::FloatGrid& grid, const openvdb::CoordBBox& box, const Bl
     Dense own(slab, 0.0f), spread(slab, 0.0f);
     openvdb::tools::copyToDense(grid, own);
     std::copy(own.data(), own.data() + own.valueCount(), spread.data());
+    const Lines along = linesAlong(nx, ny, b.dx, b.dy, b.along);
+    const Lines across = linesAlong(nx, ny, -b.dy, b.dx, b.across);
     tbb::parallel_for(0L, nz, [&](long k) {
         float* layer = spread.data() + k * nx * ny;
         const float* mine = own.data() + k * nx * ny;
-        blurAlong(layer, nx, ny, b.dx, b.dy, b.along);
-        if (b.across > 0.0) blurAlong(layer, nx, ny, -b.dy, b.dx, b.across);
+        std::vector<double> line;
+        blurAlong(layer, along, line);
+        if (b.across > 0.0) blurAlong(layer, across, line);
         const double z = (slab.min().z() + k) * voxel;
         const double outflow = std::clamp((z - l.settings.outflowBottom) / 1000.0, 0.0, 1.0);
         for (long n = 0; n < nx * ny; ++n) {
