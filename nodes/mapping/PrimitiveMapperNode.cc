@@ -2,6 +2,9 @@
 // the growing table of source records; cloud particles come from GenerateCloud.
 
 #include <cmath>
+#include <string>
+
+#include <spdlog/spdlog.h>
 
 #include "core/CoreData.h"
 #include "core/Node.h"
@@ -51,6 +54,31 @@ algo::MappingSettings settingsFrom(const CookContext& ctx, std::size_t primitive
     return s;
 }
 
+/// Level-1 draws the cloud top refused: condensation particles taken without a record.
+std::size_t refusedLevelOne(const algo::SourceTable& t)
+{
+    std::size_t taken = 0, records = 0;
+    for (std::uint8_t v : t.condensationTaken) taken += v;
+    for (const algo::Source& src : t.sources) records += src.level == 1;
+    return taken - records;
+}
+
+/// Says so, once, when the cloud top refuses the first copies and lets none through: the
+/// graph then makes no cloud, which would otherwise look like a bug.
+void warnIfTheCapLeavesNoRoom(const algo::SourceTable& table, const CloudSourcesData* previous,
+                              const algo::MappingSettings& s, const std::string& node)
+{
+    if (s.cloudTop <= 0.0 || refusedLevelOne(table) == 0) return;
+    if (previous && refusedLevelOne(previous->table) > 0) return;  // said already
+    for (const algo::Source& src : table.sources)
+        if (src.level == 1) return;
+    spdlog::warn(
+        "{}: cloudTop {:.0f} m refused every first copy: their origins stand too "
+        "close under it (or above it) for a tenth of their height; no cloud forms "
+        "until cloudTop is raised",
+        node, s.cloudTop);
+}
+
 class PrimitiveMapperNode final : public Node {
 public:
     void cook(CookContext& ctx) override
@@ -67,6 +95,7 @@ public:
             previous ? previous->table : algo::SourceTable{}, ctx.frame(), condensation->firstFrame,
             condensationView(*condensation), mapView(*map), prim.library, settings);
 
+        warnIfTheCapLeavesNoRoom(table, previous.get(), settings, ctx.nodeId());
         const auto counts = algo::cloudCounts(table, ctx.frame(), prim.library, settings);
         std::vector<std::int64_t> perLevel(counts.begin(), counts.end());
         std::int64_t total = 0;

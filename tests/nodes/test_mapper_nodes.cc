@@ -7,7 +7,11 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <sstream>
+#include <string>
 
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 
 #include <openvdb/io/File.h>
@@ -95,6 +99,35 @@ TEST_F(MapperNodes, CloudGrowsLevelByLevelAndCountsAgree)
             sawSummary = r["values"]["summary"].get<std::string>().find("L3=") != std::string::npos;
         }
     EXPECT_TRUE(sawSummary);
+}
+
+TEST_F(MapperNodes, ACloudTopUnderEveryCopyEndsTheSelectionAndSaysSoOnce)
+{
+    const auto copies = [&](double cloudTop) {
+        Graph g = parseGraph(kGraph, "mapper.json", registry);
+        g.setParam("mapper", "cloudTop", cloudTop);
+        Evaluator ev(registry, {});
+        std::int64_t count = -1;
+        ev.cookFrames(g, 0, 130, {"mapper"}, [&](int, const Evaluator::FrameOutputs& r) {
+            count =
+                std::dynamic_pointer_cast<const IntData>(r[g.indexOf("mapper")]->at("cloudCount"))
+                    ->value;
+        });
+        return count;
+    };
+    ASSERT_GT(copies(0.0), 0);
+    std::ostringstream log;
+    auto sink = std::make_shared<spdlog::sinks::ostream_sink_mt>(log);
+    spdlog::default_logger()->sinks().push_back(sink);
+    const std::int64_t capped = copies(1.0);  // a metre above sea level: under every origin
+    auto& sinks = spdlog::default_logger()->sinks();
+    sinks.erase(std::remove(sinks.begin(), sinks.end(), sink), sinks.end());
+    EXPECT_EQ(capped, 0);
+    const std::string text = log.str();
+    const std::string said = "cloudTop 1 m refused every first copy";
+    const auto first = text.find(said);
+    EXPECT_NE(first, std::string::npos) << text;
+    EXPECT_EQ(text.find(said, first + said.size()), std::string::npos) << "once";
 }
 
 TEST_F(MapperNodes, CloudIsBitIdenticalForOneAndTwoThreads)
