@@ -388,15 +388,20 @@ def main():
         # is a new PNG under out/paintings that a new ReadMap beside the noise reads; the
         # file holds the stroke and, away from it, the noise as the preview showed it.
         cooks = browser.run(COOKS)
+        shown = browser.run("return document.getElementById('preview').src;")
         browser.run("""const s = document.getElementById('preview-node'); s.value = 'noise.map';
                        s.dispatchEvent(new Event('change'));""")
         wait_for_cook(browser, cooks, "the noise map's preview")
+        # The preview image arrives after the cook: paint only once the map's image is in.
+        browser.wait_for("const i = document.getElementById('preview'); return i.src !== "
+                         f"{json.dumps(shown)} && i.complete && i.naturalWidth > 0;", timeout=60)
         assert browser.run("return !document.getElementById('paint-row').hidden;"), \
             "no Paint controls on a map's preview"
         browser.run("""const p = document.getElementById('paint'); p.checked = true;
                        p.dispatchEvent(new Event('change'));
                        document.getElementById('brush-value').value = 1;
                        document.getElementById('brush-radius').value = 2;""")
+        browser.wait_for("return !document.getElementById('paint-canvas').hidden;", timeout=30)
         size = browser.run("const c = document.getElementById('paint-canvas');"
                            "return [c.width, c.height];")
         browser.run(PAINT_STROKE, 0.2, 0.8, 0.5)
